@@ -1,0 +1,912 @@
+// VolumeIO: volume loading for the CLI, with header checks so bad input gives an error, not a crash.
+#include "VolumeIO.h"
+
+#include <vtkDataArray.h>
+#include <vtkFloatArray.h>
+#include <vtkLogger.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkType.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+namespace accelvolume::cli
+{
+namespace
+{
+namespace fs = std::filesystem;
+using Dimensions = std::int64_t[3];
+
+struct KindInfo
+{
+  ScalarKind kind;
+  const char* name;
+  int vtkType;
+  int size;
+};
+
+const KindInfo Kinds[] = { { ScalarKind::UInt8, "uint8", VTK_UNSIGNED_CHAR, 1 },
+  { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
+  { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
+  { ScalarKind::Int16, "int16", VTK_SHORT, 2 }, { ScalarKind::Int32, "int32", VTK_INT, 4 },
+  { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
+  { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
+
+const KindInfo* FindKind(ScalarKind kind)
+{
+  for (const KindInfo& info : Kinds)
+  {
+    if (info.kind == kind)
+    {
+      return &info;
+    }
+  }
+  return nullptr;
+}
+
+std::string Lower(std::string text)
+{
+  for (char& c : text)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return text;
+}
+
+std::string Trim(const std::string& text)
+{
+  const auto first = text.find_first_not_of(" \t\r\n");
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() &&
+    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string DimensionsText(const Dimensions dims)
+{
+  return std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+}
+
+// Refuses absurd sizes from the header alone, before any allocation.
+bool CheckSize(const Dimensions dims, const KindInfo& kind, std::int64_t& bytes, std::string& error)
+{
+  const std::int64_t maximumVoxels = std::int64_t(1) << 31;
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+  {
+    error = "dimensions must be at least 1, got " + DimensionsText(dims);
+    return false;
+  }
+  std::int64_t voxels = 1;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    // Dividing first keeps the product from overflowing for absurd inputs.
+    if (dims[axis] > maximumVoxels / voxels)
+    {
+      error = "refusing " + DimensionsText(dims) + ": more than 2^31 voxels";
+      return false;
+    }
+    voxels *= dims[axis];
+  }
+  bytes = voxels * kind.size;
+  if (bytes > (std::int64_t(16) << 30))
+  {
+    error = "refusing " + DimensionsText(dims) + " " + kind.name + ": " + std::to_string(bytes) +
+      " bytes exceeds the 16 GiB limit";
+    return false;
+  }
+  return true;
+}
+
+std::int64_t FileSize(const fs::path& path)
+{
+  std::error_code code;
+  const auto size = fs::file_size(path, code);
+  return code ? -1 : static_cast<std::int64_t>(size);
+}
+
+// Routes VTK's error text into a string while loading, so the CLI can print one clean line.
+class CaptureWindow : public vtkOutputWindow
+{
+public:
+  static CaptureWindow* New();
+  vtkTypeMacro(CaptureWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
+  void DisplayWarningText(const char*) override {}
+  void DisplayGenericWarningText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  void DisplayErrorText(const char* text) override
+  {
+    if (!this->FirstError.empty() || !text)
+    {
+      return;
+    }
+    // VTK formats "ERROR: In file, line N\nClass (0x...): message"; keep only the message.
+    std::string message = Trim(text);
+    message = message.substr(message.find_last_of('\n') + 1);
+    const auto prefix = message.find("): ");
+    this->FirstError = Trim(prefix == std::string::npos ? message : message.substr(prefix + 3));
+  }
+  std::string FirstError;
+};
+vtkStandardNewMacro(CaptureWindow);
+
+// VTK also logs errors to stderr through vtkLogger and MetaIO prints straight to std::cerr, so
+// both are silenced for the scope's lifetime. vtkLogger has no getter for the stderr level; the
+// overall cutoff, capped at the INFO default, is the closest stand-in to restore.
+class MessageCapture
+{
+public:
+  MessageCapture()
+    : Previous(vtkOutputWindow::GetInstance())
+    , PreviousBuffer(std::cerr.rdbuf(this->Discarded.rdbuf()))
+    , PreviousVerbosity(std::min(vtkLogger::GetCurrentVerbosityCutoff(), vtkLogger::VERBOSITY_INFO))
+  {
+    vtkOutputWindow::SetInstance(this->Window);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~MessageCapture()
+  {
+    vtkLogger::SetStderrVerbosity(this->PreviousVerbosity);
+    vtkOutputWindow::SetInstance(this->Previous);
+    std::cerr.rdbuf(this->PreviousBuffer);
+  }
+  std::string FirstError() const { return this->Window->FirstError; }
+
+private:
+  vtkNew<CaptureWindow> Window;
+  vtkSmartPointer<vtkOutputWindow> Previous;
+  std::ostringstream Discarded;
+  std::streambuf* PreviousBuffer;
+  vtkLogger::Verbosity PreviousVerbosity;
+};
+
+// Just enough JSON for datasets.json; malformed input makes Parse return false.
+struct JsonValue
+{
+  double number = 0;
+  bool isNumber = false;
+  std::string text;
+  std::vector<JsonValue> items;
+  std::vector<std::pair<std::string, JsonValue>> members;
+  const JsonValue* Find(const std::string& key) const
+  {
+    for (const auto& member : this->members)
+    {
+      if (member.first == key)
+      {
+        return &member.second;
+      }
+    }
+    return nullptr;
+  }
+};
+
+class JsonParser
+{
+public:
+  explicit JsonParser(const std::string& input)
+    : Input(input)
+  {
+  }
+  bool Parse(JsonValue& value, int depth = 0)
+  {
+    this->SkipSpace();
+    if (depth > 64 || this->Position >= this->Input.size())
+    {
+      return false;
+    }
+    const char c = this->Input[this->Position];
+    if (c == '{' || c == '[')
+    {
+      ++this->Position;
+      const char close = c == '{' ? '}' : ']';
+      for (bool first = true;; first = false)
+      {
+        this->SkipSpace();
+        if (this->Consume(close))
+        {
+          return true;
+        }
+        if (!first && !this->Consume(','))
+        {
+          return false;
+        }
+        JsonValue item;
+        std::string key;
+        this->SkipSpace();
+        if (c == '{' && (!this->ParseString(key) || (this->SkipSpace(), !this->Consume(':'))))
+        {
+          return false;
+        }
+        if (!this->Parse(item, depth + 1))
+        {
+          return false;
+        }
+        if (c == '{')
+        {
+          value.members.emplace_back(key, std::move(item));
+        }
+        else
+        {
+          value.items.push_back(std::move(item));
+        }
+      }
+    }
+    if (c == '"')
+    {
+      return this->ParseString(value.text);
+    }
+    const auto end = this->Input.find_first_of(",]} \t\r\n", this->Position);
+    const std::string token = this->Input.substr(this->Position, end - this->Position);
+    this->Position = end == std::string::npos ? this->Input.size() : end;
+    if (token == "true" || token == "false" || token == "null")
+    {
+      return true;
+    }
+    char* parsedEnd = nullptr;
+    value.number = std::strtod(token.c_str(), &parsedEnd);
+    value.isNumber = !token.empty() && *parsedEnd == '\0';
+    return value.isNumber;
+  }
+
+private:
+  void SkipSpace()
+  {
+    while (this->Position < this->Input.size() &&
+      std::isspace(static_cast<unsigned char>(this->Input[this->Position])))
+    {
+      ++this->Position;
+    }
+  }
+  bool Consume(char c)
+  {
+    if (this->Position < this->Input.size() && this->Input[this->Position] == c)
+    {
+      ++this->Position;
+      return true;
+    }
+    return false;
+  }
+  bool ParseString(std::string& text)
+  {
+    if (!this->Consume('"'))
+    {
+      return false;
+    }
+    while (this->Position < this->Input.size())
+    {
+      char c = this->Input[this->Position++];
+      if (c == '"')
+      {
+        return true;
+      }
+      if (c == '\\' && this->Position < this->Input.size())
+      {
+        c = this->Input[this->Position++];
+        const std::map<char, char> escapes = { { 'n', '\n' }, { 't', '\t' }, { 'r', '\r' },
+          { 'b', '\b' }, { 'f', '\f' } };
+        if (c == 'u')
+        {
+          // File names here are ASCII; other code points only need to not break parsing.
+          this->Position = std::min(this->Position + 4, this->Input.size());
+          c = '?';
+        }
+        else if (escapes.count(c))
+        {
+          c = escapes.at(c);
+        }
+      }
+      text += c;
+    }
+    return false;
+  }
+  const std::string& Input;
+  std::size_t Position = 0;
+};
+
+// What datasets.json, the file name or the flags say about a raw file.
+struct RawLayout
+{
+  bool haveDims = false;
+  Dimensions dims = { 0, 0, 0 };
+  ScalarKind kind = ScalarKind::Unknown;
+  bool haveSpacing = false;
+  double spacing[3] = { 1, 1, 1 };
+};
+
+void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
+{
+  std::ifstream stream(rawPath.parent_path() / "datasets.json", std::ios::binary);
+  std::stringstream content;
+  content << stream.rdbuf();
+  JsonValue root;
+  const std::string text = content.str();
+  if (!stream || !JsonParser(text).Parse(root) || !root.Find("datasets"))
+  {
+    return; // The sidecar is optional metadata, so an unusable one is ignored.
+  }
+  for (const JsonValue& entry : root.Find("datasets")->items)
+  {
+    const JsonValue* file = entry.Find("file");
+    if (!file || file->text != rawPath.filename().string())
+    {
+      continue;
+    }
+    const JsonValue* spacing = entry.Find("spacing");
+    if (spacing && spacing->items.size() == 3)
+    {
+      layout.haveSpacing = true;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        const double value = spacing->items[axis].number;
+        layout.spacing[axis] = value;
+        layout.haveSpacing = layout.haveSpacing && std::isfinite(value) && value > 0;
+      }
+    }
+    const JsonValue* dims = entry.Find("dims");
+    if (dims && dims->items.size() == 3)
+    {
+      layout.haveDims = true;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        layout.dims[axis] = static_cast<std::int64_t>(std::min(dims->items[axis].number, 1e12));
+      }
+    }
+    if (const JsonValue* type = entry.Find("type"))
+    {
+      layout.kind = ParseScalarKind(type->text);
+    }
+  }
+}
+
+void ParseRawName(const std::string& name, RawLayout& layout)
+{
+  static const std::regex pattern(
+    R"(.*_([0-9]{1,12})x([0-9]{1,12})x([0-9]{1,12})_([A-Za-z0-9]+)\.raw(\.gz)?)",
+    std::regex::icase);
+  std::smatch match;
+  if (!std::regex_match(name, match, pattern))
+  {
+    return;
+  }
+  layout.haveDims = true;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    layout.dims[axis] = std::stoll(match[axis + 1].str());
+  }
+  layout.kind = ParseScalarKind(match[4].str());
+}
+
+// Gzip data streams straight into the scalar array, so only the volume itself is ever in memory.
+bool ReadGzip(const std::string& path, char* data, std::int64_t bytes, std::string& error)
+{
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    error = "cannot open '" + path + "'";
+    return false;
+  }
+  gzbuffer(file, 1 << 20);
+  std::int64_t done = 0;
+  while (done < bytes)
+  {
+    const unsigned chunk = static_cast<unsigned>(std::min<std::int64_t>(bytes - done, 1 << 26));
+    const int count = gzread(file, data + done, chunk);
+    if (count <= 0)
+    {
+      break;
+    }
+    done += count;
+  }
+  char extra = 0;
+  const bool more = done == bytes && gzread(file, &extra, 1) > 0;
+  int code = Z_OK;
+  const std::string zlibMessage = gzerror(file, &code);
+  gzclose(file);
+  if (code != Z_OK && code != Z_STREAM_END)
+  {
+    error = "truncated or corrupt gzip data in '" + path + "' after " + std::to_string(done) +
+      " of " + std::to_string(bytes) + " bytes (zlib: " + zlibMessage + ")";
+    return false;
+  }
+  if (done != bytes || more)
+  {
+    error = "size mismatch: '" + path + "' decompresses to " +
+      (more ? "more than " + std::to_string(bytes) : std::to_string(done)) + " bytes but " +
+      std::to_string(bytes) + " bytes are needed";
+    return false;
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string& error)
+{
+  const fs::path path(request.inputPath);
+  const bool compressed = EndsWith(Lower(path.filename().string()), ".gz");
+  RawLayout layout;
+  ReadDatasetsJson(path, layout);
+  ParseRawName(path.filename().string(), layout);
+  if (request.haveDims)
+  {
+    layout.haveDims = true;
+    std::copy(request.dims, request.dims + 3, layout.dims);
+  }
+  layout.kind = request.kind != ScalarKind::Unknown ? request.kind : layout.kind;
+  const KindInfo* kind = FindKind(layout.kind);
+  if (!layout.haveDims || !kind)
+  {
+    error = "raw volume '" + request.inputPath + "' needs " +
+      (layout.haveDims ? "" : kind ? "--dims" : "--dims and ") + (kind ? "" : "--type") +
+      " (or a name like NAME_256x256x113_uint16.raw)";
+    return nullptr;
+  }
+  std::int64_t bytes = 0;
+  if (!CheckSize(layout.dims, *kind, bytes, error))
+  {
+    return nullptr;
+  }
+  const std::string expected = DimensionsText(layout.dims) + " " + kind->name + " needs " +
+    std::to_string(bytes) + " bytes";
+  const std::int64_t fileSize = FileSize(path);
+  if (!compressed && fileSize != bytes)
+  {
+    error = "size mismatch: '" + request.inputPath + "' has " + std::to_string(fileSize) +
+      " bytes but " + expected;
+    return nullptr;
+  }
+  std::ifstream stream(path, std::ios::binary);
+  unsigned char magic[2] = { 0, 0 };
+  if (compressed && (!stream.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b))
+  {
+    error = "'" + request.inputPath + "' is not gzip data (bad magic bytes)";
+    return nullptr;
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(static_cast<int>(layout.dims[0]), static_cast<int>(layout.dims[1]),
+    static_cast<int>(layout.dims[2]));
+  image->AllocateScalars(kind->vtkType, 1);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars || scalars->GetNumberOfValues() != bytes / kind->size)
+  {
+    error = "not enough memory for " + expected;
+    return nullptr;
+  }
+  scalars->SetName("scalars");
+  char* data = static_cast<char*>(scalars->GetVoidPointer(0));
+  if (compressed ? !ReadGzip(request.inputPath, data, bytes, error)
+                 : !stream.read(data, bytes))
+  {
+    error = error.empty() ? "cannot read '" + request.inputPath + "'" : error;
+    return nullptr;
+  }
+  // Raw data is little-endian by convention; swap on the rare big-endian host.
+  const std::uint16_t probe = 1;
+  if (kind->size > 1 && *reinterpret_cast<const unsigned char*>(&probe) == 0)
+  {
+    for (std::int64_t offset = 0; offset < bytes; offset += kind->size)
+    {
+      std::reverse(data + offset, data + offset + kind->size);
+    }
+  }
+  if (layout.haveSpacing)
+  {
+    image->SetSpacing(layout.spacing);
+  }
+  return image;
+}
+
+// Reads "key = value" (MetaImage) or "key: value" (NRRD) lines from the start of a header.
+// Returns false for text that is not a header; dataOffset is where the header ends.
+bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::string>& fields,
+  std::int64_t& dataOffset, std::string& error)
+{
+  std::ifstream stream(path, std::ios::binary);
+  std::string buffer(1 << 16, '\0');
+  stream.read(&buffer[0], static_cast<std::streamsize>(buffer.size()));
+  buffer.resize(static_cast<std::size_t>(stream.gcount()));
+  const std::string kind = nrrd ? "NRRD" : "MetaImage";
+  if (nrrd && buffer.compare(0, 4, "NRRD") != 0)
+  {
+    error = "malformed NRRD header in '" + path + "': missing NRRD magic";
+    return false;
+  }
+  // The NRRD magic line is skipped; without a newline the header is empty and checks fail below.
+  std::size_t position = nrrd ? std::min(buffer.find('\n'), buffer.size() - 1) + 1 : 0;
+  for (int lineNumber = nrrd ? 2 : 1; position < buffer.size(); ++lineNumber)
+  {
+    const std::size_t end = buffer.find('\n', position);
+    const std::string line = Trim(buffer.substr(position, end - position));
+    position = end == std::string::npos ? buffer.size() : end + 1;
+    dataOffset = static_cast<std::int64_t>(position);
+    if (nrrd && line.empty())
+    {
+      return true; // A blank line ends an attached NRRD header.
+    }
+    if (line.empty() || line[0] == '#' || (nrrd && line.find(":=") != std::string::npos))
+    {
+      continue;
+    }
+    const auto separator = line.find(nrrd ? ":" : "=");
+    const bool printable = std::all_of(line.begin(), line.end(),
+      [](char c) { return std::isprint(static_cast<unsigned char>(c)) || c == '\t'; });
+    if (separator == std::string::npos || !printable)
+    {
+      error = "malformed " + kind + " header in '" + path + "' at line " +
+        std::to_string(lineNumber) + " (expected " + (nrrd ? "'key: value'" : "'Key = Value'") + ")";
+      return false;
+    }
+    const std::string key = Lower(Trim(line.substr(0, separator)));
+    if (nrrd && key == "sizes" && !fields.count("dimension"))
+    {
+      // vtkNrrdReader sizes its axis list from an earlier "dimension" and indexes it blindly.
+      error = "malformed NRRD header in '" + path + "': 'sizes' before 'dimension'";
+      return false;
+    }
+    fields[key] = Trim(line.substr(separator + 1));
+    if (!nrrd && key == "elementdatafile")
+    {
+      return true;
+    }
+  }
+  if (!nrrd && !fields.count("elementdatafile"))
+  {
+    error = "malformed MetaImage header in '" + path + "': no ElementDataFile";
+    return false;
+  }
+  dataOffset = static_cast<std::int64_t>(buffer.size());
+  return true;
+}
+
+ScalarKind HeaderKind(const std::string& type, bool nrrd)
+{
+  static const std::map<std::string, ScalarKind> meta = { { "met_uchar", ScalarKind::UInt8 },
+    { "met_char", ScalarKind::Int8 }, { "met_ushort", ScalarKind::UInt16 },
+    { "met_short", ScalarKind::Int16 }, { "met_int", ScalarKind::Int32 },
+    { "met_float", ScalarKind::Float32 }, { "met_double", ScalarKind::Float64 } };
+  static const std::map<std::string, ScalarKind> nrrdTypes = { { "uchar", ScalarKind::UInt8 },
+    { "unsigned char", ScalarKind::UInt8 }, { "uint8", ScalarKind::UInt8 },
+    { "uint8_t", ScalarKind::UInt8 }, { "signed char", ScalarKind::Int8 },
+    { "int8", ScalarKind::Int8 }, { "int8_t", ScalarKind::Int8 }, { "short", ScalarKind::Int16 },
+    { "short int", ScalarKind::Int16 }, { "signed short", ScalarKind::Int16 },
+    { "signed short int", ScalarKind::Int16 }, { "int16", ScalarKind::Int16 },
+    { "int16_t", ScalarKind::Int16 }, { "ushort", ScalarKind::UInt16 },
+    { "unsigned short", ScalarKind::UInt16 }, { "unsigned short int", ScalarKind::UInt16 },
+    { "uint16", ScalarKind::UInt16 }, { "uint16_t", ScalarKind::UInt16 },
+    { "int", ScalarKind::Int32 }, { "signed int", ScalarKind::Int32 },
+    { "int32", ScalarKind::Int32 }, { "int32_t", ScalarKind::Int32 },
+    { "float", ScalarKind::Float32 }, { "double", ScalarKind::Float64 } };
+  const auto& table = nrrd ? nrrdTypes : meta;
+  const auto found = table.find(Lower(type));
+  return found == table.end() ? ScalarKind::Unknown : found->second;
+}
+
+// Checks a MetaImage or NRRD header against its data before a VTK reader sees the file, because
+// those readers trust headers and can misbehave on malformed ones.
+bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
+{
+  std::map<std::string, std::string> fields;
+  std::int64_t offset = 0;
+  if (!ReadHeader(path, nrrd, fields, offset, error))
+  {
+    return false;
+  }
+  const std::string where = std::string(nrrd ? "NRRD" : "MetaImage") + " header in '" + path + "'";
+  auto field = [&](const std::string& key) { return fields.count(key) ? fields[key] : ""; };
+  const int dimension = std::atoi(field(nrrd ? "dimension" : "ndims").c_str());
+  std::vector<std::int64_t> sizes;
+  std::istringstream sizeStream(field(nrrd ? "sizes" : "dimsize"));
+  for (std::string token; sizeStream >> token;)
+  {
+    sizes.push_back(token.find_first_not_of("0123456789") == std::string::npos && token.size() < 13
+        ? std::stoll(token)
+        : -1);
+  }
+  // vtkNrrdReader reads a 4th axis, or a first axis of at most 9 samples, as vector components.
+  const bool nrrdComponents = nrrd && !sizes.empty() && (dimension > 3 || sizes[0] <= 9);
+  const int channels = nrrdComponents ? static_cast<int>(std::max<std::int64_t>(sizes[0], 1))
+    : nrrd                            ? 1
+                                      : std::atoi(field("elementnumberofchannels").c_str());
+  if (channels > 1 || nrrdComponents)
+  {
+    error = "only single-component volumes are supported for now ('" + path + "' has " +
+      std::to_string(channels) + " components" +
+      (nrrd ? "; VTK reads a first NRRD axis of 9 or fewer samples as components)" : ")");
+    return false;
+  }
+  if (dimension < 1 || dimension > 3 || static_cast<int>(sizes.size()) != dimension)
+  {
+    error = "malformed " + where + ": need a 1 to 3 dimensional volume with one size per axis";
+    return false;
+  }
+  Dimensions dims = { 1, 1, 1 };
+  std::copy(sizes.begin(), sizes.end(), dims);
+  const std::string typeName = field(nrrd ? "type" : "elementtype");
+  const KindInfo* kind = FindKind(HeaderKind(typeName, nrrd));
+  if (!kind)
+  {
+    error = "unsupported scalar type '" + typeName + "' in " + where;
+    return false;
+  }
+  std::int64_t bytes = 0;
+  if (!CheckSize(dims, *kind, bytes, error))
+  {
+    return false;
+  }
+  const std::string encoding = Lower(field("encoding"));
+  std::string dataFile = field(nrrd ? (fields.count("datafile") ? "datafile" : "data file")
+                                    : "elementdatafile");
+  bool raw = !nrrd || encoding == "raw";
+  if (nrrd && !raw && encoding != "ascii" && encoding != "text" && encoding != "txt" &&
+    encoding != "gzip" && encoding != "gz")
+  {
+    error = "unsupported NRRD encoding '" + encoding + "' in '" + path + "'";
+    return false;
+  }
+  if (!nrrd && (Lower(field("compresseddata")) == "true" || dataFile == "LIST"))
+  {
+    raw = false; // Compressed or listed data can only be checked by MetaIO itself.
+  }
+  if (dataFile.find('%') != std::string::npos || dataFile.find(' ') != std::string::npos ||
+    (nrrd && dataFile == "LIST"))
+  {
+    error = "multi-file data in '" + path + "' is not supported";
+    return false;
+  }
+  fs::path dataPath = path;
+  if (!dataFile.empty() && dataFile != "LOCAL" && dataFile != "LIST")
+  {
+    dataPath = fs::path(dataFile).is_absolute() ? fs::path(dataFile)
+                                                : fs::path(path).parent_path() / dataFile;
+    offset = 0;
+    if (!fs::is_regular_file(dataPath))
+    {
+      error = "data file '" + dataPath.string() + "' named in '" + path + "' does not exist";
+      return false;
+    }
+  }
+  else if (nrrd && EndsWith(Lower(path), ".nhdr"))
+  {
+    error = "malformed " + where + ": a detached header needs a 'data file' field";
+    return false;
+  }
+  if (nrrd && (std::atoll(field("byte skip").c_str()) || std::atoll(field("line skip").c_str()) ||
+               std::atoll(field("byteskip").c_str()) || std::atoll(field("lineskip").c_str())))
+  {
+    error = "NRRD byte skip and line skip are not supported ('" + path + "')";
+    return false;
+  }
+  const std::int64_t skip = nrrd ? 0 : std::atoll(field("headersize").c_str());
+  const std::int64_t available = FileSize(dataPath) - offset - std::max<std::int64_t>(skip, 0);
+  if (raw && available < bytes)
+  {
+    error = "size mismatch: '" + dataPath.string() + "' has " + std::to_string(available) +
+      " data bytes but " + DimensionsText(dims) + " " + kind->name + " needs " +
+      std::to_string(bytes) + " bytes";
+    return false;
+  }
+  return true;
+}
+
+template <typename Reader>
+vtkSmartPointer<vtkImageData> RunReader(const std::string& path, std::string& error)
+{
+  MessageCapture capture;
+  vtkNew<Reader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(reader->GetOutput());
+  if (!capture.FirstError().empty())
+  {
+    error = "cannot read '" + path + "': " + capture.FirstError();
+    return nullptr;
+  }
+  return image;
+}
+
+// The checks every loaded volume must pass before a mapper sees it.
+bool ValidateImage(vtkImageData* image, const std::string& path, std::string& error)
+{
+  int extent[6];
+  image->GetExtent(extent);
+  if (extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4])
+  {
+    error = "'" + path + "' contains no voxels";
+    return false;
+  }
+  vtkPointData* pointData = image->GetPointData();
+  if (!pointData->GetScalars() && pointData->GetNumberOfArrays() == 1 && pointData->GetArray(0))
+  {
+    pointData->SetActiveScalars(pointData->GetArray(0)->GetName());
+  }
+  vtkDataArray* scalars = pointData->GetScalars();
+  if (!scalars)
+  {
+    error = "'" + path + "' has no point scalars";
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    error = "only single-component volumes are supported for now ('" + path + "' has " +
+      std::to_string(scalars->GetNumberOfComponents()) + " components)";
+    return false;
+  }
+  const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
+  if (std::none_of(std::begin(Kinds), std::end(Kinds),
+        [type](const KindInfo& info) { return info.vtkType == type; }))
+  {
+    error = std::string("unsupported scalar type '") + scalars->GetDataTypeAsString() + "' in '" +
+      path + "' (supported: uint8 int8 uint16 int16 int32 float32 float64)";
+    return false;
+  }
+  if (scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = "'" + path + "' has " + std::to_string(scalars->GetNumberOfTuples()) + " values for " +
+      std::to_string(image->GetNumberOfPoints()) + " voxels";
+    return false;
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> LoadFile(const VolumeRequest& request, std::string& error)
+{
+  const std::string& path = request.inputPath;
+  if (!fs::is_regular_file(path) || !std::ifstream(path, std::ios::binary))
+  {
+    error = "cannot open '" + path + "': " +
+      (fs::exists(path) ? "not a readable file" : "no such file");
+    return nullptr;
+  }
+  const std::string name = Lower(fs::path(path).filename().string());
+  const bool nrrd = EndsWith(name, ".nrrd") || EndsWith(name, ".nhdr");
+  if (EndsWith(name, ".raw") || EndsWith(name, ".raw.gz"))
+  {
+    return LoadRaw(request, error);
+  }
+  if (EndsWith(name, ".mhd") || EndsWith(name, ".mha") || nrrd)
+  {
+    if (!CheckHeader(path, nrrd, error))
+    {
+      return nullptr;
+    }
+    return nrrd ? RunReader<vtkNrrdReader>(path, error) : RunReader<vtkMetaImageReader>(path, error);
+  }
+  if (EndsWith(name, ".vti"))
+  {
+    return RunReader<vtkXMLImageDataReader>(path, error);
+  }
+  error = "unknown file extension for '" + path +
+    "' (expected .mhd, .mha, .vti, .nrrd, .nhdr, .raw or .raw.gz)";
+  return nullptr;
+}
+
+} // namespace
+
+ScalarKind ParseScalarKind(const std::string& name)
+{
+  for (const KindInfo& info : Kinds)
+  {
+    if (Lower(name) == info.name)
+    {
+      return info.kind;
+    }
+  }
+  return ScalarKind::Unknown;
+}
+
+int ToVTKType(ScalarKind kind)
+{
+  const KindInfo* info = FindKind(kind);
+  return info ? info->vtkType : VTK_VOID;
+}
+
+const char* ScalarKindName(ScalarKind kind)
+{
+  const KindInfo* info = FindKind(kind);
+  return info ? info->name : "unknown";
+}
+
+vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::string& error)
+{
+  error.clear();
+  if (request.haveSpacing &&
+    !std::all_of(request.spacing, request.spacing + 3,
+      [](double value) { return std::isfinite(value) && value > 0; }))
+  {
+    error = "spacing must be three positive numbers";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkImageData> image;
+  try
+  {
+    if (request.inputPath.empty())
+    {
+      accelvolume::PhantomVolume phantom;
+      if (accelvolume::GeneratePhantom(
+            request.phantom, request.phantomDims, request.phantomTime, phantom, error))
+      {
+        image = PhantomToImage(phantom);
+      }
+    }
+    else
+    {
+      image = LoadFile(request, error);
+    }
+  }
+  catch (const std::exception& exception)
+  {
+    error = std::string("cannot load volume: ") + exception.what();
+    return nullptr;
+  }
+  if (!image || !ValidateImage(image, request.inputPath, error))
+  {
+    error = error.empty() ? "cannot load '" + request.inputPath + "'" : error;
+    return nullptr;
+  }
+  if (request.haveSpacing)
+  {
+    image->SetSpacing(request.spacing);
+  }
+  return image;
+}
+
+vtkSmartPointer<vtkImageData> PhantomToImage(const accelvolume::PhantomVolume& phantom)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(phantom.dims[0], phantom.dims[1], phantom.dims[2]);
+  image->SetSpacing(phantom.spacing[0], phantom.spacing[1], phantom.spacing[2]);
+  image->SetOrigin(0, 0, 0);
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName("scalars");
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(phantom.values.size()));
+  std::copy(phantom.values.begin(), phantom.values.end(), scalars->GetPointer(0));
+  image->GetPointData()->SetScalars(scalars);
+  return image;
+}
+
+std::string DescribeVolume(vtkImageData* image)
+{
+  if (!image)
+  {
+    return "(no volume)";
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  std::string text =
+    std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    return text + " (no scalars)";
+  }
+  const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
+  const auto* info = std::find_if(std::begin(Kinds), std::end(Kinds),
+    [type](const KindInfo& kind) { return kind.vtkType == type; });
+  text += " ";
+  text += info != std::end(Kinds) ? info->name : scalars->GetDataTypeAsString();
+  const int components = scalars->GetNumberOfComponents();
+  return components == 1 ? text : text + " (" + std::to_string(components) + " components)";
+}
+
+} // namespace accelvolume::cli

@@ -1,0 +1,99 @@
+# The one VTK module's build definition, shared by the standalone build (Module/CMakeLists.txt)
+# and the Remote/ build (top-level CMakeLists.txt).
+get_filename_component(_av_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
+
+# Public VTK-style classes (headers installed, wrappable).
+set(_av_classes
+  OpenGL/vtkAccelVolumeHeadlessRenderWindow
+  OpenGL/vtkAccelVolumeSliceMapper)
+
+# Plain C++17 algorithms: no VTK or GL headers, never in public headers.
+set(_av_core_sources
+  Core/accelvolume/Geometry
+  Core/accelvolume/Phantoms
+  Core/accelvolume/ReferenceRenderer)
+
+# Thin OpenGL helpers, excluded from wrapping and installation.
+set(_av_private_sources
+  OpenGL/vtkAccelVolumeObjectFactory
+  OpenGL/vtkAccelVolumeSliceResources)
+
+set(_av_shaders
+  AccelVolumeSliceVS
+  AccelVolumeSliceFS
+  AccelVolumeResolveVS
+  AccelVolumeResolveFS)
+
+set(_av_class_files)
+set(_av_headers)
+foreach (_av_class IN LISTS _av_classes)
+  list(APPEND _av_class_files "${_av_root}/Rendering/${_av_class}.cxx")
+  list(APPEND _av_headers "${_av_root}/Rendering/${_av_class}.h")
+endforeach ()
+set(_av_sources)
+set(_av_private_headers)
+foreach (_av_source IN LISTS _av_core_sources _av_private_sources)
+  list(APPEND _av_sources "${_av_root}/Rendering/${_av_source}.cxx")
+  list(APPEND _av_private_headers "${_av_root}/Rendering/${_av_source}.h")
+endforeach ()
+
+if (NOT COMMAND vtk_encode_string)
+  include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)
+  if (NOT _av_encode_found)
+    include(vtkEncodeString)
+  endif ()
+endif ()
+foreach (_av_shader IN LISTS _av_shaders)
+  vtk_encode_string(
+    INPUT         "${_av_root}/Rendering/Shaders/${_av_shader}.glsl"
+    HEADER_OUTPUT _av_shader_header
+    SOURCE_OUTPUT _av_shader_source)
+  list(APPEND _av_sources "${_av_shader_source}")
+  list(APPEND _av_private_headers "${_av_shader_header}")
+endforeach ()
+
+set(_av_have_osmesa 0)
+set(_av_have_egl 0)
+if (NOT DEFINED ACCELVOLUME_ENABLE_OSMESA OR ACCELVOLUME_ENABLE_OSMESA)
+  find_path(ACCELVOLUME_OSMESA_INCLUDE_DIR GL/osmesa.h)
+  find_library(ACCELVOLUME_OSMESA_LIBRARY OSMesa)
+  if (ACCELVOLUME_OSMESA_INCLUDE_DIR AND ACCELVOLUME_OSMESA_LIBRARY)
+    set(_av_have_osmesa 1)
+    list(APPEND _av_sources "${_av_root}/Rendering/OpenGL/vtkAccelVolumeOSMesaLoader.cxx")
+  endif ()
+endif ()
+if (NOT DEFINED ACCELVOLUME_ENABLE_EGL OR ACCELVOLUME_ENABLE_EGL)
+  find_path(ACCELVOLUME_EGL_INCLUDE_DIR EGL/egl.h)
+  find_library(ACCELVOLUME_EGL_LIBRARY EGL)
+  if (ACCELVOLUME_EGL_INCLUDE_DIR AND ACCELVOLUME_EGL_LIBRARY)
+    set(_av_have_egl 1)
+  endif ()
+endif ()
+message(STATUS "AccelVolume headless backends: OSMesa=${_av_have_osmesa} EGL=${_av_have_egl}")
+
+vtk_module_add_module(VTK::RenderingAccelVolume
+  SOURCES         ${_av_class_files} ${_av_sources}
+  HEADERS         ${_av_headers}
+  PRIVATE_HEADERS ${_av_private_headers})
+
+vtk_module_include(VTK::RenderingAccelVolume
+  PUBLIC  "$<BUILD_INTERFACE:${_av_root}/Rendering/OpenGL>"
+  PRIVATE "${_av_root}/Rendering/Core")
+vtk_module_definitions(VTK::RenderingAccelVolume
+  PRIVATE
+    ACCELVOLUME_HAVE_OSMESA=${_av_have_osmesa}
+    ACCELVOLUME_HAVE_EGL=${_av_have_egl})
+
+if (_av_have_osmesa)
+  vtk_module_include(VTK::RenderingAccelVolume PRIVATE "${ACCELVOLUME_OSMESA_INCLUDE_DIR}")
+  # PUBLIC and not as-needed: executables must list libOSMesa before glvnd's libOpenGL so the
+  # GL 1.1 entry points VTK calls directly reach the current OSMesa context (ENVIRONMENT.md).
+  vtk_module_link(VTK::RenderingAccelVolume
+    PUBLIC "-Wl,--no-as-needed" "${ACCELVOLUME_OSMESA_LIBRARY}")
+endif ()
+if (_av_have_egl)
+  vtk_module_include(VTK::RenderingAccelVolume PRIVATE "${ACCELVOLUME_EGL_INCLUDE_DIR}")
+  vtk_module_link(VTK::RenderingAccelVolume PRIVATE "${ACCELVOLUME_EGL_LIBRARY}")
+endif ()
+find_package(Threads REQUIRED)
+vtk_module_link(VTK::RenderingAccelVolume PRIVATE ${CMAKE_DL_LIBS} Threads::Threads)

@@ -1,0 +1,311 @@
+// ReferenceRenderer: CPU oracle for the projection blends, integrated finely along pixel rays.
+#include "accelvolume/ReferenceRenderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <thread>
+
+namespace accelvolume
+{
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+// Absorbs rounding in length / step so an exact multiple does not gain an extra tiny step.
+constexpr double StepCountSlack = 1e-9;
+
+double ClampIndex(double coordinate, int count)
+{
+  return std::clamp(coordinate, 0.0, static_cast<double>(count - 1));
+}
+
+// Integrals accumulated over all regions of one ray.
+struct RayAccumulator
+{
+  bool hit = false;
+  float maximum = -std::numeric_limits<float>::infinity();
+  float minimum = std::numeric_limits<float>::infinity();
+  double weighted = 0; // integral of opacity(s) * s (times the indicator for Average)
+  double length = 0;   // integral of the Average indicator
+};
+} // namespace
+
+Vec3 Affine::Apply(const Vec3& p) const
+{
+  return { m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+    m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+    m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3] };
+}
+
+Vec3 Affine::ApplyLinear(const Vec3& v) const
+{
+  return { m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+    m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z, m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z };
+}
+
+Affine Affine::Inverse() const
+{
+  // Adjugate over determinant for the linear part; the translation follows as -A^-1 t.
+  const double a = m[0][0], b = m[0][1], c = m[0][2];
+  const double d = m[1][0], e = m[1][1], f = m[1][2];
+  const double g = m[2][0], h = m[2][1], k = m[2][2];
+  const double determinant = a * (e * k - f * h) - b * (d * k - f * g) + c * (d * h - e * g);
+  if (!(std::abs(determinant) > 0) || !std::isfinite(determinant))
+  {
+    throw std::domain_error("accelvolume::Affine::Inverse: singular matrix");
+  }
+  const double s = 1.0 / determinant;
+  Affine inverse{};
+  inverse.m[0][0] = (e * k - f * h) * s;
+  inverse.m[0][1] = (c * h - b * k) * s;
+  inverse.m[0][2] = (b * f - c * e) * s;
+  inverse.m[1][0] = (f * g - d * k) * s;
+  inverse.m[1][1] = (a * k - c * g) * s;
+  inverse.m[1][2] = (c * d - a * f) * s;
+  inverse.m[2][0] = (d * h - e * g) * s;
+  inverse.m[2][1] = (b * g - a * h) * s;
+  inverse.m[2][2] = (a * e - b * d) * s;
+  const Vec3 translation = inverse.ApplyLinear({ m[0][3], m[1][3], m[2][3] });
+  inverse.m[0][3] = -translation.x;
+  inverse.m[1][3] = -translation.y;
+  inverse.m[2][3] = -translation.z;
+  return inverse;
+}
+
+Affine Affine::Identity()
+{
+  return { { { 1, 0, 0, 0 }, { 0, 1, 0, 0 }, { 0, 0, 1, 0 } } };
+}
+
+float ScalarVolume::Value(int i, int j, int k) const
+{
+  return values[static_cast<std::size_t>(i) +
+    static_cast<std::size_t>(dims[0]) *
+      (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims[1]) * k)];
+}
+
+float ScalarVolume::SampleTrilinear(const Vec3& indexPoint) const
+{
+  const double p[3] = { ClampIndex(indexPoint.x, dims[0]), ClampIndex(indexPoint.y, dims[1]),
+    ClampIndex(indexPoint.z, dims[2]) };
+  int lower[3], upper[3];
+  double fraction[3];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    lower[axis] = std::min(static_cast<int>(p[axis]), dims[axis] - 1);
+    upper[axis] = std::min(lower[axis] + 1, dims[axis] - 1);
+    fraction[axis] = p[axis] - lower[axis];
+  }
+  auto lerp = [](double a, double b, double t)
+  {
+    return a + (b - a) * t;
+  };
+  const double x00 =
+    lerp(Value(lower[0], lower[1], lower[2]), Value(upper[0], lower[1], lower[2]), fraction[0]);
+  const double x10 =
+    lerp(Value(lower[0], upper[1], lower[2]), Value(upper[0], upper[1], lower[2]), fraction[0]);
+  const double x01 =
+    lerp(Value(lower[0], lower[1], upper[2]), Value(upper[0], lower[1], upper[2]), fraction[0]);
+  const double x11 =
+    lerp(Value(lower[0], upper[1], upper[2]), Value(upper[0], upper[1], upper[2]), fraction[0]);
+  return static_cast<float>(
+    lerp(lerp(x00, x10, fraction[1]), lerp(x01, x11, fraction[1]), fraction[2]));
+}
+
+float ScalarVolume::SampleNearest(const Vec3& indexPoint) const
+{
+  auto nearest = [](double coordinate, int count)
+  {
+    return static_cast<int>(std::floor(ClampIndex(coordinate, count) + 0.5));
+  };
+  return Value(std::min(nearest(indexPoint.x, dims[0]), dims[0] - 1),
+    std::min(nearest(indexPoint.y, dims[1]), dims[1] - 1),
+    std::min(nearest(indexPoint.z, dims[2]), dims[2] - 1));
+}
+
+float OpacityTable::Lookup(float normalizedScalar) const
+{
+  if (values.empty())
+  {
+    return 1;
+  }
+  const double position =
+    std::clamp(static_cast<double>(normalizedScalar), 0.0, 1.0) * (values.size() - 1);
+  const std::size_t lower = std::min(static_cast<std::size_t>(position), values.size() - 1);
+  const std::size_t upper = std::min(lower + 1, values.size() - 1);
+  const double fraction = position - lower;
+  return static_cast<float>(values[lower] + (values[upper] - values[lower]) * fraction);
+}
+
+Ray PixelRay(const Camera& camera, int width, int height, int i, int j)
+{
+  const Vec3 forward = Normalize(camera.focalPoint - camera.position);
+  const Vec3 right = Normalize(Cross(forward, camera.viewUp));
+  const Vec3 up = Cross(right, forward);
+  const double aspect = static_cast<double>(width) / height;
+  const double ndcX = 2 * (i + 0.5) / width - 1;
+  const double ndcY = 2 * (j + 0.5) / height - 1;
+  if (camera.parallel)
+  {
+    const Vec3 origin = camera.position + (ndcX * aspect * camera.parallelScale) * right +
+      (ndcY * camera.parallelScale) * up;
+    return { origin, forward };
+  }
+  const double tangent = std::tan(0.5 * camera.viewAngleDegrees * Pi / 180);
+  return { camera.position,
+    Normalize(forward + (ndcX * aspect * tangent) * right + (ndcY * tangent) * up) };
+}
+
+namespace
+{
+// Integrates one region interval [t0, t1] of the index-space ray into the accumulator; t is world
+// length because the world direction has unit length.
+void IntegrateInterval(const ScalarVolume& volume, const OpacityTable& opacity,
+  const ReferenceOptions& options, const Vec3& origin, const Vec3& direction, double t0, double t1,
+  RayAccumulator& accumulator)
+{
+  const double length = t1 - t0;
+  const long long steps = length > 0
+    ? std::max(1LL, static_cast<long long>(std::ceil(length / options.stepWorld - StepCountSlack)))
+    : 0;
+  const double step = steps > 0 ? length / steps : 0;
+  accumulator.hit = true;
+  for (long long n = 0; n <= steps; ++n)
+  {
+    const Vec3 point = origin + (t0 + n * step) * direction;
+    const float s = options.nearest ? volume.SampleNearest(point) : volume.SampleTrilinear(point);
+    // Trapezoid rule: the two end samples weigh half a step.
+    const double weight = (n == 0 || n == steps) ? 0.5 * step : step;
+    switch (options.blend)
+    {
+      case ProjectionBlend::Maximum:
+        accumulator.maximum = std::max(accumulator.maximum, s);
+        break;
+      case ProjectionBlend::Minimum:
+        accumulator.minimum = std::min(accumulator.minimum, s);
+        break;
+      case ProjectionBlend::Additive:
+        accumulator.weighted += weight * opacity.Lookup(s) * s;
+        break;
+      case ProjectionBlend::Average:
+        if (s >= options.averageRangeMin && s <= options.averageRangeMax)
+        {
+          accumulator.weighted += weight * opacity.Lookup(s) * s;
+          accumulator.length += weight;
+        }
+        break;
+    }
+  }
+}
+
+ReferencePixel Finish(const RayAccumulator& accumulator, const ReferenceOptions& options)
+{
+  ReferencePixel pixel;
+  switch (options.blend)
+  {
+    case ProjectionBlend::Maximum:
+      pixel.hit = accumulator.hit;
+      pixel.value = accumulator.hit ? accumulator.maximum : 0.0f;
+      break;
+    case ProjectionBlend::Minimum:
+      pixel.hit = accumulator.hit;
+      pixel.value = accumulator.hit ? accumulator.minimum : 0.0f;
+      break;
+    case ProjectionBlend::Additive:
+      pixel.hit = accumulator.hit;
+      pixel.value = static_cast<float>(accumulator.weighted / options.additiveUnitDistance);
+      break;
+    case ProjectionBlend::Average:
+      pixel.hit = accumulator.length > 0;
+      pixel.value =
+        pixel.hit ? static_cast<float>(accumulator.weighted / accumulator.length) : 0.0f;
+      break;
+  }
+  return pixel;
+}
+} // namespace
+
+std::vector<ReferencePixel> RenderReference(const ScalarVolume& volume,
+  const std::vector<Box>& regions, const std::vector<HalfSpace>& clip, const OpacityTable& opacity,
+  const Camera& camera, int width, int height, const ReferenceOptions& options,
+  const std::vector<double>* raysEnd)
+{
+  if (width <= 0 || height <= 0)
+  {
+    return {};
+  }
+  const std::size_t pixelCount = static_cast<std::size_t>(width) * height;
+  if (raysEnd && raysEnd->size() != pixelCount)
+  {
+    throw std::invalid_argument("accelvolume::RenderReference: raysEnd size != width * height");
+  }
+  if (!(options.stepWorld > 0))
+  {
+    throw std::invalid_argument("accelvolume::RenderReference: stepWorld must be positive");
+  }
+  if (volume.dims[0] <= 0 || volume.dims[1] <= 0 || volume.dims[2] <= 0 ||
+    volume.values.size() !=
+      static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2])
+  {
+    throw std::invalid_argument("accelvolume::RenderReference: values do not match dims");
+  }
+  const Affine worldToIndex = volume.indexToWorld.Inverse();
+  std::vector<ReferencePixel> pixels(pixelCount);
+
+  auto renderRow = [&](int j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const std::size_t index = static_cast<std::size_t>(j) * width + i;
+      const Ray ray = PixelRay(camera, width, height, i, j);
+      const Vec3 origin = worldToIndex.Apply(ray.origin);
+      const Vec3 direction = worldToIndex.ApplyLinear(ray.direction);
+      const double end = raysEnd ? (*raysEnd)[index] : std::numeric_limits<double>::infinity();
+      RayAccumulator accumulator;
+      for (const Box& region : regions)
+      {
+        double t0 = 0, t1 = 0;
+        if (!IntersectRayRegion(origin, direction, region, clip, t0, t1))
+        {
+          continue;
+        }
+        t0 = std::max(t0, 0.0);
+        t1 = std::min(t1, end);
+        if (t0 <= t1 && std::isfinite(t1))
+        {
+          IntegrateInterval(volume, opacity, options, origin, direction, t0, t1, accumulator);
+        }
+      }
+      pixels[index] = Finish(accumulator, options);
+    }
+  };
+
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const int threadCount =
+    std::min(height, options.threads > 0 ? options.threads : static_cast<int>(hardware));
+  // Rows are handed out dynamically; each pixel is computed alone, so results ignore scheduling.
+  std::atomic<int> nextRow{ 0 };
+  auto work = [&]()
+  {
+    for (int j = nextRow++; j < height; j = nextRow++)
+    {
+      renderRow(j);
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threadCount; ++t)
+  {
+    workers.emplace_back(work);
+  }
+  work();
+  for (std::thread& worker : workers)
+  {
+    worker.join();
+  }
+  return pixels;
+}
+
+} // namespace accelvolume

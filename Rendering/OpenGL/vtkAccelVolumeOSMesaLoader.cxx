@@ -1,0 +1,47 @@
+// GL entry-point loader shim for OSMesa under Debian's GLX-built GLEW.
+//
+// glewInit() resolves every GL function through glXGetProcAddressARB. With an OSMesa context
+// current, GLX knows nothing about it, so this module interposes the symbol (it precedes
+// libGLX in the executable's lookup order) and answers with OSMesaGetProcAddress; otherwise
+// it forwards to the real GLX function.
+#include "vtk_glew.h"
+
+// GLEW hides gl.h, which would define these for osmesa.h.
+#ifndef GLAPI
+#define GLAPI extern
+#endif
+#ifndef GLAPIENTRY
+#define GLAPIENTRY
+#endif
+#include <GL/osmesa.h>
+
+#include <dlfcn.h>
+
+namespace
+{
+using ProcAddress = void (*)();
+using GLXLoader = ProcAddress (*)(const GLubyte*);
+
+ProcAddress Resolve(const char* forwardName, const GLubyte* name)
+{
+  if (OSMesaGetCurrentContext())
+  {
+    return reinterpret_cast<ProcAddress>(OSMesaGetProcAddress(reinterpret_cast<const char*>(name)));
+  }
+  auto next = reinterpret_cast<GLXLoader>(dlsym(RTLD_NEXT, forwardName));
+  return next ? next(name) : nullptr;
+}
+}
+
+extern "C"
+{
+  __attribute__((visibility("default"))) ProcAddress glXGetProcAddressARB(const GLubyte* name)
+  {
+    return Resolve("glXGetProcAddressARB", name);
+  }
+
+  __attribute__((visibility("default"))) ProcAddress glXGetProcAddress(const GLubyte* name)
+  {
+    return Resolve("glXGetProcAddress", name);
+  }
+}

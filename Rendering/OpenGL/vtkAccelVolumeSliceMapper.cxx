@@ -1,0 +1,597 @@
+// Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
+#include "vtkAccelVolumeSliceMapper.h"
+
+#include "vtkAccelVolumeSliceResources.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "AccelVolumeResolveFS.h"
+#include "AccelVolumeResolveVS.h"
+#include "AccelVolumeSliceFS.h"
+#include "AccelVolumeSliceVS.h"
+#include "accelvolume/Geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int MaximumClipPlanes = 8;
+
+// The shaders read matrices as GLSL column-major; vtkShaderProgram uploads VTK's row-major
+// elements untransposed, so hand it the transpose.
+void SetMatrixUniform(vtkShaderProgram* program, const char* name, vtkMatrix4x4* matrix)
+{
+  vtkNew<vtkMatrix4x4> transposed;
+  vtkMatrix4x4::Transpose(matrix, transposed);
+  program->SetUniformMatrix(name, transposed);
+}
+
+const char* BlendDefine(int blendMode)
+{
+  switch (blendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "#define ACCELVOLUME_BLEND_MAXIMUM\n";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "#define ACCELVOLUME_BLEND_MINIMUM\n";
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return "#define ACCELVOLUME_BLEND_ADDITIVE\n";
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return "#define ACCELVOLUME_BLEND_AVERAGE\n";
+    default:
+      return nullptr;
+  }
+}
+
+std::string WithBlendDefine(const char* source, const char* define)
+{
+  std::string text = source;
+  const std::string marker = "//VTK::Output::Dec";
+  const size_t at = text.find(marker);
+  if (at != std::string::npos)
+  {
+    text.insert(at, define);
+  }
+  return text;
+}
+
+accelvolume::Vec3 MakeVec3(double x, double y, double z)
+{
+  accelvolume::Vec3 v;
+  v.x = x;
+  v.y = y;
+  v.z = z;
+  return v;
+}
+}
+
+// Per-mapper state kept out of the public header.
+class vtkAccelVolumeSliceMapper::vtkInternals
+{
+public:
+  vtkAccelVolumeSliceResources Resources;
+  std::string Renderer;
+  std::vector<float> Vertices;
+  bool ReportedError = false;
+};
+
+vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
+
+vtkAccelVolumeSliceMapper::vtkAccelVolumeSliceMapper()
+  : Internals(new vtkInternals)
+{
+  this->BlendMode = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
+}
+
+vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper() = default;
+
+void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
+  os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
+  os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
+  os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
+  os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
+  os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+}
+
+const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
+{
+  return this->Internals->Renderer.c_str();
+}
+
+void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Resources.ReleaseGraphicsResources(window);
+}
+
+bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* volume)
+{
+  if (!input)
+  {
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+    return false;
+  }
+  int dims[3];
+  input->GetDimensions(dims);
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || input->GetNumberOfPoints() < 1)
+  {
+    vtkErrorMacro("Empty input image (dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2]
+                                                   << ")");
+    return false;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars)
+  {
+    vtkErrorMacro("Input has no point scalars to render");
+    return false;
+  }
+  if (cellFlag)
+  {
+    vtkErrorMacro("Cell scalars are not supported; use point scalars");
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("Only single-component scalars are supported (input has "
+      << scalars->GetNumberOfComponents() << " components)");
+    return false;
+  }
+  if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    vtkErrorMacro("Scalar array size does not match the image dimensions");
+    return false;
+  }
+  switch (scalars->GetDataType())
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      break;
+    default:
+      vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
+                                                << " (use char, short, int, float or double)");
+      return false;
+  }
+  if (!BlendDefine(this->BlendMode))
+  {
+    vtkErrorMacro("Blend mode " << this->BlendMode
+                                << " is not supported by the slice mapper yet (use maximum, "
+                                   "minimum, additive or average intensity)");
+    return false;
+  }
+  if (!volume->GetProperty())
+  {
+    vtkErrorMacro("The volume has no property");
+    return false;
+  }
+  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > MaximumClipPlanes)
+  {
+    vtkErrorMacro("At most " << MaximumClipPlanes << " clipping planes are supported");
+    return false;
+  }
+  return true;
+}
+
+void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  vtkInternals& internals = *this->Internals;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkAccelVolumeSliceMapper needs an OpenGL render window");
+    return;
+  }
+  this->GetInputAlgorithm()->UpdateInformation();
+  this->GetInputAlgorithm()->Update();
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
+  if (!this->ValidateInput(input, volume))
+  {
+    return;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  double range[2];
+  scalars->GetRange(range, 0);
+  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+  {
+    // All-NaN or infinite data: render the finite part against a unit range.
+    range[0] = std::isfinite(range[0]) ? range[0] : 0.0;
+    range[1] = std::isfinite(range[1]) ? range[1] : range[0] + 1.0;
+  }
+
+  vtkVolumeProperty* property = volume->GetProperty();
+  const bool linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
+  std::string error;
+  if (!internals.Resources.UploadVolume(window, input, scalars, range, linear, error))
+  {
+    vtkErrorMacro("Cannot upload the volume: " << error);
+    return;
+  }
+  internals.Resources.UpdateTransferTable(window, property, range);
+
+  int dims[3];
+  input->GetDimensions(dims);
+
+  // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  int width = 0;
+  int height = 0;
+  int lowerLeft[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = static_cast<double>(width) / height;
+  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+  vtkNew<vtkMatrix4x4> projection;
+  projection->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
+  vtkNew<vtkMatrix4x4> indexToEye;
+  vtkMatrix4x4::Multiply4x4(view, indexToWorld, indexToEye);
+  vtkNew<vtkMatrix4x4> indexToClip;
+  vtkMatrix4x4::Multiply4x4(projection, indexToEye, indexToClip);
+  vtkNew<vtkMatrix4x4> eyeToIndex;
+  vtkMatrix4x4::Invert(indexToEye, eyeToIndex);
+  vtkNew<vtkMatrix4x4> inverseProjection;
+  vtkMatrix4x4::Invert(projection, inverseProjection);
+
+  // Volume box in index space; a one-voxel axis becomes a slab one voxel thick.
+  accelvolume::Box volumeBox;
+  volumeBox.lower = MakeVec3(dims[0] > 1 ? 0.0 : -0.5, dims[1] > 1 ? 0.0 : -0.5, dims[2] > 1 ? 0.0 : -0.5);
+  volumeBox.upper = MakeVec3(dims[0] > 1 ? dims[0] - 1.0 : 0.5, dims[1] > 1 ? dims[1] - 1.0 : 0.5,
+    dims[2] > 1 ? dims[2] - 1.0 : 0.5);
+
+  std::vector<accelvolume::Box> regions;
+  if (this->Cropping)
+  {
+    // Cropping planes are in data (physical) coordinates along the image axes.
+    double origin[3];
+    double spacing[3];
+    input->GetOrigin(origin);
+    input->GetSpacing(spacing);
+    double indexPlanes[6];
+    for (int i = 0; i < 6; ++i)
+    {
+      const int axis = i / 2;
+      indexPlanes[i] = (this->CroppingRegionPlanes[i] - origin[axis]) / spacing[axis];
+    }
+    regions = accelvolume::CroppingRegionBoxes(volumeBox, indexPlanes, this->CroppingRegionFlags);
+  }
+  else
+  {
+    regions.push_back(volumeBox);
+  }
+
+  std::vector<accelvolume::HalfSpace> clip;
+  float clipUniforms[MaximumClipPlanes][4] = {};
+  if (this->ClippingPlanes)
+  {
+    for (int i = 0; i < this->ClippingPlanes->GetNumberOfItems(); ++i)
+    {
+      vtkPlane* plane = this->ClippingPlanes->GetItem(i);
+      double normal[3];
+      double origin[3];
+      plane->GetNormal(normal);
+      plane->GetOrigin(origin);
+      // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
+      accelvolume::HalfSpace halfSpace;
+      double indexNormal[3] = { 0, 0, 0 };
+      double offset = 0;
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          indexNormal[c] += indexToWorld->GetElement(r, c) * normal[r];
+        }
+        offset += normal[r] * (indexToWorld->GetElement(r, 3) - origin[r]);
+      }
+      halfSpace.normal = MakeVec3(indexNormal[0], indexNormal[1], indexNormal[2]);
+      halfSpace.offset = offset;
+      clip.push_back(halfSpace);
+      for (int c = 0; c < 3; ++c)
+      {
+        clipUniforms[i][c] = static_cast<float>(indexNormal[c]);
+      }
+      clipUniforms[i][3] = static_cast<float>(offset);
+    }
+  }
+
+  // Eye depth (distance in front of the camera plane) as a function of the index point.
+  const accelvolume::Vec3 depthGradient = MakeVec3(-indexToEye->GetElement(2, 0),
+    -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
+  const double depthOffset = -indexToEye->GetElement(2, 3);
+
+  // Slice spacing in world units.
+  double voxelSpacing = VTK_DOUBLE_MAX;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (dims[c] > 1)
+    {
+      const double length = std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
+        indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
+        indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
+      voxelSpacing = std::min(voxelSpacing, length);
+    }
+  }
+  if (voxelSpacing == VTK_DOUBLE_MAX || voxelSpacing <= 0)
+  {
+    voxelSpacing = 1.0;
+  }
+  double depthMinimum = VTK_DOUBLE_MAX;
+  double depthMaximum = -VTK_DOUBLE_MAX;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const accelvolume::Vec3 p = MakeVec3(corner & 1 ? volumeBox.upper.x : volumeBox.lower.x,
+      corner & 2 ? volumeBox.upper.y : volumeBox.lower.y,
+      corner & 4 ? volumeBox.upper.z : volumeBox.lower.z);
+    const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
+    depthMinimum = std::min(depthMinimum, depth);
+    depthMaximum = std::max(depthMaximum, depth);
+  }
+  const double depthExtent = std::max(depthMaximum - depthMinimum, 1.0e-9);
+  double spacing = this->SampleDistance;
+  if (this->NumberOfSlices > 0)
+  {
+    spacing = depthExtent / this->NumberOfSlices;
+  }
+  else if (this->AutoAdjustSampleDistances)
+  {
+    spacing = voxelSpacing;
+    const double allotted = volume->GetAllocatedRenderTime();
+    if (allotted > 0 && allotted < 1.0 && this->LastRenderTime > allotted)
+    {
+      spacing *= std::min(this->InteractiveSlowdownLimit, this->LastRenderTime / allotted);
+    }
+  }
+  if (depthExtent / spacing > this->MaximumNumberOfSlices)
+  {
+    spacing = depthExtent / this->MaximumNumberOfSlices;
+  }
+  const double phase = 0.0;
+
+  // Proxy geometry: per region, its slices then its boundary faces.
+  struct DrawRange
+  {
+    accelvolume::Box Region;
+    int SliceFirst;
+    int SliceCount;
+    int FaceFirst;
+    int FaceCount;
+  };
+  std::vector<DrawRange> draws;
+  std::vector<float>& vertices = internals.Vertices;
+  vertices.clear();
+  int sliceCount = 0;
+  int faceCount = 0;
+  for (const accelvolume::Box& region : regions)
+  {
+    DrawRange draw;
+    draw.Region = region;
+    draw.SliceFirst = static_cast<int>(vertices.size() / 3);
+    const accelvolume::SliceStack stack = accelvolume::ComputeViewAlignedSlices(region, clip,
+      depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::BackToFront);
+    for (const accelvolume::Polygon& polygon : stack.polygons)
+    {
+      accelvolume::AppendTriangleFan(polygon, vertices);
+    }
+    sliceCount += static_cast<int>(stack.polygons.size());
+    draw.SliceCount = static_cast<int>(vertices.size() / 3) - draw.SliceFirst;
+    draw.FaceFirst = static_cast<int>(vertices.size() / 3);
+    if (this->BoundaryRerendering)
+    {
+      const std::vector<accelvolume::Polygon> faces =
+        accelvolume::ComputeRegionBoundaryFaces(region, clip);
+      for (const accelvolume::Polygon& face : faces)
+      {
+        accelvolume::AppendTriangleFan(face, vertices);
+      }
+      faceCount += static_cast<int>(faces.size());
+    }
+    draw.FaceCount = static_cast<int>(vertices.size() / 3) - draw.FaceFirst;
+    if (draw.SliceCount + draw.FaceCount > 0)
+    {
+      draws.push_back(draw);
+    }
+  }
+  this->LastSliceSpacing = spacing;
+  this->LastNumberOfSlices = sliceCount;
+  this->LastNumberOfBoundaryFaces = faceCount;
+
+  vtkOpenGLState* state = window->GetState();
+  state->Push();
+  state->PushFramebufferBindings();
+  vtkAccelVolumeSliceResources& resources = internals.Resources;
+  if (!resources.PrepareTargets(window, width, height))
+  {
+    state->PopFramebufferBindings();
+    state->Pop();
+    vtkErrorMacro("Cannot allocate the float accumulation target (" << width << "x" << height << ")");
+    return;
+  }
+  if (internals.Renderer.empty())
+  {
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    internals.Renderer = name ? name : "unknown";
+  }
+
+  // Opaque geometry drawn so far limits the rays.
+  resources.SceneDepth->Activate();
+  resources.SceneDepth->CopyFromFrameBuffer(lowerLeft[0], lowerLeft[1], 0, 0, width, height);
+
+  const int blend = this->BlendMode;
+  const char* define = BlendDefine(blend);
+  resources.Framebuffer->SaveCurrentBindingsAndBuffers();
+  resources.Framebuffer->Bind();
+  resources.Framebuffer->ActivateDrawBuffer(0);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  if (blend == MAXIMUM_INTENSITY_BLEND)
+  {
+    state->vtkglClearColor(-1.0f, 0.0f, 0.0f, 0.0f);
+  }
+  else if (blend == MINIMUM_INTENSITY_BLEND)
+  {
+    state->vtkglClearColor(2.0f, 2.0f, 0.0f, 0.0f);
+  }
+  else
+  {
+    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  }
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendEquation(blend == MAXIMUM_INTENSITY_BLEND
+      ? GL_MAX
+      : (blend == MINIMUM_INTENSITY_BLEND ? GL_MIN : GL_FUNC_ADD));
+  state->vtkglBlendFunc(GL_ONE, GL_ONE);
+
+  const std::string sliceFragment = WithBlendDefine(AccelVolumeSliceFS, define);
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    AccelVolumeSliceVS, sliceFragment.c_str(), "");
+  bool drew = false;
+  if (program && !draws.empty())
+  {
+    resources.VertexBuffer->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
+    resources.SliceArray->Bind();
+    resources.SliceArray->AddAttributeArray(
+      program, resources.VertexBuffer, "vertexIndex", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
+    resources.VolumeTexture->Activate();
+    resources.TransferTable->Activate();
+    program->SetUniformi("volumeTexture", resources.VolumeTexture->GetTextureUnit());
+    program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
+    program->SetUniformi("sceneDepth", resources.SceneDepth->GetTextureUnit());
+    const float dimensions[3] = { static_cast<float>(dims[0]), static_cast<float>(dims[1]),
+      static_cast<float>(dims[2]) };
+    program->SetUniform3f("volumeDimensions", dimensions);
+    program->SetUniformf("scalarScale", resources.ScalarScale);
+    program->SetUniformf("scalarBias", resources.ScalarBias);
+    program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
+    SetMatrixUniform(program, "indexToClip", indexToClip);
+    SetMatrixUniform(program, "indexToEye", indexToEye);
+    SetMatrixUniform(program, "eyeToIndex", eyeToIndex);
+    SetMatrixUniform(program, "inverseProjection", inverseProjection);
+    const float viewport[2] = { static_cast<float>(width), static_cast<float>(height) };
+    program->SetUniform2f("viewportSize", viewport);
+    program->SetUniformi("clipPlaneCount", static_cast<int>(clip.size()));
+    program->SetUniform4fv("clipPlanes", MaximumClipPlanes, clipUniforms);
+    program->SetUniformf("sliceSpacing", static_cast<float>(spacing));
+    program->SetUniformf("slicePhase", static_cast<float>(phase));
+    program->SetUniformi("boundaryRerendering", this->BoundaryRerendering ? 1 : 0);
+    program->SetUniformi("parallelProjection", camera->GetParallelProjection() ? 1 : 0);
+    const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
+    program->SetUniformf("additiveScale", static_cast<float>(1.0 / unit));
+    const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    const float averageRange[2] = {
+      static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth),
+      static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth)
+    };
+    program->SetUniform2f("averageRange", averageRange);
+    for (const DrawRange& draw : draws)
+    {
+      const float lower[3] = { static_cast<float>(draw.Region.lower.x),
+        static_cast<float>(draw.Region.lower.y), static_cast<float>(draw.Region.lower.z) };
+      const float upper[3] = { static_cast<float>(draw.Region.upper.x),
+        static_cast<float>(draw.Region.upper.y), static_cast<float>(draw.Region.upper.z) };
+      program->SetUniform3f("regionLower", lower);
+      program->SetUniform3f("regionUpper", upper);
+      if (draw.SliceCount > 0)
+      {
+        program->SetUniformi("isBoundaryFace", 0);
+        glDrawArrays(GL_TRIANGLES, draw.SliceFirst, draw.SliceCount);
+      }
+      if (draw.FaceCount > 0)
+      {
+        program->SetUniformi("isBoundaryFace", 1);
+        glDrawArrays(GL_TRIANGLES, draw.FaceFirst, draw.FaceCount);
+      }
+    }
+    resources.SliceArray->Release();
+    resources.VolumeTexture->Deactivate();
+    resources.TransferTable->Deactivate();
+    drew = true;
+  }
+  resources.SceneDepth->Deactivate();
+  resources.Framebuffer->RestorePreviousBindingsAndBuffers();
+
+  if (drew)
+  {
+    // Resolve: colour the accumulated value and blend it (premultiplied) over the scene.
+    state->vtkglViewport(lowerLeft[0], lowerLeft[1], width, height);
+    state->vtkglBlendEquation(GL_FUNC_ADD);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    const std::string resolveFragment = WithBlendDefine(AccelVolumeResolveFS, define);
+    vtkShaderProgram* resolve = window->GetShaderCache()->ReadyShaderProgram(
+      AccelVolumeResolveVS, resolveFragment.c_str(), "");
+    if (resolve)
+    {
+      resources.Accumulation->Activate();
+      resources.TransferTable->Activate();
+      resolve->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
+      resolve->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
+      resolve->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
+      const float origin[2] = { static_cast<float>(lowerLeft[0]), static_cast<float>(lowerLeft[1]) };
+      resolve->SetUniform2f("viewportOrigin", origin);
+      resources.ResolveArray->Bind();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      resources.ResolveArray->Release();
+      resources.Accumulation->Deactivate();
+      resources.TransferTable->Deactivate();
+    }
+  }
+  state->PopFramebufferBindings();
+  state->Pop();
+
+  // Wait for the GPU so the reported time is the frame's real cost.
+  glFinish();
+  timer->StopTimer();
+  this->LastRenderTime = timer->GetElapsedTime();
+  if (!program && !internals.ReportedError)
+  {
+    internals.ReportedError = true;
+    vtkErrorMacro("The slice shader did not compile; see the messages above");
+  }
+}

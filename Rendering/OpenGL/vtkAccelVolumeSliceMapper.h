@@ -1,0 +1,152 @@
+/**
+ * @class   vtkAccelVolumeSliceMapper
+ * @brief   Slice-based OpenGL volume mapper: view-aligned proxy slices through a 3D texture,
+ *          for maximum / minimum intensity projection, raysum (additive) and average, with
+ *          cropping whose cut faces are re-rendered to remove boundary aliasing.
+ *
+ * The volume is uploaded once as a 3D texture (trilinear or nearest sampling, as the volume
+ * property says). Every frame the mapper draws planes of constant eye depth, clipped to the
+ * (cropped, clipped) volume box, and accumulates one value per pixel in a float target with
+ * max / min / additive blending; a resolve pass then colours that value the way
+ * vtkGPUVolumeRayCastMapper does for the same blend mode and blends it over the scene:
+ * - MAXIMUM / MINIMUM_INTENSITY_BLEND: colour and scalar opacity of the extreme value.
+ * - ADDITIVE_BLEND (raysum): (1/unit) * integral of opacity(s) * s along the ray, s normalised
+ *   to the data range, shown grey and clamped to [0, 1]. Samples are weighted by the ray
+ *   length they stand for, so the result does not depend on the slice count; with the default
+ *   unit (the smallest voxel spacing) it equals VTK's per-voxel-step sum.
+ * - AVERAGE_INTENSITY_BLEND: ray-length-weighted mean of opacity(s) * s over samples inside
+ *   AverageIPScalarRange, shown grey.
+ *
+ * Cropping (VTK's region flags, any combination: each visible region is drawn as a convex
+ * cell) and up to 8 clipping planes restrict the sampled region. With BoundaryRerendering on
+ * (the default) the faces of each cell are drawn as extra textured polygons after the
+ * slices (Kye et al., "GPU MIP with clipping-plane re-rendering", 2007): for MIP / MinIP they
+ * add the samples that coarse slices miss along oblique cut faces; for raysum / average each
+ * face sample takes half of the gap to the nearest slice (trapezoid rule), so nothing is
+ * counted twice and the integral stays exact for linear data.
+ *
+ * Opaque geometry already in the depth buffer hides what lies behind it.
+ *
+ * Limits: one-component scalars of type char, unsigned char, short, unsigned short, int,
+ * float or double (int, float and double are sampled as 32-bit floats normalised to the
+ * data range; NaN samples count as the minimum). Composite blending is not provided yet.
+ * Each axis must fit GL_MAX_3D_TEXTURE_SIZE.
+ */
+
+#ifndef vtkAccelVolumeSliceMapper_h
+#define vtkAccelVolumeSliceMapper_h
+
+#include "vtkRenderingAccelVolumeModule.h" // For export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkImageData;
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class VTKRENDERINGACCELVOLUME_EXPORT vtkAccelVolumeSliceMapper : public vtkVolumeMapper
+{
+public:
+  static vtkAccelVolumeSliceMapper* New();
+  vtkTypeMacro(vtkAccelVolumeSliceMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Distance between slices along the viewing direction, in world units, used when
+   * AutoAdjustSampleDistances is off and NumberOfSlices is 0. Default 1.0, must be > 0.
+   */
+  vtkSetClampMacro(SampleDistance, double, 1.0e-6, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * When on (default), slices are one smallest voxel spacing apart, like VTK's GPU mapper,
+   * and the spacing grows up to InteractiveSlowdownLimit times during interaction when the
+   * last frame took longer than the time allotted to the volume.
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Explicit number of slices through the depth of the whole volume box (0 = use the
+   * sample distance, the default). Overrides the sample distance when > 0.
+   */
+  vtkSetClampMacro(NumberOfSlices, int, 0, 1 << 16);
+  vtkGetMacro(NumberOfSlices, int);
+  ///@}
+
+  ///@{
+  /** Upper bound on slices per frame (default 4096): a tiny sample distance is widened. */
+  vtkSetClampMacro(MaximumNumberOfSlices, int, 2, 1 << 16);
+  vtkGetMacro(MaximumNumberOfSlices, int);
+  ///@}
+
+  ///@{
+  /**
+   * Re-render the faces of the cropped / clipped volume after the slices (default on).
+   */
+  vtkSetMacro(BoundaryRerendering, vtkTypeBool);
+  vtkGetMacro(BoundaryRerendering, vtkTypeBool);
+  vtkBooleanMacro(BoundaryRerendering, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * World length that counts as one unit of the raysum (ADDITIVE_BLEND):
+   * result = integral(opacity(s) * s dl) / unit. 0 (default) = the smallest voxel spacing.
+   */
+  vtkSetClampMacro(AdditiveUnitDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(AdditiveUnitDistance, double);
+  ///@}
+
+  /** Slice spacing (world units) and slice / face polygon counts of the last frame. */
+  vtkGetMacro(LastSliceSpacing, double);
+  vtkGetMacro(LastNumberOfSlices, int);
+  vtkGetMacro(LastNumberOfBoundaryFaces, int);
+  /** Wall-clock time of the last Render() call in seconds (GPU work included: it waits). */
+  vtkGetMacro(LastRenderTime, double);
+  /** GL_RENDERER of the context that rendered last. */
+  const char* GetOpenGLRenderer();
+
+  /**
+   * Renders the volume. Called by vtkVolume; not for direct use.
+   */
+  void Render(vtkRenderer* renderer, vtkVolume* volume) override;
+
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkAccelVolumeSliceMapper();
+  ~vtkAccelVolumeSliceMapper() override;
+
+  double SampleDistance = 1.0;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  int NumberOfSlices = 0;
+  int MaximumNumberOfSlices = 4096;
+  vtkTypeBool BoundaryRerendering = 1;
+  double AdditiveUnitDistance = 0.0;
+  double InteractiveSlowdownLimit = 4.0;
+
+  double LastSliceSpacing = 0.0;
+  int LastNumberOfSlices = 0;
+  int LastNumberOfBoundaryFaces = 0;
+  double LastRenderTime = 0.0;
+
+private:
+  vtkAccelVolumeSliceMapper(const vtkAccelVolumeSliceMapper&) = delete;
+  void operator=(const vtkAccelVolumeSliceMapper&) = delete;
+
+  bool ValidateInput(vtkImageData* input, vtkVolume* volume);
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,256 @@
+// GPU resources of the slice mapper: texture upload with exact integer encodings.
+#include "vtkAccelVolumeSliceResources.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkTextureObject.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+// Signed 8/16-bit data are stored offset into unsigned textures, which GL normalises exactly;
+// wider or floating-point types are normalised to [0,1] on the CPU into a 32-bit float texture.
+template <typename Source, typename Target>
+void OffsetCopy(const Source* source, size_t count, int offset, std::vector<Target>& target)
+{
+  target.resize(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    target[i] = static_cast<Target>(static_cast<int>(source[i]) + offset);
+  }
+}
+
+template <typename Source>
+void NormalizeCopy(const Source* source, size_t count, const double range[2], std::vector<float>& target)
+{
+  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  target.resize(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    const double value = static_cast<double>(source[i]);
+    // NaN samples become the minimum; +/-Inf clamp to the ends of the finite range.
+    target[i] = std::isnan(value) ? 0.0f
+                                  : static_cast<float>(std::min(1.0, std::max(0.0, (value - range[0]) / width)));
+  }
+}
+}
+
+vtkAccelVolumeSliceResources::vtkAccelVolumeSliceResources() = default;
+vtkAccelVolumeSliceResources::~vtkAccelVolumeSliceResources() = default;
+
+bool vtkAccelVolumeSliceResources::UploadVolume(vtkOpenGLRenderWindow* window, vtkImageData* image,
+  vtkDataArray* scalars, const double range[2], bool linear, std::string& error)
+{
+  const bool contextChanged = this->Context != window;
+  if (contextChanged && this->Context)
+  {
+    this->ReleaseGraphicsResources(this->Context);
+  }
+  this->Context = window;
+  int dims[3];
+  image->GetDimensions(dims);
+  const bool stale = contextChanged || !this->VolumeTexture->GetHandle() ||
+    this->UploadedScalars != scalars || scalars->GetMTime() > this->VolumeUploadTime ||
+    image->GetMTime() > this->VolumeUploadTime || dims[0] != this->Dimensions[0] ||
+    dims[1] != this->Dimensions[1] || dims[2] != this->Dimensions[2] ||
+    range[0] != this->UploadedRange[0] || range[1] != this->UploadedRange[1];
+  if (stale)
+  {
+    const int maximumSize = vtkTextureObject::GetMaximumTextureSize3D(window);
+    if (maximumSize > 0 && (dims[0] > maximumSize || dims[1] > maximumSize || dims[2] > maximumSize))
+    {
+      error = "volume " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+        std::to_string(dims[2]) + " exceeds GL_MAX_3D_TEXTURE_SIZE " + std::to_string(maximumSize);
+      return false;
+    }
+    const size_t count = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
+    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    void* raw = scalars->GetVoidPointer(0);
+    std::vector<unsigned char> bytes;
+    std::vector<unsigned short> shorts;
+    std::vector<float> floats;
+    int textureType = VTK_FLOAT;
+    const void* upload = nullptr;
+    double decodeScale = 1.0; // texel -> stored integer value
+    double decodeOffset = 0.0;
+    switch (scalars->GetDataType())
+    {
+      case VTK_UNSIGNED_CHAR:
+        textureType = VTK_UNSIGNED_CHAR;
+        upload = raw;
+        decodeScale = 255.0;
+        break;
+      case VTK_CHAR:
+      case VTK_SIGNED_CHAR:
+        OffsetCopy(static_cast<const signed char*>(raw), count, 128, bytes);
+        textureType = VTK_UNSIGNED_CHAR;
+        upload = bytes.data();
+        decodeScale = 255.0;
+        decodeOffset = -128.0;
+        break;
+      case VTK_UNSIGNED_SHORT:
+        textureType = VTK_UNSIGNED_SHORT;
+        upload = raw;
+        decodeScale = 65535.0;
+        break;
+      case VTK_SHORT:
+        OffsetCopy(static_cast<const short*>(raw), count, 32768, shorts);
+        textureType = VTK_UNSIGNED_SHORT;
+        upload = shorts.data();
+        decodeScale = 65535.0;
+        decodeOffset = -32768.0;
+        break;
+      case VTK_INT:
+        NormalizeCopy(static_cast<const int*>(raw), count, range, floats);
+        break;
+      case VTK_FLOAT:
+        NormalizeCopy(static_cast<const float*>(raw), count, range, floats);
+        break;
+      case VTK_DOUBLE:
+        NormalizeCopy(static_cast<const double*>(raw), count, range, floats);
+        break;
+      default:
+        error = std::string("unsupported scalar type ") + scalars->GetDataTypeAsString();
+        return false;
+    }
+    if (textureType == VTK_FLOAT)
+    {
+      upload = floats.data();
+      this->ScalarScale = 1.0f;
+      this->ScalarBias = 0.0f;
+    }
+    else
+    {
+      this->ScalarScale = static_cast<float>(decodeScale / width);
+      this->ScalarBias = static_cast<float>((decodeOffset - range[0]) / width);
+    }
+    this->VolumeTexture->SetContext(window);
+    window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (!this->VolumeTexture->Create3DFromRaw(
+          dims[0], dims[1], dims[2], 1, textureType, const_cast<void*>(upload)))
+    {
+      error = "could not create the 3D texture (out of GPU memory?)";
+      return false;
+    }
+    this->VolumeTexture->SetWrapS(vtkTextureObject::ClampToEdge);
+    this->VolumeTexture->SetWrapT(vtkTextureObject::ClampToEdge);
+    this->VolumeTexture->SetWrapR(vtkTextureObject::ClampToEdge);
+    std::copy(dims, dims + 3, this->Dimensions);
+    this->UploadedScalars = scalars;
+    this->UploadedRange[0] = range[0];
+    this->UploadedRange[1] = range[1];
+    this->VolumeUploadTime.Modified();
+  }
+  const int filter = linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+  this->VolumeTexture->SetMinificationFilter(filter);
+  this->VolumeTexture->SetMagnificationFilter(filter);
+  return true;
+}
+
+void vtkAccelVolumeSliceResources::UpdateTransferTable(
+  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2])
+{
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  const bool gray = property->GetColorChannels(0) == 1;
+  vtkMTimeType newest = property->GetMTime();
+  newest = std::max(newest, opacity->GetMTime());
+  newest = std::max(newest,
+    gray ? property->GetGrayTransferFunction(0)->GetMTime() : property->GetRGBTransferFunction(0)->GetMTime());
+  if (this->TransferTable->GetHandle() && this->TableProperty == property &&
+    newest <= this->TableBuildTime && range[0] == this->TableRange[0] &&
+    range[1] == this->TableRange[1])
+  {
+    return;
+  }
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  std::vector<float> opacities(TableSize);
+  std::vector<float> colours(3 * TableSize);
+  opacity->GetTable(range[0], high, TableSize, opacities.data());
+  if (gray)
+  {
+    std::vector<float> grays(TableSize);
+    property->GetGrayTransferFunction(0)->GetTable(range[0], high, TableSize, grays.data());
+    for (int i = 0; i < TableSize; ++i)
+    {
+      colours[3 * i] = colours[3 * i + 1] = colours[3 * i + 2] = grays[i];
+    }
+  }
+  else
+  {
+    property->GetRGBTransferFunction(0)->GetTable(range[0], high, TableSize, colours.data());
+  }
+  std::vector<float> table(4 * TableSize);
+  for (int i = 0; i < TableSize; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      table[4 * i + c] = colours[3 * i + c];
+    }
+    table[4 * i + 3] = opacities[i];
+  }
+  this->TransferTable->SetContext(window);
+  this->TransferTable->Create2DFromRaw(TableSize, 1, 4, VTK_FLOAT, table.data());
+  this->TransferTable->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->TransferTable->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->TransferTable->SetMinificationFilter(vtkTextureObject::Linear);
+  this->TransferTable->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->TableProperty = property;
+  this->TableRange[0] = range[0];
+  this->TableRange[1] = range[1];
+  this->TableBuildTime.Modified();
+}
+
+bool vtkAccelVolumeSliceResources::PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height)
+{
+  if (!this->Accumulation->GetHandle() ||
+    static_cast<int>(this->Accumulation->GetWidth()) != width ||
+    static_cast<int>(this->Accumulation->GetHeight()) != height)
+  {
+    this->Accumulation->SetContext(window);
+    if (!this->Accumulation->Create2D(width, height, 2, VTK_FLOAT, false))
+    {
+      return false;
+    }
+    this->Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
+    this->SceneDepth->SetContext(window);
+    if (!this->SceneDepth->AllocateDepth(width, height, vtkTextureObject::Float32))
+    {
+      return false;
+    }
+    this->SceneDepth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->SceneDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    this->Framebuffer->SetContext(window);
+    this->Framebuffer->SaveCurrentBindingsAndBuffers();
+    this->Framebuffer->Bind();
+    this->Framebuffer->AddColorAttachment(0, this->Accumulation);
+    this->Framebuffer->RestorePreviousBindingsAndBuffers();
+  }
+  return true;
+}
+
+void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->VolumeTexture->ReleaseGraphicsResources(window);
+  this->TransferTable->ReleaseGraphicsResources(window);
+  this->Accumulation->ReleaseGraphicsResources(window);
+  this->SceneDepth->ReleaseGraphicsResources(window);
+  this->Framebuffer->ReleaseGraphicsResources(window);
+  this->VertexBuffer->ReleaseGraphicsResources();
+  this->SliceArray->ReleaseGraphicsResources();
+  this->ResolveArray->ReleaseGraphicsResources();
+  this->UploadedScalars = nullptr;
+  this->TableProperty = nullptr;
+  this->Context = nullptr;
+}

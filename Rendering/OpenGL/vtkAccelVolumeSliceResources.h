@@ -1,0 +1,76 @@
+/**
+ * @class   vtkAccelVolumeSliceResources
+ * @brief   GPU resources of vtkAccelVolumeSliceMapper: the 3D volume texture, the transfer
+ *          table, the float accumulation target, the scene depth copy and the proxy geometry
+ *          buffers. Private to the module (not wrapped, not installed).
+ */
+#ifndef vtkAccelVolumeSliceResources_h
+#define vtkAccelVolumeSliceResources_h
+
+#include "vtkNew.h"
+#include "vtkTimeStamp.h"
+
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkOpenGLBufferObject;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkTextureObject;
+class vtkVolumeProperty;
+class vtkWindow;
+
+class vtkAccelVolumeSliceResources
+{
+public:
+  vtkAccelVolumeSliceResources();
+  ~vtkAccelVolumeSliceResources();
+
+  /**
+   * (Re)uploads the scalars as a one-channel 3D texture when they changed since the last
+   * upload or the context changed. Sets ScalarScale / ScalarBias so that
+   * texel * scale + bias is the scalar normalised to `range`. False with `error` set on failure.
+   */
+  bool UploadVolume(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], bool linear, std::string& error);
+
+  /** Rebuilds the RGBA transfer table (colour + scalar opacity over `range`) when needed. */
+  void UpdateTransferTable(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
+
+  /** Sizes the accumulation target and the scene depth copy to the viewport. */
+  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+  vtkNew<vtkTextureObject> VolumeTexture;
+  vtkNew<vtkTextureObject> TransferTable;
+  vtkNew<vtkTextureObject> Accumulation;
+  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkOpenGLBufferObject> VertexBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> SliceArray;
+  vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
+
+  static constexpr int TableSize = 1024;
+  float ScalarScale = 1.0f;
+  float ScalarBias = 0.0f;
+  int Dimensions[3] = { 0, 0, 0 };
+
+private:
+  vtkAccelVolumeSliceResources(const vtkAccelVolumeSliceResources&) = delete;
+  void operator=(const vtkAccelVolumeSliceResources&) = delete;
+
+  vtkTimeStamp VolumeUploadTime;
+  vtkTimeStamp TableBuildTime;
+  vtkDataArray* UploadedScalars = nullptr;
+  double UploadedRange[2] = { 0.0, 0.0 };
+  double TableRange[2] = { 0.0, 0.0 };
+  vtkVolumeProperty* TableProperty = nullptr;
+  vtkWindow* Context = nullptr;
+};
+
+#endif

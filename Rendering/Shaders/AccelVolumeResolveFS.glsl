@@ -1,0 +1,47 @@
+//VTK::System::Dec
+// Resolve pass: turns the accumulated value into a premultiplied colour the way VTK's GPU
+// ray caster does for the same blend mode, blended over the scene.
+//VTK::Output::Dec
+
+uniform sampler2D accumulation;
+uniform sampler2D transferTable;
+uniform float tableSize;
+uniform vec2 viewportOrigin;
+
+vec4 lookup(float value)
+{
+  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  return texture(transferTable, vec2(u, 0.5));
+}
+
+void main()
+{
+  vec2 sums = texelFetch(accumulation, ivec2(gl_FragCoord.xy - viewportOrigin), 0).rg;
+#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+  if (sums.y <= 0.0)
+  {
+    discard;
+  }
+  vec4 colour = lookup(sums.x);
+  gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
+#elif defined(ACCELVOLUME_BLEND_MINIMUM)
+  if (sums.y > 1.5)
+  {
+    discard;
+  }
+  vec4 colour = lookup(sums.x);
+  gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
+#elif defined(ACCELVOLUME_BLEND_ADDITIVE)
+  if (sums.y <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = vec4(vec3(clamp(sums.x, 0.0, 1.0)), 1.0);
+#else
+  if (sums.y <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = vec4(vec3(clamp(sums.x / sums.y, 0.0, 1.0)), 1.0);
+#endif
+}

@@ -1,0 +1,7 @@
+//VTK::System::Dec
+// Full-viewport triangle for the resolve pass (no vertex attributes needed).
+void main()
+{
+  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}

@@ -1,0 +1,159 @@
+//VTK::System::Dec
+// Proxy slice / boundary face fragment stage: samples the volume once and writes the
+// blend mode's accumulation value into an RG32F target (R: value, G: weight or coverage).
+// A prelude defines exactly one of ACCELVOLUME_BLEND_{MAXIMUM,MINIMUM,ADDITIVE,AVERAGE}.
+//VTK::Output::Dec
+
+in vec3 indexPosition;
+in vec3 eyePosition;
+
+uniform sampler3D volumeTexture;
+uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the data range
+uniform sampler2D sceneDepth;      // window depth of the opaque geometry already drawn
+uniform vec3 volumeDimensions;
+uniform float scalarScale;         // normalized scalar = texel * scalarScale + scalarBias
+uniform float scalarBias;
+uniform float tableSize;
+uniform mat4 eyeToIndex;
+uniform mat4 inverseProjection;
+uniform vec2 viewportSize;
+uniform vec3 regionLower;          // the convex cell being drawn, in index coordinates
+uniform vec3 regionUpper;
+uniform int clipPlaneCount;
+uniform vec4 clipPlanes[8];        // index space: keep dot(xyz, p) + w >= 0
+uniform float sliceSpacing;        // along the view direction (world units)
+uniform float slicePhase;
+uniform int isBoundaryFace;
+uniform int boundaryRerendering;
+uniform int parallelProjection;
+uniform float additiveScale;       // 1 / unit distance
+uniform vec2 averageRange;         // normalized scalar range counted by the average
+
+float normalizedScalar()
+{
+  vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
+}
+
+float opacity(float value)
+{
+  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  return texture(transferTable, vec2(u, 0.5)).a;
+}
+
+// Distance along the pixel ray (world units) of the opaque geometry, or a huge value.
+float sceneDistance(vec3 rayOrigin, vec3 rayDirection)
+{
+  float depth = texelFetch(sceneDepth, ivec2(gl_FragCoord.xy), 0).r;
+  if (depth >= 1.0)
+  {
+    return 1.0e30;
+  }
+  vec4 ndc = vec4(gl_FragCoord.xy / viewportSize * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  vec4 eye = inverseProjection * ndc;
+  eye /= eye.w;
+  return dot(eye.xyz - rayOrigin, rayDirection);
+}
+
+// Ray parameter interval inside the region box and all clip half-spaces.
+vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
+{
+  vec3 origin = (eyeToIndex * vec4(rayOrigin, 1.0)).xyz;
+  vec3 direction = mat3(eyeToIndex) * rayDirection;
+  vec3 safeDirection = mix(direction, vec3(1.0e-20), equal(direction, vec3(0.0)));
+  vec3 t0 = (regionLower - origin) / safeDirection;
+  vec3 t1 = (regionUpper - origin) / safeDirection;
+  vec3 tNear = min(t0, t1);
+  vec3 tFar = max(t0, t1);
+  float enter = max(max(tNear.x, tNear.y), tNear.z);
+  float exit = min(min(tFar.x, tFar.y), tFar.z);
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    float along = dot(clipPlanes[i].xyz, direction);
+    float at = dot(clipPlanes[i].xyz, origin) + clipPlanes[i].w;
+    if (abs(along) < 1.0e-20)
+    {
+      continue; // parallel: the polygon was clipped already, so the ray is inside
+    }
+    float t = -at / along;
+    if (along > 0.0)
+    {
+      enter = max(enter, t);
+    }
+    else
+    {
+      exit = min(exit, t);
+    }
+  }
+  return vec2(enter, exit);
+}
+
+void main()
+{
+  vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
+  vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
+  float here = dot(eyePosition - rayOrigin, rayDirection);
+  float geometry = sceneDistance(rayOrigin, rayDirection);
+  if (here > geometry)
+  {
+    discard;
+  }
+  float value = normalizedScalar();
+
+#if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
+  gl_FragData[0] = vec4(value, 1.0, 0.0, 0.0);
+#else
+  // Integrating modes: weight each sample by the ray length it stands for, so the result
+  // is a line integral whatever the slice count. Slices are planes of constant eye depth;
+  // along this ray they are sliceSpacing / cos(theta) apart.
+  float cosTheta = max(-rayDirection.z, 1.0e-6);
+  float step = sliceSpacing / cosTheta;
+  vec2 interval = regionInterval(rayOrigin, rayDirection);
+  float enter = interval.x;
+  float boxExit = interval.y;
+  float exit = min(boxExit, geometry);
+  bool exitSampled = boundaryRerendering != 0 && boxExit <= geometry;
+  bool enterSampled = boundaryRerendering != 0;
+  float weight = 0.0;
+  if (isBoundaryFace != 0)
+  {
+    // Trapezoid rule: a face sample covers half of the gap to its nearest slice.
+    bool isEnter = abs(here - enter) <= abs(here - exit);
+    if (!isEnter && !exitSampled)
+    {
+      discard;
+    }
+    float firstSlice = (slicePhase + ceil((enter * cosTheta - slicePhase) / sliceSpacing) * sliceSpacing) / cosTheta;
+    float lastSlice = (slicePhase + floor((exit * cosTheta - slicePhase) / sliceSpacing) * sliceSpacing) / cosTheta;
+    if (firstSlice > exit)
+    {
+      weight = 0.5 * (exit - enter);
+    }
+    else
+    {
+      weight = isEnter ? 0.5 * (firstSlice - enter) : 0.5 * (exit - lastSlice);
+    }
+  }
+  else
+  {
+    float lower = here - 0.5 * step;
+    float upper = here + 0.5 * step;
+    if (here - step < enter)
+    {
+      lower = enterSampled ? 0.5 * (here + enter) : enter;
+    }
+    if (here + step > exit)
+    {
+      upper = exitSampled ? 0.5 * (here + exit) : exit;
+    }
+    weight = upper - lower;
+  }
+  weight = max(weight, 0.0);
+#if defined(ACCELVOLUME_BLEND_ADDITIVE)
+  gl_FragData[0] = vec4(weight * opacity(value) * value * additiveScale, weight, 0.0, 0.0);
+#else
+  float inRange = (value >= averageRange.x && value <= averageRange.y) ? 1.0 : 0.0;
+  gl_FragData[0] = vec4(inRange * weight * opacity(value) * value, inRange * weight, 0.0, 0.0);
+#endif
+#endif
+}
