@@ -64,7 +64,7 @@ TEST(Phantoms, EverySizeAndRangeIsRight)
     EXPECT_LE(*range.second, 1000.0f) << name;
     EXPECT_LT(*range.first, *range.second) << name << " should not be constant";
     EXPECT_TRUE(std::all_of(volume.values.begin(), volume.values.end(),
-      [](float v) { return std::isfinite(v); }))
+                            [](float v) { return std::isfinite(v); }))
       << name;
   }
 }

@@ -1,4 +1,4 @@
-// VolumeIO: volume loading for the CLI, with header checks so bad input gives an error, not a crash.
+// VolumeIO: CLI volume loading that checks headers first, so bad input errors instead of crashing.
 #include "VolumeIO.h"
 
 #include <vtkDataArray.h>
@@ -19,7 +19,6 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -43,11 +42,12 @@ struct KindInfo
 };
 
 const KindInfo Kinds[] = { { ScalarKind::UInt8, "uint8", VTK_UNSIGNED_CHAR, 1 },
-  { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
-  { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
-  { ScalarKind::Int16, "int16", VTK_SHORT, 2 }, { ScalarKind::Int32, "int32", VTK_INT, 4 },
-  { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
-  { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
+                           { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
+                           { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
+                           { ScalarKind::Int16, "int16", VTK_SHORT, 2 },
+                           { ScalarKind::Int32, "int32", VTK_INT, 4 },
+                           { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
+                           { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
 
 const KindInfo* FindKind(ScalarKind kind)
 {
@@ -181,150 +181,6 @@ private:
   vtkLogger::Verbosity PreviousVerbosity;
 };
 
-// Just enough JSON for datasets.json; malformed input makes Parse return false.
-struct JsonValue
-{
-  double number = 0;
-  bool isNumber = false;
-  std::string text;
-  std::vector<JsonValue> items;
-  std::vector<std::pair<std::string, JsonValue>> members;
-  const JsonValue* Find(const std::string& key) const
-  {
-    for (const auto& member : this->members)
-    {
-      if (member.first == key)
-      {
-        return &member.second;
-      }
-    }
-    return nullptr;
-  }
-};
-
-class JsonParser
-{
-public:
-  explicit JsonParser(const std::string& input)
-    : Input(input)
-  {
-  }
-  bool Parse(JsonValue& value, int depth = 0)
-  {
-    this->SkipSpace();
-    if (depth > 64 || this->Position >= this->Input.size())
-    {
-      return false;
-    }
-    const char c = this->Input[this->Position];
-    if (c == '{' || c == '[')
-    {
-      ++this->Position;
-      const char close = c == '{' ? '}' : ']';
-      for (bool first = true;; first = false)
-      {
-        this->SkipSpace();
-        if (this->Consume(close))
-        {
-          return true;
-        }
-        if (!first && !this->Consume(','))
-        {
-          return false;
-        }
-        JsonValue item;
-        std::string key;
-        this->SkipSpace();
-        if (c == '{' && (!this->ParseString(key) || (this->SkipSpace(), !this->Consume(':'))))
-        {
-          return false;
-        }
-        if (!this->Parse(item, depth + 1))
-        {
-          return false;
-        }
-        if (c == '{')
-        {
-          value.members.emplace_back(key, std::move(item));
-        }
-        else
-        {
-          value.items.push_back(std::move(item));
-        }
-      }
-    }
-    if (c == '"')
-    {
-      return this->ParseString(value.text);
-    }
-    const auto end = this->Input.find_first_of(",]} \t\r\n", this->Position);
-    const std::string token = this->Input.substr(this->Position, end - this->Position);
-    this->Position = end == std::string::npos ? this->Input.size() : end;
-    if (token == "true" || token == "false" || token == "null")
-    {
-      return true;
-    }
-    char* parsedEnd = nullptr;
-    value.number = std::strtod(token.c_str(), &parsedEnd);
-    value.isNumber = !token.empty() && *parsedEnd == '\0';
-    return value.isNumber;
-  }
-
-private:
-  void SkipSpace()
-  {
-    while (this->Position < this->Input.size() &&
-      std::isspace(static_cast<unsigned char>(this->Input[this->Position])))
-    {
-      ++this->Position;
-    }
-  }
-  bool Consume(char c)
-  {
-    if (this->Position < this->Input.size() && this->Input[this->Position] == c)
-    {
-      ++this->Position;
-      return true;
-    }
-    return false;
-  }
-  bool ParseString(std::string& text)
-  {
-    if (!this->Consume('"'))
-    {
-      return false;
-    }
-    while (this->Position < this->Input.size())
-    {
-      char c = this->Input[this->Position++];
-      if (c == '"')
-      {
-        return true;
-      }
-      if (c == '\\' && this->Position < this->Input.size())
-      {
-        c = this->Input[this->Position++];
-        const std::map<char, char> escapes = { { 'n', '\n' }, { 't', '\t' }, { 'r', '\r' },
-          { 'b', '\b' }, { 'f', '\f' } };
-        if (c == 'u')
-        {
-          // File names here are ASCII; other code points only need to not break parsing.
-          this->Position = std::min(this->Position + 4, this->Input.size());
-          c = '?';
-        }
-        else if (escapes.count(c))
-        {
-          c = escapes.at(c);
-        }
-      }
-      text += c;
-    }
-    return false;
-  }
-  const std::string& Input;
-  std::size_t Position = 0;
-};
-
 // What datasets.json, the file name or the flags say about a raw file.
 struct RawLayout
 {
@@ -335,48 +191,55 @@ struct RawLayout
   double spacing[3] = { 1, 1, 1 };
 };
 
+// datasets.json lists flat objects, so the object holding a "file" entry is found by scanning
+// to the surrounding braces; that avoids a JSON dependency for three fields.
 void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
 {
   std::ifstream stream(rawPath.parent_path() / "datasets.json", std::ios::binary);
-  std::stringstream content;
-  content << stream.rdbuf();
-  JsonValue root;
-  const std::string text = content.str();
-  if (!stream || !JsonParser(text).Parse(root) || !root.Find("datasets"))
+  const std::string text((std::istreambuf_iterator<char>(stream)),
+                         std::istreambuf_iterator<char>());
+  static const std::regex fileEntry(R"re("file"\s*:\s*"([^"]*)")re");
+    for (std::sregex_iterator match(text.begin(), text.end(), fileEntry), end; match != end;
+         ++match)
   {
-    return; // The sidecar is optional metadata, so an unusable one is ignored.
-  }
-  for (const JsonValue& entry : root.Find("datasets")->items)
-  {
-    const JsonValue* file = entry.Find("file");
-    if (!file || file->text != rawPath.filename().string())
+    const auto first = text.rfind('{', match->position());
+    const auto last = text.find('}', match->position());
+    if ((*match)[1] != rawPath.filename().string() || first == std::string::npos ||
+        last == std::string::npos)
     {
       continue;
     }
-    const JsonValue* spacing = entry.Find("spacing");
-    if (spacing && spacing->items.size() == 3)
+    const std::string entry = text.substr(first, last - first);
+    auto numbers = [&entry](const std::string& key)
     {
-      layout.haveSpacing = true;
-      for (int axis = 0; axis < 3; ++axis)
+      std::smatch found;
+      std::vector<double> values;
+      if (std::regex_search(entry, found, std::regex("\"" + key + R"("\s*:\s*\[([^\]]*)\])")))
       {
-        const double value = spacing->items[axis].number;
-        layout.spacing[axis] = value;
-        layout.haveSpacing = layout.haveSpacing && std::isfinite(value) && value > 0;
+        std::istringstream list(std::regex_replace(found[1].str(), std::regex(","), " "));
+        for (double value; list >> value;)
+        {
+          values.push_back(value);
+        }
       }
-    }
-    const JsonValue* dims = entry.Find("dims");
-    if (dims && dims->items.size() == 3)
+      return values;
+    };
+    const std::vector<double> spacing = numbers("spacing"), dims = numbers("dims");
+    layout.haveSpacing = spacing.size() == 3 &&
+      std::all_of(spacing.begin(), spacing.end(),
+                  [](double v) { return std::isfinite(v) && v > 0; });
+    std::copy(spacing.begin(), spacing.begin() + (layout.haveSpacing ? 3 : 0), layout.spacing);
+    layout.haveDims = dims.size() == 3;
+    for (std::size_t axis = 0; axis < dims.size() && layout.haveDims; ++axis)
     {
-      layout.haveDims = true;
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        layout.dims[axis] = static_cast<std::int64_t>(std::min(dims->items[axis].number, 1e12));
-      }
+      layout.dims[axis] = static_cast<std::int64_t>(std::min(dims[axis], 1e12));
     }
-    if (const JsonValue* type = entry.Find("type"))
+    std::smatch type;
+    if (std::regex_search(entry, type, std::regex(R"re("type"\s*:\s*"([^"]*)")re")))
     {
-      layout.kind = ParseScalarKind(type->text);
+      layout.kind = ParseScalarKind(type[1].str());
     }
+    return;
   }
 }
 
@@ -457,8 +320,10 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   if (!layout.haveDims || !kind)
   {
     error = "raw volume '" + request.inputPath + "' needs " +
-      (layout.haveDims ? "" : kind ? "--dims" : "--dims and ") + (kind ? "" : "--type") +
-      " (or a name like NAME_256x256x113_uint16.raw)";
+      (layout.haveDims ? ""
+         : kind        ? "--dims"
+                       : "--dims and ") +
+      (kind ? "" : "--type") + " (or a name like NAME_256x256x113_uint16.raw)";
     return nullptr;
   }
   std::int64_t bytes = 0;
@@ -466,8 +331,8 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   {
     return nullptr;
   }
-  const std::string expected = DimensionsText(layout.dims) + " " + kind->name + " needs " +
-    std::to_string(bytes) + " bytes";
+  const std::string expected =
+    DimensionsText(layout.dims) + " " + kind->name + " needs " + std::to_string(bytes) + " bytes";
   const std::int64_t fileSize = FileSize(path);
   if (!compressed && fileSize != bytes)
   {
@@ -477,14 +342,15 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   }
   std::ifstream stream(path, std::ios::binary);
   unsigned char magic[2] = { 0, 0 };
-  if (compressed && (!stream.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b))
+  if (compressed &&
+      (!stream.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b))
   {
     error = "'" + request.inputPath + "' is not gzip data (bad magic bytes)";
     return nullptr;
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(static_cast<int>(layout.dims[0]), static_cast<int>(layout.dims[1]),
-    static_cast<int>(layout.dims[2]));
+                       static_cast<int>(layout.dims[2]));
   image->AllocateScalars(kind->vtkType, 1);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (!scalars || scalars->GetNumberOfValues() != bytes / kind->size)
@@ -494,8 +360,7 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   }
   scalars->SetName("scalars");
   char* data = static_cast<char*>(scalars->GetVoidPointer(0));
-  if (compressed ? !ReadGzip(request.inputPath, data, bytes, error)
-                 : !stream.read(data, bytes))
+  if (compressed ? !ReadGzip(request.inputPath, data, bytes, error) : !stream.read(data, bytes))
   {
     error = error.empty() ? "cannot read '" + request.inputPath + "'" : error;
     return nullptr;
@@ -519,7 +384,7 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
 // Reads "key = value" (MetaImage) or "key: value" (NRRD) lines from the start of a header.
 // Returns false for text that is not a header; dataOffset is where the header ends.
 bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::string>& fields,
-  std::int64_t& dataOffset, std::string& error)
+                std::int64_t& dataOffset, std::string& error)
 {
   std::ifstream stream(path, std::ios::binary);
   std::string buffer(1 << 16, '\0');
@@ -548,12 +413,14 @@ bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::s
       continue;
     }
     const auto separator = line.find(nrrd ? ":" : "=");
-    const bool printable = std::all_of(line.begin(), line.end(),
-      [](char c) { return std::isprint(static_cast<unsigned char>(c)) || c == '\t'; });
+    const bool printable =
+      std::all_of(line.begin(), line.end(),
+                  [](char c) { return std::isprint(static_cast<unsigned char>(c)) || c == '\t'; });
     if (separator == std::string::npos || !printable)
     {
       error = "malformed " + kind + " header in '" + path + "' at line " +
-        std::to_string(lineNumber) + " (expected " + (nrrd ? "'key: value'" : "'Key = Value'") + ")";
+        std::to_string(lineNumber) + " (expected " + (nrrd ? "'key: value'" : "'Key = Value'") +
+        ")";
       return false;
     }
     const std::string key = Lower(Trim(line.substr(0, separator)));
@@ -578,27 +445,38 @@ bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::s
   return true;
 }
 
-ScalarKind HeaderKind(const std::string& type, bool nrrd)
+// MetaImage ElementType and NRRD type spellings (NRRD's "_t" suffix is stripped first).
+ScalarKind HeaderKind(std::string type)
 {
-  static const std::map<std::string, ScalarKind> meta = { { "met_uchar", ScalarKind::UInt8 },
-    { "met_char", ScalarKind::Int8 }, { "met_ushort", ScalarKind::UInt16 },
-    { "met_short", ScalarKind::Int16 }, { "met_int", ScalarKind::Int32 },
-    { "met_float", ScalarKind::Float32 }, { "met_double", ScalarKind::Float64 } };
-  static const std::map<std::string, ScalarKind> nrrdTypes = { { "uchar", ScalarKind::UInt8 },
-    { "unsigned char", ScalarKind::UInt8 }, { "uint8", ScalarKind::UInt8 },
-    { "uint8_t", ScalarKind::UInt8 }, { "signed char", ScalarKind::Int8 },
-    { "int8", ScalarKind::Int8 }, { "int8_t", ScalarKind::Int8 }, { "short", ScalarKind::Int16 },
-    { "short int", ScalarKind::Int16 }, { "signed short", ScalarKind::Int16 },
-    { "signed short int", ScalarKind::Int16 }, { "int16", ScalarKind::Int16 },
-    { "int16_t", ScalarKind::Int16 }, { "ushort", ScalarKind::UInt16 },
-    { "unsigned short", ScalarKind::UInt16 }, { "unsigned short int", ScalarKind::UInt16 },
-    { "uint16", ScalarKind::UInt16 }, { "uint16_t", ScalarKind::UInt16 },
-    { "int", ScalarKind::Int32 }, { "signed int", ScalarKind::Int32 },
-    { "int32", ScalarKind::Int32 }, { "int32_t", ScalarKind::Int32 },
-    { "float", ScalarKind::Float32 }, { "double", ScalarKind::Float64 } };
-  const auto& table = nrrd ? nrrdTypes : meta;
-  const auto found = table.find(Lower(type));
-  return found == table.end() ? ScalarKind::Unknown : found->second;
+  type = Lower(type);
+  type = EndsWith(type, "_t") ? type.substr(0, type.size() - 2) : type;
+  static const std::map<std::string, ScalarKind> kinds = {
+    { "met_uchar", ScalarKind::UInt8 },
+    { "met_char", ScalarKind::Int8 },
+    { "met_ushort", ScalarKind::UInt16 },
+    { "met_short", ScalarKind::Int16 },
+    { "met_int", ScalarKind::Int32 },
+    { "met_float", ScalarKind::Float32 },
+    { "met_double", ScalarKind::Float64 },
+    { "uchar", ScalarKind::UInt8 },
+    { "unsigned char", ScalarKind::UInt8 },
+    { "signed char", ScalarKind::Int8 },
+    { "short", ScalarKind::Int16 },
+    { "short int", ScalarKind::Int16 },
+    { "signed short", ScalarKind::Int16 },
+    { "signed short int", ScalarKind::Int16 },
+    { "ushort", ScalarKind::UInt16 },
+    { "unsigned short", ScalarKind::UInt16 },
+    { "unsigned short int", ScalarKind::UInt16 },
+    { "int", ScalarKind::Int32 },
+    { "signed int", ScalarKind::Int32 },
+    { "float", ScalarKind::Float32 },
+    { "double", ScalarKind::Float64 }
+  };
+  const auto found = kinds.find(type);
+  return found != kinds.end()    ? found->second
+    : type.compare(0, 4, "met_") ? ParseScalarKind(type)
+                                 : ScalarKind::Unknown;
 }
 
 // Checks a MetaImage or NRRD header against its data before a VTK reader sees the file, because
@@ -619,8 +497,8 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
   for (std::string token; sizeStream >> token;)
   {
     sizes.push_back(token.find_first_not_of("0123456789") == std::string::npos && token.size() < 13
-        ? std::stoll(token)
-        : -1);
+                      ? std::stoll(token)
+                      : -1);
   }
   // vtkNrrdReader reads a 4th axis, or a first axis of at most 9 samples, as vector components.
   const bool nrrdComponents = nrrd && !sizes.empty() && (dimension > 3 || sizes[0] <= 9);
@@ -642,7 +520,7 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
   Dimensions dims = { 1, 1, 1 };
   std::copy(sizes.begin(), sizes.end(), dims);
   const std::string typeName = field(nrrd ? "type" : "elementtype");
-  const KindInfo* kind = FindKind(HeaderKind(typeName, nrrd));
+  const KindInfo* kind = FindKind(HeaderKind(typeName));
   if (!kind)
   {
     error = "unsupported scalar type '" + typeName + "' in " + where;
@@ -654,11 +532,11 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     return false;
   }
   const std::string encoding = Lower(field("encoding"));
-  std::string dataFile = field(nrrd ? (fields.count("datafile") ? "datafile" : "data file")
-                                    : "elementdatafile");
+  std::string dataFile =
+    field(nrrd ? (fields.count("datafile") ? "datafile" : "data file") : "elementdatafile");
   bool raw = !nrrd || encoding == "raw";
   if (nrrd && !raw && encoding != "ascii" && encoding != "text" && encoding != "txt" &&
-    encoding != "gzip" && encoding != "gz")
+      encoding != "gzip" && encoding != "gz")
   {
     error = "unsupported NRRD encoding '" + encoding + "' in '" + path + "'";
     return false;
@@ -668,7 +546,7 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     raw = false; // Compressed or listed data can only be checked by MetaIO itself.
   }
   if (dataFile.find('%') != std::string::npos || dataFile.find(' ') != std::string::npos ||
-    (nrrd && dataFile == "LIST"))
+      (nrrd && dataFile == "LIST"))
   {
     error = "multi-file data in '" + path + "' is not supported";
     return false;
@@ -690,8 +568,9 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     error = "malformed " + where + ": a detached header needs a 'data file' field";
     return false;
   }
-  if (nrrd && (std::atoll(field("byte skip").c_str()) || std::atoll(field("line skip").c_str()) ||
-               std::atoll(field("byteskip").c_str()) || std::atoll(field("lineskip").c_str())))
+  if (nrrd &&
+      (std::atoll(field("byte skip").c_str()) || std::atoll(field("line skip").c_str()) ||
+       std::atoll(field("byteskip").c_str()) || std::atoll(field("lineskip").c_str())))
   {
     error = "NRRD byte skip and line skip are not supported ('" + path + "')";
     return false;
@@ -754,7 +633,7 @@ bool ValidateImage(vtkImageData* image, const std::string& path, std::string& er
   }
   const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
   if (std::none_of(std::begin(Kinds), std::end(Kinds),
-        [type](const KindInfo& info) { return info.vtkType == type; }))
+                   [type](const KindInfo& info) { return info.vtkType == type; }))
   {
     error = std::string("unsupported scalar type '") + scalars->GetDataTypeAsString() + "' in '" +
       path + "' (supported: uint8 int8 uint16 int16 int32 float32 float64)";
@@ -774,8 +653,8 @@ vtkSmartPointer<vtkImageData> LoadFile(const VolumeRequest& request, std::string
   const std::string& path = request.inputPath;
   if (!fs::is_regular_file(path) || !std::ifstream(path, std::ios::binary))
   {
-    error = "cannot open '" + path + "': " +
-      (fs::exists(path) ? "not a readable file" : "no such file");
+    error =
+      "cannot open '" + path + "': " + (fs::exists(path) ? "not a readable file" : "no such file");
     return nullptr;
   }
   const std::string name = Lower(fs::path(path).filename().string());
@@ -790,7 +669,8 @@ vtkSmartPointer<vtkImageData> LoadFile(const VolumeRequest& request, std::string
     {
       return nullptr;
     }
-    return nrrd ? RunReader<vtkNrrdReader>(path, error) : RunReader<vtkMetaImageReader>(path, error);
+    return nrrd ? RunReader<vtkNrrdReader>(path, error)
+                : RunReader<vtkMetaImageReader>(path, error);
   }
   if (EndsWith(name, ".vti"))
   {
@@ -831,8 +711,8 @@ vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::stri
 {
   error.clear();
   if (request.haveSpacing &&
-    !std::all_of(request.spacing, request.spacing + 3,
-      [](double value) { return std::isfinite(value) && value > 0; }))
+      !std::all_of(request.spacing, request.spacing + 3,
+                   [](double value) { return std::isfinite(value) && value > 0; }))
   {
     error = "spacing must be three positive numbers";
     return nullptr;
@@ -843,8 +723,8 @@ vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::stri
     if (request.inputPath.empty())
     {
       accelvolume::PhantomVolume phantom;
-      if (accelvolume::GeneratePhantom(
-            request.phantom, request.phantomDims, request.phantomTime, phantom, error))
+      if (accelvolume::GeneratePhantom(request.phantom, request.phantomDims, request.phantomTime,
+                                       phantom, error))
       {
         image = PhantomToImage(phantom);
       }
@@ -902,7 +782,7 @@ std::string DescribeVolume(vtkImageData* image)
   }
   const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
   const auto* info = std::find_if(std::begin(Kinds), std::end(Kinds),
-    [type](const KindInfo& kind) { return kind.vtkType == type; });
+                                  [type](const KindInfo& kind) { return kind.vtkType == type; });
   text += " ";
   text += info != std::end(Kinds) ? info->name : scalars->GetDataTypeAsString();
   const int components = scalars->GetNumberOfComponents();
