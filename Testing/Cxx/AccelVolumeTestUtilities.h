@@ -121,8 +121,10 @@ struct ReferenceSettings
 };
 
 // CPU reference of what the slice mapper should show over a black background (RGB, [0,1]).
+// raysEnd: optional per-pixel distance to opaque geometry; alpha: optional per-pixel coverage.
 inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* volume,
-  vtkRenderer* renderer, int width, int height, const ReferenceSettings& settings)
+  vtkRenderer* renderer, int width, int height, const ReferenceSettings& settings,
+  const std::vector<double>* raysEnd = nullptr, std::vector<float>* alpha = nullptr)
 {
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   double range[2];
@@ -179,7 +181,7 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
     regions.push_back(box);
   }
   const auto pixels = accelvolume::RenderReference(core, regions, settings.clip, opacityTable,
-    ToCoreCamera(renderer->GetActiveCamera()), width, height, options);
+    ToCoreCamera(renderer->GetActiveCamera()), width, height, options, raysEnd);
   auto lookup = [&](const std::vector<float>& table, int components, int component, float value) {
     const float position = std::min(1.0f, std::max(0.0f, value)) * (TableSize - 1);
     const int below = std::min(TableSize - 2, static_cast<int>(position));
@@ -188,6 +190,10 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
       table[(below + 1) * components + component] * fraction;
   };
   std::vector<float> rgb(static_cast<size_t>(width) * height * 3, 0.0f);
+  if (alpha)
+  {
+    alpha->assign(pixels.size(), 0.0f);
+  }
   for (size_t i = 0; i < pixels.size(); ++i)
   {
     if (!pixels[i].hit)
@@ -195,6 +201,12 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
       continue;
     }
     const float v = pixels[i].value;
+    if (alpha)
+    {
+      const bool projection = settings.blendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+        settings.blendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+      (*alpha)[i] = projection ? lookup(opacity, 1, 0, v) : 1.0f;
+    }
     for (int c = 0; c < 3; ++c)
     {
       if (settings.blendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
