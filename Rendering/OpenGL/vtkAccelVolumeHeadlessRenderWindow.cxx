@@ -27,6 +27,8 @@
 #define GLAPIENTRY
 #endif
 #include <GL/osmesa.h>
+
+#include "vtkAccelVolumeOSMesaLoader.h"
 #endif
 
 #include <algorithm>
@@ -350,6 +352,7 @@ bool vtkAccelVolumeHeadlessRenderWindow::CreateContext()
       internals.CreationFailed = true;
       return false;
     }
+    vtkAccelVolumeRegisterOSMesaContext(internals.OSMesaContextHandle, true);
     this->ActiveBackend = BACKEND_OSMESA;
     return true;
   }
@@ -378,6 +381,7 @@ void vtkAccelVolumeHeadlessRenderWindow::DestroyContext()
 #if ACCELVOLUME_HAVE_OSMESA
   if (internals.OSMesaContextHandle)
   {
+    vtkAccelVolumeRegisterOSMesaContext(internals.OSMesaContextHandle, false);
     OSMesaDestroyContext(internals.OSMesaContextHandle);
     internals.OSMesaContextHandle = nullptr;
     internals.OSMesaBuffer.clear();

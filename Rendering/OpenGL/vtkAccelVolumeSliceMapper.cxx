@@ -5,6 +5,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -123,6 +124,23 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
 }
 
+double* vtkAccelVolumeSliceMapper::GetBounds()
+{
+  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
+  {
+    this->MissingInputReportTime.Modified();
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+  }
+  return this->Superclass::GetBounds();
+}
+
+int vtkAccelVolumeSliceMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
 const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
 {
   return this->Internals->Renderer.c_str();
@@ -219,9 +237,12 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     vtkErrorMacro("vtkAccelVolumeSliceMapper needs an OpenGL render window");
     return;
   }
-  this->GetInputAlgorithm()->UpdateInformation();
-  this->GetInputAlgorithm()->Update();
-  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInput());
+  vtkImageData* input = nullptr;
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+    input = vtkImageData::SafeDownCast(this->GetInput());
+  }
   if (!this->ValidateInput(input, volume))
   {
     return;
@@ -230,7 +251,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
     input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   double range[2];
-  scalars->GetRange(range, 0);
+  scalars->GetFiniteRange(range, 0); // NaN and +/-Inf must not stretch the range
   if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
   {
     // All-NaN or infinite data: render the finite part against a unit range.

@@ -37,6 +37,7 @@
 #define vtkAccelVolumeSliceMapper_h
 
 #include "vtkRenderingAccelVolumeModule.h" // For export macro
+#include "vtkTimeStamp.h" // For vtkTimeStamp
 #include "vtkVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr
@@ -122,9 +123,19 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
+  /**
+   * Bounds of the input. Without an input the renderer culls the volume before Render(), so
+   * the missing input is reported here (once per change of the mapper).
+   */
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  using vtkVolumeMapper::GetBounds;
+
 protected:
   vtkAccelVolumeSliceMapper();
   ~vtkAccelVolumeSliceMapper() override;
+
+  /** The input is optional so a missing input gets this mapper's own clear error. */
+  int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double SampleDistance = 1.0;
   vtkTypeBool AutoAdjustSampleDistances = 1;
@@ -138,6 +149,7 @@ protected:
   int LastNumberOfSlices = 0;
   int LastNumberOfBoundaryFaces = 0;
   double LastRenderTime = 0.0;
+  vtkTimeStamp MissingInputReportTime;
 
 private:
   vtkAccelVolumeSliceMapper(const vtkAccelVolumeSliceMapper&) = delete;

@@ -16,6 +16,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -26,6 +27,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -221,6 +223,28 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
     }
   }
   return rgb;
+}
+
+// Writes an RGB [0,1] image as PNG into $ACCELVOLUME_TEST_DUMP (when set) for inspection.
+inline void DumpImage(const std::string& name, const std::vector<float>& rgb, int width, int height)
+{
+  const char* folder = std::getenv("ACCELVOLUME_TEST_DUMP");
+  if (!folder || !*folder)
+  {
+    return;
+  }
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(width, height, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* out = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (size_t i = 0; i < rgb.size(); ++i)
+  {
+    out[i] = static_cast<unsigned char>(std::min(1.0f, std::max(0.0f, rgb[i])) * 255.0f + 0.5f);
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName((std::string(folder) + "/" + name + ".png").c_str());
+  writer->SetInputData(image);
+  writer->Write();
 }
 
 struct ImageDifference

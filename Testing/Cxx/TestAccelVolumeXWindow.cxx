@@ -1,0 +1,53 @@
+// The plain X window (ACCELVOLUME_GL=x, e.g. under Xvfb) keeps working with the module loaded:
+// vtkRenderWindow::New() gives VTK's X window and the slice mapper's MIP matches the CPU
+// reference there too. Skipped (exit 125) without a display or when a headless backend is chosen.
+#include "AccelVolumeTestUtilities.h"
+#include "vtkAccelVolumeHeadlessRenderWindow.h"
+#include "vtkAccelVolumeSliceMapper.h"
+
+#include <cstdlib>
+#include <cstring>
+
+int TestAccelVolumeXWindow(int, char*[])
+{
+  const char* display = std::getenv("DISPLAY");
+  const char* requested = std::getenv("ACCELVOLUME_GL");
+  if (!display || !*display || !requested || std::strcmp(requested, "x") != 0)
+  {
+    std::cout << "needs ACCELVOLUME_GL=x and a DISPLAY: skipped\n";
+    return 125;
+  }
+  using namespace accelvolume_test;
+  constexpr int Size = 120;
+  auto image = MakePhantom("vessels", 40, 36, 32);
+  vtkNew<vtkAccelVolumeSliceMapper> mapper;
+  mapper->SetInputData(image);
+  mapper->SetAutoAdjustSampleDistances(0);
+  mapper->SetSampleDistance(0.25);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  SetRampProperty(volume->GetProperty(), 50.0, 900.0, true);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddVolume(volume);
+  vtkNew<vtkRenderWindow> window;
+  if (vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window))
+  {
+    std::cerr << "ACCELVOLUME_GL=x but vtkRenderWindow::New() returned the headless window\n";
+    return EXIT_FAILURE;
+  }
+  std::cout << "window class: " << window->GetClassName() << "\n";
+  window->SetSize(Size, Size);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Azimuth(25);
+  renderer->GetActiveCamera()->Elevation(15);
+  renderer->GetActiveCamera()->OrthogonalizeViewUp();
+  renderer->ResetCamera();
+  window->Render();
+  const std::vector<float> ours = ReadPixels(window);
+  ReferenceSettings settings;
+  const std::vector<float> reference = RenderReferenceImage(image, volume, renderer, Size, Size, settings);
+  const bool ok = Report("MIP in the X window", CompareImages(ours, reference, 8.0 / 255.0), 2.0 / 255.0, 0.02);
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
