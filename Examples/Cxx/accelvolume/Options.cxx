@@ -1,0 +1,470 @@
+// Options: parsing and help text of the accelvolume command line.
+#include "Options.h"
+
+#include "Phantoms.h"
+
+#include <vtkAccelVolumeHeadlessRenderWindow.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <sstream>
+
+namespace accelvolume::cli
+{
+namespace
+{
+
+CliError Usage(const std::string& message)
+{
+  return CliError(ExitUsage, message);
+}
+
+double ParseNumber(const std::string& flag, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
+  {
+    throw Usage(flag + " expects a number, got '" + text + "'");
+  }
+  return value;
+}
+
+std::string FormatNumber(double value)
+{
+  std::ostringstream stream;
+  stream << value;
+  return stream.str();
+}
+
+int ParseInteger(const std::string& flag, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || value > 1 << 30 ||
+      value < -(1 << 30))
+  {
+    throw Usage(flag + " expects an integer, got '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
+template <typename Enum>
+Enum ParseChoice(const std::string& flag, const std::string& text,
+                 const std::map<std::string, Enum>& choices)
+{
+  const auto found = choices.find(text);
+  if (found == choices.end())
+  {
+    std::string names;
+    for (const auto& choice : choices)
+    {
+      names += (names.empty() ? "" : "|") + choice.first;
+    }
+    throw Usage("invalid value '" + text + "' for " + flag + " (expected " + names + ")");
+  }
+  return found->second;
+}
+
+class ArgumentReader
+{
+public:
+  ArgumentReader(const std::vector<std::string>& arguments, std::size_t start)
+    : Arguments(arguments)
+    , Position(start)
+  {
+  }
+  bool Done() const { return this->Position >= this->Arguments.size(); }
+  std::string Next() { return this->Arguments[this->Position++]; }
+  // The values of flag; a missing value (end of line or another flag) is a usage error.
+  std::vector<std::string> Values(const std::string& flag, int count)
+  {
+    std::vector<std::string> values;
+    for (int i = 0; i < count; ++i)
+    {
+      const bool missing = this->Done() ||
+        (this->Arguments[this->Position].compare(0, 2, "--") == 0 &&
+         this->Arguments[this->Position].size() > 2);
+      if (missing)
+      {
+        throw Usage(flag + " expects " + std::to_string(count) + " value" +
+                    (count == 1 ? "" : "s"));
+      }
+      values.push_back(this->Next());
+    }
+    return values;
+  }
+  std::string Value(const std::string& flag) { return this->Values(flag, 1)[0]; }
+  std::vector<double> Numbers(const std::string& flag, int count)
+  {
+    std::vector<double> numbers;
+    for (const std::string& text : this->Values(flag, count))
+    {
+      numbers.push_back(ParseNumber(flag, text));
+    }
+    return numbers;
+  }
+  std::vector<int> Integers(const std::string& flag, int count)
+  {
+    std::vector<int> numbers;
+    for (const std::string& text : this->Values(flag, count))
+    {
+      numbers.push_back(ParseInteger(flag, text));
+    }
+    return numbers;
+  }
+
+private:
+  const std::vector<std::string>& Arguments;
+  std::size_t Position;
+};
+
+void ParseRenderFlags(ArgumentReader& reader, Options& options)
+{
+  using Handler = std::function<void(const std::string&)>;
+  VolumeRequest& volume = options.volume;
+  const std::map<std::string, Handler> handlers = {
+    { "--phantom", [&](const std::string& f) { volume.phantom = reader.Value(f); } },
+    { "--phantom-dims",
+      [&](const std::string& f)
+      {
+        const std::vector<int> dims = reader.Integers(f, 3);
+        std::copy(dims.begin(), dims.end(), volume.phantomDims);
+      } },
+    { "--time", [&](const std::string& f) { volume.phantomTime = reader.Numbers(f, 1)[0]; } },
+    { "--input", [&](const std::string& f) { volume.inputPath = reader.Value(f); } },
+    { "--dims",
+      [&](const std::string& f)
+      {
+        const std::vector<int> dims = reader.Integers(f, 3);
+        std::copy(dims.begin(), dims.end(), volume.dims);
+        volume.haveDims = true;
+      } },
+    { "--type",
+      [&](const std::string& f)
+      {
+        const std::string name = reader.Value(f);
+        volume.kind = ParseScalarKind(name);
+        if (volume.kind == ScalarKind::Unknown)
+        {
+          throw Usage("invalid value '" + name +
+                      "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
+        }
+      } },
+    { "--spacing",
+      [&](const std::string& f)
+      {
+        const std::vector<double> spacing = reader.Numbers(f, 3);
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          if (spacing[axis] <= 0)
+          {
+            throw Usage("--spacing values must be positive");
+          }
+          volume.spacing[axis] = spacing[axis];
+        }
+        volume.haveSpacing = true;
+      } },
+    { "--mapper",
+      [&](const std::string& f)
+      {
+        options.mapper = ParseChoice<MapperKind>(f, reader.Value(f),
+          { { "slice", MapperKind::Slice }, { "vtk-gpu", MapperKind::VTKGPU },
+            { "vtk-fixed", MapperKind::VTKFixed } });
+      } },
+    { "--blend",
+      [&](const std::string& f)
+      {
+        options.blend = ParseChoice<BlendKind>(f, reader.Value(f),
+          { { "mip", BlendKind::MIP }, { "minip", BlendKind::MinIP },
+            { "additive", BlendKind::Additive }, { "average", BlendKind::Average } });
+      } },
+    { "--window",
+      [&](const std::string& f)
+      {
+        const std::vector<double> window = reader.Numbers(f, 2);
+        if (!(window[0] < window[1]))
+        {
+          throw Usage("--window needs LO < HI, got " + FormatNumber(window[0]) + " " +
+                      FormatNumber(window[1]));
+        }
+        options.window[0] = window[0];
+        options.window[1] = window[1];
+        options.haveWindow = true;
+      } },
+    { "--raysum-unit",
+      [&](const std::string& f)
+      {
+        options.raysumUnit = reader.Numbers(f, 1)[0];
+        if (options.raysumUnit <= 0)
+        {
+          throw Usage("--raysum-unit must be positive");
+        }
+        options.haveRaysumUnit = true;
+      } },
+    { "--size",
+      [&](const std::string& f)
+      {
+        const std::vector<int> size = reader.Integers(f, 2);
+        for (int axis = 0; axis < 2; ++axis)
+        {
+          if (size[axis] <= 0 || size[axis] > 16384)
+          {
+            throw Usage("--size values must be between 1 and 16384, got " +
+                        std::to_string(size[0]) + " " + std::to_string(size[1]));
+          }
+          options.size[axis] = size[axis];
+        }
+      } },
+    { "--azimuth", [&](const std::string& f) { options.azimuth = reader.Numbers(f, 1)[0]; } },
+    { "--elevation", [&](const std::string& f) { options.elevation = reader.Numbers(f, 1)[0]; } },
+    { "--roll", [&](const std::string& f) { options.roll = reader.Numbers(f, 1)[0]; } },
+    { "--zoom",
+      [&](const std::string& f)
+      {
+        options.zoom = reader.Numbers(f, 1)[0];
+        if (options.zoom <= 0)
+        {
+          throw Usage("--zoom must be positive");
+        }
+      } },
+    { "--parallel", [&](const std::string&) { options.parallel = true; } },
+    { "--perspective", [&](const std::string&) { options.parallel = false; } },
+    { "--crop",
+      [&](const std::string& f)
+      {
+        const std::vector<double> crop = reader.Numbers(f, 6);
+        std::copy(crop.begin(), crop.end(), options.crop);
+        options.haveCrop = true;
+      } },
+    { "--boundary-rerender",
+      [&](const std::string& f)
+      {
+        options.boundaryRerender =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+      } },
+    { "--sample-distance",
+      [&](const std::string& f)
+      {
+        options.sampleDistance = reader.Numbers(f, 1)[0];
+        if (options.sampleDistance <= 0)
+        {
+          throw Usage("--sample-distance must be positive");
+        }
+        options.haveSampleDistance = true;
+      } },
+    { "--slices",
+      [&](const std::string& f)
+      {
+        options.slices = reader.Integers(f, 1)[0];
+        if (options.slices < 2 || options.slices > 65536)
+        {
+          throw Usage("--slices must be between 2 and 65536");
+        }
+      } },
+    { "--frames",
+      [&](const std::string& f)
+      {
+        options.frames = reader.Integers(f, 1)[0];
+        if (options.frames < 1 || options.frames > 100000)
+        {
+          throw Usage("--frames must be between 1 and 100000");
+        }
+      } },
+    { "--out", [&](const std::string& f) { options.outPath = reader.Value(f); } },
+    { "--stats",
+      [&](const std::string& f)
+      {
+        // "-" is a value here, so it is read without the flag check of Value().
+        if (reader.Done())
+        {
+          throw Usage(f + " expects 1 value");
+        }
+        options.statsPath = reader.Next();
+      } },
+    { "--gl",
+      [&](const std::string& f)
+      {
+        options.gl = reader.Value(f);
+        options.glBackend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.gl.c_str());
+        if (options.glBackend < 0)
+        {
+          throw Usage("invalid value '" + options.gl + "' for --gl (expected osmesa|egl|x)");
+        }
+      } },
+    { "--background",
+      [&](const std::string& f)
+      {
+        const std::vector<double> colour = reader.Numbers(f, 3);
+        for (int i = 0; i < 3; ++i)
+        {
+          if (colour[i] < 0 || colour[i] > 1)
+          {
+            throw Usage("--background values must lie in [0, 1]");
+          }
+          options.background[i] = colour[i];
+        }
+      } },
+    { "--quiet", [&](const std::string&) { options.quiet = true; } },
+  };
+  while (!reader.Done())
+  {
+    const std::string flag = reader.Next();
+    if (flag == "--help" || flag == "-h")
+    {
+      options.action = Options::Action::RenderHelp;
+      return;
+    }
+    const auto handler = handlers.find(flag);
+    if (handler == handlers.end())
+    {
+      throw Usage(flag.compare(0, 1, "-") == 0 ? "unknown flag '" + flag + "' (see accelvolume render --help)"
+                                               : "unexpected argument '" + flag + "'");
+    }
+    handler->second(flag);
+  }
+  if (options.mapper == MapperKind::VTKFixed && options.blend == BlendKind::Average)
+  {
+    throw Usage("--mapper vtk-fixed does not support --blend average (VTK's fixed-point mapper "
+                "has composite, MIP, MinIP and additive only)");
+  }
+  if (options.haveSampleDistance && options.slices > 0)
+  {
+    throw Usage("--sample-distance and --slices are mutually exclusive");
+  }
+  if (options.volume.inputPath.empty() && (options.volume.haveDims ||
+                                          options.volume.kind != ScalarKind::Unknown))
+  {
+    throw Usage("--dims and --type need --input (a raw file)");
+  }
+}
+
+} // namespace
+
+const char* MapperName(MapperKind mapper)
+{
+  switch (mapper)
+  {
+    case MapperKind::Slice:
+      return "slice";
+    case MapperKind::VTKGPU:
+      return "vtk-gpu";
+    case MapperKind::VTKFixed:
+      return "vtk-fixed";
+  }
+  return "unknown";
+}
+
+const char* BlendName(BlendKind blend)
+{
+  switch (blend)
+  {
+    case BlendKind::MIP:
+      return "mip";
+    case BlendKind::MinIP:
+      return "minip";
+    case BlendKind::Additive:
+      return "additive";
+    case BlendKind::Average:
+      return "average";
+  }
+  return "unknown";
+}
+
+Options ParseOptions(const std::vector<std::string>& arguments)
+{
+  Options options;
+  if (arguments.size() < 2)
+  {
+    throw Usage("no command given (try accelvolume --help)");
+  }
+  const std::string command = arguments[1];
+  if (command == "--help" || command == "-h" || command == "help")
+  {
+    options.action = Options::Action::MainHelp;
+    return options;
+  }
+  if (command == "--version")
+  {
+    options.action = Options::Action::Version;
+    return options;
+  }
+  if (command != "render")
+  {
+    throw Usage((command.compare(0, 1, "-") == 0 ? "unknown flag '" : "unknown command '") +
+                command + "' (expected 'render'; try accelvolume --help)");
+  }
+  ArgumentReader reader(arguments, 2);
+  ParseRenderFlags(reader, options);
+  return options;
+}
+
+std::string MainHelp()
+{
+  return "usage: accelvolume render [flags]      render a volume (see accelvolume render --help)\n"
+         "       accelvolume --help | --version\n"
+         "\n"
+         "Renders a volume file or a built-in phantom with AccelVolume's slice mapper or one of\n"
+         "VTK's volume mappers, headless by default, and writes a PNG and/or JSON timings.\n"
+         "Exit codes: 0 success, 1 runtime failure, 2 usage error.\n";
+}
+
+std::string RenderHelp()
+{
+  std::string phantoms;
+  for (const std::string& name : accelvolume::PhantomNames())
+  {
+    phantoms += (phantoms.empty() ? "" : "|") + name;
+  }
+  return "usage: accelvolume render [flags]\n"
+         "\n"
+         "Input (a phantom unless --input is given):\n"
+         "  --phantom NAME             " + phantoms + " (default vessels)\n"
+         "  --phantom-dims X Y Z       phantom size in voxels (default 128 128 128)\n"
+         "  --time T                   phantom animation time, period 1 (default 0)\n"
+         "  --input FILE               .mhd/.mha, .vti, .nrrd/.nhdr, .raw or .raw.gz\n"
+         "  --dims X Y Z               raw input dimensions (NAME_XxYxZ_type.raw[.gz] names\n"
+         "                             and a datasets.json beside the file supply them too)\n"
+         "  --type T                   raw scalar type: uint8|int8|uint16|int16|int32|float32|float64\n"
+         "  --spacing SX SY SZ         voxel spacing (overrides the file's)\n"
+         "\n"
+         "Rendering:\n"
+         "  --mapper M                 slice (AccelVolume, default) | vtk-gpu\n"
+         "                             (vtkGPUVolumeRayCastMapper) | vtk-fixed\n"
+         "                             (vtkFixedPointVolumeRayCastMapper); all use the same camera,\n"
+         "                             transfer functions and world sample distance\n"
+         "  --blend B                  mip (default) | minip | additive | average\n"
+         "  --window LO HI             data values mapped to black..white, opacity 0..1\n"
+         "                             (default: the full scalar range; minip: opacity 1)\n"
+         "  --raysum-unit D            world length counted as one raysum unit (slice mapper,\n"
+         "                             additive; default: largest world extent of the volume / 4)\n"
+         "  --sample-distance D        world distance between samples/slices\n"
+         "                             (default: the smallest voxel spacing)\n"
+         "  --slices N                 slice count through the volume depth instead (slice mapper;\n"
+         "                             VTK mappers get the volume diagonal / N)\n"
+         "  --crop X0 X1 Y0 Y1 Z0 Z1   keep this index-space sub-volume (cropping, SubVolume)\n"
+         "  --boundary-rerender on|off re-render the cut faces (slice mapper; default on)\n"
+         "\n"
+         "View and output:\n"
+         "  --size W H                 image size, 1..16384 (default 512 512)\n"
+         "  --azimuth A --elevation E --roll R --zoom Z\n"
+         "                             camera moves in degrees/factor after the front view\n"
+         "                             (looking along +z at the volume centre, view-up +y)\n"
+         "  --parallel | --perspective projection (default perspective)\n"
+         "  --background R G B         background colour in 0..1 (default 0 0 0)\n"
+         "  --frames N                 timed frames after one warm-up frame, each turned 2 degrees\n"
+         "                             further in azimuth (default 1)\n"
+         "  --out FILE.png             write the last frame\n"
+         "  --stats FILE.json          write timings and settings as JSON ('-' = stdout)\n"
+         "  --gl osmesa|egl|x          OpenGL backend (default: $ACCELVOLUME_GL, else X when\n"
+         "                             DISPLAY is set, else EGL, then OSMesa)\n"
+         "  --quiet                    no summary\n"
+         "  --help                     this text\n";
+}
+
+} // namespace accelvolume::cli

@@ -1,0 +1,94 @@
+// Options: the accelvolume command line, parsed and checked before any VTK object exists.
+#ifndef accelvolume_cli_Options_h
+#define accelvolume_cli_Options_h
+
+#include "VolumeIO.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace accelvolume::cli
+{
+
+// Exit codes: 0 success, 1 runtime failure (input, rendering, output), 2 usage error.
+constexpr int ExitRuntime = 1;
+constexpr int ExitUsage = 2;
+
+// Thrown for anything the CLI reports as "accelvolume: error: <what()>" before exiting with code.
+class CliError : public std::runtime_error
+{
+public:
+  CliError(int code, const std::string& message)
+    : std::runtime_error(message)
+    , Code(code)
+  {
+  }
+  int Code;
+};
+
+enum class MapperKind
+{
+  Slice,   // vtkAccelVolumeSliceMapper
+  VTKGPU,  // vtkGPUVolumeRayCastMapper
+  VTKFixed // vtkFixedPointVolumeRayCastMapper
+};
+
+enum class BlendKind
+{
+  MIP,
+  MinIP,
+  Additive,
+  Average
+};
+
+const char* MapperName(MapperKind mapper);
+const char* BlendName(BlendKind blend);
+
+struct Options
+{
+  enum class Action
+  {
+    Render,
+    MainHelp,
+    RenderHelp,
+    Version
+  };
+  Action action = Action::Render;
+
+  VolumeRequest volume; // --input / --phantom / --dims / --type / --spacing / --time
+  MapperKind mapper = MapperKind::Slice;
+  BlendKind blend = BlendKind::MIP;
+  bool haveWindow = false;
+  double window[2] = { 0, 1 };
+  bool haveRaysumUnit = false;
+  double raysumUnit = 0;
+  int size[2] = { 512, 512 };
+  double azimuth = 0, elevation = 0, roll = 0, zoom = 1;
+  bool parallel = false;
+  bool haveCrop = false;
+  double crop[6] = { 0, 0, 0, 0, 0, 0 }; // index coordinates
+  bool boundaryRerender = true;
+  bool haveSampleDistance = false;
+  double sampleDistance = 0;
+  int slices = 0; // 0 = not given
+  int frames = 1;
+  std::string outPath;
+  std::string statsPath; // "-" = stdout
+  std::string gl;        // as given ("" = automatic)
+  int glBackend = -1;    // vtkAccelVolumeHeadlessRenderWindow::Backends value once parsed
+  double background[3] = { 0, 0, 0 };
+  bool quiet = false;
+};
+
+// Parses argv (argv[0] is the program). Throws CliError(ExitUsage, ...) for unknown flags, missing
+// or malformed values, bad enum names and out-of-range numbers. Checks that need the volume
+// (crop bounds) happen later.
+Options ParseOptions(const std::vector<std::string>& arguments);
+
+std::string MainHelp();
+std::string RenderHelp();
+
+} // namespace accelvolume::cli
+
+#endif

@@ -1,0 +1,436 @@
+// Render: the accelvolume scene (volume, transfer functions, camera), frame timing and PNG output.
+#include "Render.h"
+
+#include <vtkAccelVolumeHeadlessRenderWindow.h>
+#include <vtkAccelVolumeSliceMapper.h>
+
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
+#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkGPUVolumeRayCastMapper.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOutputWindow.h>
+#include <vtkPNGWriter.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+
+namespace accelvolume::cli
+{
+
+struct VTKMessages::State
+{
+  std::mutex Mutex;
+  std::string FirstError;
+  std::string FirstWarning;
+  int Warnings = 0;
+
+  static std::string Clean(const char* text)
+  {
+    // VTK formats "ERROR: In file, line N\nClass (0x...): message"; keep the message.
+    std::string message = text ? text : "";
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    {
+      message.pop_back();
+    }
+    message = message.substr(message.find_last_of('\n') + 1);
+    const auto prefix = message.find("): ");
+    return prefix == std::string::npos ? message : message.substr(prefix + 3);
+  }
+  void Error(const char* text)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (this->FirstError.empty())
+    {
+      this->FirstError = Clean(text);
+      this->FirstError = this->FirstError.empty() ? "unknown VTK error" : this->FirstError;
+    }
+  }
+  void Warning(const char* text)
+  {
+    std::lock_guard<std::mutex> lock(this->Mutex);
+    if (this->Warnings++ == 0)
+    {
+      this->FirstWarning = Clean(text);
+    }
+  }
+};
+
+namespace
+{
+
+class CaptureOutputWindow : public vtkOutputWindow
+{
+public:
+  static CaptureOutputWindow* New();
+  vtkTypeMacro(CaptureOutputWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  void DisplayErrorText(const char* text) override { this->Sink->Error(text); }
+  void DisplayWarningText(const char* text) override { this->Sink->Warning(text); }
+  void DisplayGenericWarningText(const char* text) override { this->Sink->Warning(text); }
+  VTKMessages::State* Sink = nullptr;
+};
+vtkStandardNewMacro(CaptureOutputWindow);
+
+void LoggerCallback(void* data, const vtkLogger::Message& message)
+{
+  auto* state = static_cast<VTKMessages::State*>(data);
+  if (message.verbosity <= vtkLogger::VERBOSITY_ERROR)
+  {
+    state->Error(message.message);
+  }
+  else if (message.verbosity == vtkLogger::VERBOSITY_WARNING)
+  {
+    state->Warning(message.message);
+  }
+}
+
+vtkSmartPointer<CaptureOutputWindow> TheOutputWindow;
+
+} // namespace
+
+VTKMessages::VTKMessages()
+  : Data(new State)
+{
+  TheOutputWindow = vtkSmartPointer<CaptureOutputWindow>::New();
+  TheOutputWindow->Sink = this->Data;
+  vtkLogger::AddCallback("accelvolume-capture", &LoggerCallback, this->Data,
+                         vtkLogger::VERBOSITY_WARNING);
+  this->Install();
+}
+
+VTKMessages::~VTKMessages()
+{
+  vtkLogger::RemoveCallback("accelvolume-capture");
+  vtkOutputWindow::SetInstance(nullptr);
+  TheOutputWindow = nullptr;
+  delete this->Data;
+}
+
+void VTKMessages::Install()
+{
+  vtkOutputWindow::SetInstance(TheOutputWindow);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+}
+
+void VTKMessages::ThrowIfError(const std::string& context)
+{
+  std::string error;
+  {
+    std::lock_guard<std::mutex> lock(this->Data->Mutex);
+    error.swap(this->Data->FirstError);
+  }
+  if (!error.empty())
+  {
+    throw CliError(ExitRuntime, context + ": " + error);
+  }
+}
+
+void VTKMessages::Clear()
+{
+  std::lock_guard<std::mutex> lock(this->Data->Mutex);
+  this->Data->FirstError.clear();
+}
+
+int VTKMessages::GetNumberOfWarnings() const
+{
+  return this->Data->Warnings;
+}
+
+std::string VTKMessages::GetFirstWarning() const
+{
+  return this->Data->FirstWarning;
+}
+
+namespace
+{
+
+void CropPlanes(const Options& options, vtkImageData* image, double planes[6])
+{
+  const double* origin = image->GetOrigin();
+  const double* spacing = image->GetSpacing();
+  const int* extent = image->GetExtent();
+  for (int i = 0; i < 6; ++i)
+  {
+    const int axis = i / 2;
+    planes[i] = origin[axis] + (extent[2 * axis] + options.crop[i]) * spacing[axis];
+  }
+}
+
+std::string RendererFromCapabilities(vtkRenderWindow* window)
+{
+  auto* openGL = vtkOpenGLRenderWindow::SafeDownCast(window);
+  const char* report = openGL ? openGL->ReportCapabilities() : nullptr;
+  std::istringstream lines(report ? report : "");
+  const std::string key = "OpenGL renderer string:";
+  for (std::string line; std::getline(lines, line);)
+  {
+    if (line.compare(0, key.size(), key) == 0)
+    {
+      const auto first = line.find_first_not_of(' ', key.size());
+      return first == std::string::npos ? "unknown" : line.substr(first);
+    }
+  }
+  return "unknown";
+}
+
+double Milliseconds(std::chrono::steady_clock::duration duration)
+{
+  return std::chrono::duration<double, std::milli>(duration).count();
+}
+
+} // namespace
+
+void CheckCrop(const Options& options, vtkImageData* image)
+{
+  if (!options.haveCrop)
+  {
+    return;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double low = options.crop[2 * axis], high = options.crop[2 * axis + 1];
+    if (!(low < high) || low < 0 || high > dims[axis] - 1)
+    {
+      std::ostringstream message;
+      message << "--crop " << "XYZ"[axis] << " range " << low << " " << high
+              << (low < high ? " lies outside the volume" : " is inverted or empty")
+              << " (valid: 0 <= lo < hi <= " << dims[axis] - 1 << ")";
+      throw CliError(ExitUsage, message.str());
+    }
+  }
+}
+
+RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages& messages)
+{
+  RenderResult result;
+  image->GetPointData()->GetScalars()->GetRange(result.scalarRange, 0);
+  if (options.haveWindow)
+  {
+    std::copy(options.window, options.window + 2, result.window);
+  }
+  else
+  {
+    result.window[0] = result.scalarRange[0];
+    result.window[1] =
+      result.scalarRange[1] > result.scalarRange[0] ? result.scalarRange[1] : result.scalarRange[0] + 1;
+  }
+  const double low = result.window[0], high = result.window[1];
+
+  // Transfer functions shared by every mapper.
+  vtkNew<vtkColorTransferFunction> colour;
+  colour->AddRGBPoint(low, 0, 0, 0);
+  colour->AddRGBPoint(high, 1, 1, 1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(low, options.blend == BlendKind::MinIP ? 1.0 : 0.0);
+  opacity->AddPoint(high, 1.0);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetColor(colour);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToLinear();
+  property->ShadeOff();
+
+  const double* spacing = image->GetSpacing();
+  double bounds[6];
+  image->GetBounds(bounds);
+  const double extents[3] = { bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] };
+  const double largest = std::max({ extents[0], extents[1], extents[2] });
+  const double diagonal =
+    std::sqrt(extents[0] * extents[0] + extents[1] * extents[1] + extents[2] * extents[2]);
+  result.raysumUnit = options.haveRaysumUnit ? options.raysumUnit : (largest > 0 ? largest / 4 : 1);
+  if (options.haveSampleDistance)
+  {
+    result.sampleDistance = options.sampleDistance;
+    result.sampleDistanceSource = "flag";
+  }
+  else if (options.slices > 0)
+  {
+    result.sampleDistance = (diagonal > 0 ? diagonal : 1) / options.slices;
+    result.sampleDistanceSource = "slices";
+  }
+  else
+  {
+    result.sampleDistance = std::min({ spacing[0], spacing[1], spacing[2] });
+    result.sampleDistanceSource = "min-spacing";
+  }
+
+  vtkSmartPointer<vtkVolumeMapper> mapper;
+  vtkAccelVolumeSliceMapper* sliceMapper = nullptr;
+  switch (options.mapper)
+  {
+    case MapperKind::Slice:
+    {
+      auto slice = vtkSmartPointer<vtkAccelVolumeSliceMapper>::New();
+      slice->SetAutoAdjustSampleDistances(0);
+      slice->SetSampleDistance(result.sampleDistance);
+      slice->SetNumberOfSlices(options.slices);
+      slice->SetBoundaryRerendering(options.boundaryRerender);
+      slice->SetAdditiveUnitDistance(result.raysumUnit);
+      sliceMapper = slice;
+      mapper = slice;
+      break;
+    }
+    case MapperKind::VTKGPU:
+    {
+      auto gpu = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
+      gpu->SetAutoAdjustSampleDistances(0);
+      gpu->SetSampleDistance(static_cast<float>(result.sampleDistance));
+      mapper = gpu;
+      break;
+    }
+    case MapperKind::VTKFixed:
+    {
+      auto fixed = vtkSmartPointer<vtkFixedPointVolumeRayCastMapper>::New();
+      fixed->SetAutoAdjustSampleDistances(0);
+      fixed->SetSampleDistance(static_cast<float>(result.sampleDistance));
+      fixed->SetInteractiveSampleDistance(static_cast<float>(result.sampleDistance));
+      fixed->SetImageSampleDistance(1.0f);
+      mapper = fixed;
+      break;
+    }
+  }
+  switch (options.blend)
+  {
+    case BlendKind::MIP:
+      mapper->SetBlendModeToMaximumIntensity();
+      break;
+    case BlendKind::MinIP:
+      mapper->SetBlendModeToMinimumIntensity();
+      break;
+    case BlendKind::Additive:
+      mapper->SetBlendModeToAdditive();
+      break;
+    case BlendKind::Average:
+      mapper->SetBlendModeToAverageIntensity();
+      break;
+  }
+  mapper->SetInputData(image);
+  if (options.haveCrop)
+  {
+    CropPlanes(options, image, result.cropPlanes);
+    mapper->SetCropping(1);
+    mapper->SetCroppingRegionPlanes(result.cropPlanes);
+    mapper->SetCroppingRegionFlagsToSubVolume();
+  }
+
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(options.background[0], options.background[1], options.background[2]);
+  renderer->AddVolume(volume);
+
+  // Front view: looking along +z at the centre, view-up +y; then the requested moves.
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                             (bounds[4] + bounds[5]) / 2 };
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0], centre[1], centre[2] - 1);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetParallelProjection(options.parallel);
+  renderer->ResetCamera();
+  camera->Azimuth(options.azimuth);
+  camera->Elevation(options.elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Roll(options.roll);
+  camera->Zoom(options.zoom);
+  renderer->ResetCameraClippingRange();
+
+  auto window = vtkSmartPointer<vtkRenderWindow>::Take(vtkRenderWindow::New());
+  if (!window)
+  {
+    throw CliError(ExitRuntime, "cannot create a render window");
+  }
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(options.size[0], options.size[1]);
+  window->AddRenderer(renderer);
+  messages.ThrowIfError("cannot set up the render window");
+
+  vtkNew<vtkUnsignedCharArray> pixel;
+  auto renderFrame = [&]()
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    // Reading one pixel back waits for the GPU, so the frame time includes its work.
+    window->GetPixelData(0, 0, 0, 0, 0, pixel, 0);
+    const double ms = Milliseconds(std::chrono::steady_clock::now() - start);
+    messages.ThrowIfError("render failed");
+    return ms;
+  };
+  result.firstFrameMs = renderFrame();
+  for (int frame = 0; frame < options.frames; ++frame)
+  {
+    if (frame > 0)
+    {
+      camera->Azimuth(2.0);
+      renderer->ResetCameraClippingRange();
+    }
+    result.frameMs.push_back(renderFrame());
+  }
+
+  auto* headless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
+  if (headless)
+  {
+    result.glBackend = vtkAccelVolumeHeadlessRenderWindow::GetBackendName(headless->GetActiveBackend());
+  }
+  else
+  {
+    const std::string name = window->GetClassName();
+    result.glBackend = name.find("XOpenGL") != std::string::npos ? "x" : name;
+  }
+  const char* rendererName = nullptr;
+  if (sliceMapper)
+  {
+    rendererName = sliceMapper->GetOpenGLRenderer();
+    result.sampleDistance = sliceMapper->GetLastSliceSpacing();
+    result.slices = sliceMapper->GetLastNumberOfSlices();
+  }
+  else if (headless)
+  {
+    rendererName = headless->GetOpenGLRendererString();
+  }
+  result.glRenderer = rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);
+  messages.Clear(); // a failed capability query is not a render failure
+
+  if (!options.outPath.empty())
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->ShouldRerenderOff();
+    grab->SetInputBufferTypeToRGB();
+    grab->Update();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(options.outPath.c_str());
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->Write();
+    messages.ThrowIfError("cannot write '" + options.outPath + "'");
+    if (writer->GetErrorCode() != 0)
+    {
+      throw CliError(ExitRuntime, "cannot write '" + options.outPath + "'");
+    }
+  }
+  return result;
+}
+
+} // namespace accelvolume::cli

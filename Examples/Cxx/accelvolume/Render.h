@@ -1,0 +1,64 @@
+// Render: builds the scene the options describe, renders and times it, and saves the last frame.
+#ifndef accelvolume_cli_Render_h
+#define accelvolume_cli_Render_h
+
+#include "Options.h"
+
+#include <vtkImageData.h>
+
+#include <string>
+#include <vector>
+
+namespace accelvolume::cli
+{
+
+// Catches VTK's error and warning output for the whole run (vtkOutputWindow and vtkLogger), so
+// nothing reaches the terminal unasked and render failures become one error line.
+class VTKMessages
+{
+public:
+  VTKMessages();
+  ~VTKMessages();
+  VTKMessages(const VTKMessages&) = delete;
+  VTKMessages& operator=(const VTKMessages&) = delete;
+
+  // Re-installs the capture after code that swapped the output window or logger levels.
+  void Install();
+  // Throws CliError(ExitRuntime, context + ": " + first error) when an error arrived since the
+  // last Clear(), then clears.
+  void ThrowIfError(const std::string& context);
+  void Clear();
+  int GetNumberOfWarnings() const;
+  std::string GetFirstWarning() const;
+
+  struct State;
+
+private:
+  State* Data;
+};
+
+struct RenderResult
+{
+  double firstFrameMs = 0;
+  std::vector<double> frameMs; // the timed frames, in order
+  std::string glRenderer = "unknown";
+  std::string glBackend = "unknown";
+  double window[2] = { 0, 1 };  // transfer-function window actually used
+  double scalarRange[2] = { 0, 0 };
+  double raysumUnit = 0;        // slice mapper's AdditiveUnitDistance
+  double sampleDistance = 0;    // world distance between samples / slices actually used
+  std::string sampleDistanceSource; // "min-spacing", "flag" or "slices"
+  int slices = -1;              // slice mapper's last slice count; -1 for other mappers
+  double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
+};
+
+// Throws CliError(ExitUsage) when the crop box lies outside the volume or is inverted.
+void CheckCrop(const Options& options, vtkImageData* image);
+
+// Renders one warm-up frame and options.frames timed frames, writing options.outPath if set.
+// Throws CliError(ExitRuntime) when VTK reports an error while rendering or writing.
+RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages& messages);
+
+} // namespace accelvolume::cli
+
+#endif

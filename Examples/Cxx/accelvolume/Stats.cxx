@@ -1,0 +1,203 @@
+// Stats: JSON output of accelvolume render --stats.
+#include "Stats.h"
+
+#include "VolumeIO.h"
+
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#ifndef ACCELVOLUME_VERSION
+#define ACCELVOLUME_VERSION "unknown"
+#endif
+
+namespace accelvolume::cli
+{
+namespace
+{
+
+std::string Number(double value)
+{
+  if (!std::isfinite(value))
+  {
+    return "null";
+  }
+  std::ostringstream stream;
+  stream.precision(12);
+  stream << value;
+  return stream.str();
+}
+
+std::string Array(const double* values, int count)
+{
+  std::string text = "[";
+  for (int i = 0; i < count; ++i)
+  {
+    text += (i ? ", " : "") + Number(values[i]);
+  }
+  return text + "]";
+}
+
+struct FrameStatistics
+{
+  double median = 0, min = 0, max = 0, mean = 0;
+};
+
+FrameStatistics Statistics(std::vector<double> ms)
+{
+  FrameStatistics statistics;
+  if (ms.empty())
+  {
+    return statistics;
+  }
+  std::sort(ms.begin(), ms.end());
+  const std::size_t n = ms.size();
+  statistics.median = n % 2 ? ms[n / 2] : (ms[n / 2 - 1] + ms[n / 2]) / 2;
+  statistics.min = ms.front();
+  statistics.max = ms.back();
+  statistics.mean = std::accumulate(ms.begin(), ms.end(), 0.0) / n;
+  return statistics;
+}
+
+std::string TypeName(vtkImageData* image)
+{
+  // DescribeVolume gives "XxYxZ type"; the type is the part after the space.
+  const std::string description = DescribeVolume(image);
+  const auto space = description.find(' ');
+  return space == std::string::npos ? "unknown" : description.substr(space + 1);
+}
+
+} // namespace
+
+std::string JsonString(const std::string& text)
+{
+  std::string out = "\"";
+  for (const char c : text)
+  {
+    switch (c)
+    {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char escape[8];
+          std::snprintf(escape, sizeof(escape), "\\u%04x", static_cast<unsigned char>(c));
+          out += escape;
+        }
+        else
+        {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+void WriteStats(std::ostream& stream, const Options& options, vtkImageData* image,
+                const RenderResult& result, int warnings)
+{
+  const FrameStatistics frames = Statistics(result.frameMs);
+  int dims[3];
+  image->GetDimensions(dims);
+  const double dimsDouble[3] = { double(dims[0]), double(dims[1]), double(dims[2]) };
+  const bool phantom = options.volume.inputPath.empty();
+  const std::string input = phantom ? options.volume.phantom : options.volume.inputPath;
+  std::string frameList;
+  for (std::size_t i = 0; i < result.frameMs.size() && i < 10000; ++i)
+  {
+    frameList += (i ? ", " : "") + Number(result.frameMs[i]);
+  }
+  stream << "{\n"
+         << "  \"tool\": \"accelvolume\",\n"
+         << "  \"version\": " << JsonString(ACCELVOLUME_VERSION) << ",\n"
+         << "  \"mapper\": " << JsonString(MapperName(options.mapper)) << ",\n"
+         << "  \"blend\": " << JsonString(BlendName(options.blend)) << ",\n"
+         << "  \"width\": " << options.size[0] << ",\n"
+         << "  \"height\": " << options.size[1] << ",\n"
+         << "  \"frames\": " << options.frames << ",\n"
+         << "  \"ms_per_frame\": {\"median\": " << Number(frames.median)
+         << ", \"min\": " << Number(frames.min) << ", \"max\": " << Number(frames.max)
+         << ", \"mean\": " << Number(frames.mean) << "},\n"
+         << "  \"first_frame_ms\": " << Number(result.firstFrameMs) << ",\n"
+         << "  \"frame_ms\": [" << frameList << "],\n"
+         << "  \"gl_renderer\": " << JsonString(result.glRenderer) << ",\n"
+         << "  \"gl_backend\": " << JsonString(result.glBackend) << ",\n"
+         << "  \"input\": " << JsonString(input) << ",\n"
+         << "  \"input_kind\": " << JsonString(phantom ? "phantom" : "file") << ",\n"
+         << "  \"dims\": " << Array(dimsDouble, 3) << ",\n"
+         << "  \"type\": " << JsonString(TypeName(image)) << ",\n"
+         << "  \"spacing\": " << Array(image->GetSpacing(), 3) << ",\n"
+         << "  \"origin\": " << Array(image->GetOrigin(), 3) << ",\n"
+         << "  \"scalar_range\": " << Array(result.scalarRange, 2) << ",\n"
+         << "  \"window\": " << Array(result.window, 2) << ",\n"
+         << "  \"raysum_unit\": "
+         << (options.mapper == MapperKind::Slice ? Number(result.raysumUnit) : "null") << ",\n"
+         << "  \"sample_distance\": " << Number(result.sampleDistance) << ",\n"
+         << "  \"sample_distance_source\": " << JsonString(result.sampleDistanceSource) << ",\n"
+         << "  \"slices\": " << (result.slices >= 0 ? std::to_string(result.slices) : "null")
+         << ",\n"
+         << "  \"boundary_rerender\": "
+         << (options.mapper == MapperKind::Slice ? (options.boundaryRerender ? "true" : "false")
+                                                 : "null")
+         << ",\n"
+         << "  \"crop\": " << (options.haveCrop ? Array(options.crop, 6) : "null") << ",\n"
+         << "  \"crop_planes\": " << (options.haveCrop ? Array(result.cropPlanes, 6) : "null")
+         << ",\n"
+         << "  \"camera\": {\"azimuth\": " << Number(options.azimuth)
+         << ", \"elevation\": " << Number(options.elevation) << ", \"roll\": "
+         << Number(options.roll) << ", \"zoom\": " << Number(options.zoom)
+         << ", \"parallel\": " << (options.parallel ? "true" : "false")
+         << ", \"final_azimuth\": " << Number(options.azimuth + 2.0 * (options.frames - 1))
+         << "},\n"
+         << "  \"background\": " << Array(options.background, 3) << ",\n"
+         << "  \"out\": " << (options.outPath.empty() ? "null" : JsonString(options.outPath))
+         << ",\n"
+         << "  \"vtk_warnings\": " << warnings << "\n"
+         << "}\n";
+}
+
+std::string Summary(const Options& options, vtkImageData* image, const RenderResult& result)
+{
+  const FrameStatistics frames = Statistics(result.frameMs);
+  std::ostringstream text;
+  text.precision(4);
+  text << MapperName(options.mapper) << " " << BlendName(options.blend) << " "
+       << options.size[0] << "x" << options.size[1] << ", "
+       << (options.volume.inputPath.empty() ? "phantom " + options.volume.phantom
+                                            : options.volume.inputPath)
+       << " " << DescribeVolume(image) << ": " << frames.median << " ms/frame (median of "
+       << result.frameMs.size() << "; first " << result.firstFrameMs << " ms), sample distance "
+       << result.sampleDistance;
+  if (result.slices >= 0)
+  {
+    text << ", " << result.slices << " slices";
+  }
+  text << ", " << result.glBackend << " / " << result.glRenderer;
+  if (!options.outPath.empty())
+  {
+    text << " -> " << options.outPath;
+  }
+  return text.str();
+}
+
+} // namespace accelvolume::cli
