@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# One command: set up (when packages are missing), configure, build and run every test.
+#   ./scripts/test.sh
+# Environment: ACCELVOLUME_BUILD_DIR (default <repo>/build), ACCELVOLUME_SKIP_SETUP=1,
+# CTEST_PARALLEL (default 2).
+# Runs, in order:
+#   1. all tests (ctest -j2) on the default headless backend, OSMesa (ACCELVOLUME_TEST_GL=osmesa);
+#   2. the image tests (label "image") again on EGL (surfaceless Mesa or a GPU driver);
+#   3. the X-window tests (label "xwindow") under xvfb-run, when xvfb-run exists.
+# The build is always left configured for OSMesa. Exits non-zero if any run failed.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${ACCELVOLUME_BUILD_DIR:-$root/build}"
+jobs="$(nproc 2>/dev/null || echo 2)"
+ctest_jobs="${CTEST_PARALLEL:-2}"
+
+if [ "${ACCELVOLUME_SKIP_SETUP:-0}" != "1" ]; then
+  "$root/scripts/setup.sh"
+fi
+
+phase() { echo; echo "=== $* ==="; }
+t0=$SECONDS
+
+phase "configure ($build)"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON \
+  -DACCELVOLUME_TEST_GL=osmesa
+phase "build (-j$jobs)"
+cmake --build "$build" -j"$jobs"
+echo "configure + build: $((SECONDS - t0)) s"
+
+# Whatever happens below (failures, Ctrl-C), leave the tests configured for OSMesa.
+set_test_gl() { cmake -DACCELVOLUME_TEST_GL="$1" "$build" >/dev/null; }
+restore() { set_test_gl osmesa || echo "test.sh: could not restore ACCELVOLUME_TEST_GL=osmesa" >&2; }
+trap restore EXIT
+
+cd "$build"
+failed=()
+
+phase "all tests, OSMesa (ctest -j$ctest_jobs)"
+t=$SECONDS
+ctest --output-on-failure -j"$ctest_jobs" || failed+=("all tests (OSMesa)")
+echo "OSMesa run: $((SECONDS - t)) s"
+
+phase "image tests, EGL"
+t=$SECONDS
+if set_test_gl egl; then
+  ctest -L image --output-on-failure -j"$ctest_jobs" || failed+=("image tests (EGL)")
+else
+  failed+=("configure for EGL")
+fi
+echo "EGL run: $((SECONDS - t)) s"
+
+if command -v xvfb-run >/dev/null 2>&1; then
+  phase "X-window tests under xvfb-run"
+  t=$SECONDS
+  if set_test_gl x; then
+    ACCELVOLUME_GL=x xvfb-run -a ctest -L xwindow --no-tests=ignore --output-on-failure \
+      || failed+=("xwindow tests (Xvfb)")
+  else
+    failed+=("configure for X")
+  fi
+  echo "Xvfb run: $((SECONDS - t)) s"
+else
+  echo "xvfb-run not found: skipping the xwindow tests"
+fi
+
+restore
+trap - EXIT
+
+echo
+echo "test.sh: total $((SECONDS - t0)) s"
+if [ "${#failed[@]}" -ne 0 ]; then
+  printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2
+  exit 1
+fi
+echo "test.sh: all test runs passed"
