@@ -487,7 +487,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   resources.Framebuffer->ActivateDrawBuffer(0);
   state->vtkglViewport(0, 0, width, height);
   state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_LESS);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglDisable(GL_CULL_FACE);
   state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -582,6 +583,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     // Resolve: colour the accumulated value and blend it (premultiplied) over the scene.
     state->vtkglViewport(lowerLeft[0], lowerLeft[1], width, height);
+    state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglBlendEquation(GL_FUNC_ADD);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     const std::string resolveFragment = WithBlendDefine(AccelVolumeResolveFS, define);

@@ -235,6 +235,9 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(vtkOpenGLRenderWindow* window,
     this->Framebuffer->SaveCurrentBindingsAndBuffers();
     this->Framebuffer->Bind();
     this->Framebuffer->AddColorAttachment(0, this->Accumulation);
+    // The copy of the scene depth doubles as depth buffer: fragments behind opaque geometry
+    // fail the early depth test before any shading.
+    this->Framebuffer->AddDepthAttachment(this->SceneDepth);
     this->Framebuffer->RestorePreviousBindingsAndBuffers();
   }
   return true;

@@ -90,19 +90,16 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
 
 void main()
 {
+#if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
+  // Order-independent extremes: opaque geometry is handled by the early depth test against
+  // the scene depth attached to the target, so this is one texture fetch per fragment.
+  gl_FragData[0] = vec4(normalizedScalar(), 1.0, 0.0, 0.0);
+#else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float here = dot(eyePosition - rayOrigin, rayDirection);
   float geometry = sceneDistance(rayOrigin, rayDirection);
-  if (here > geometry)
-  {
-    discard;
-  }
   float value = normalizedScalar();
-
-#if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
-  gl_FragData[0] = vec4(value, 1.0, 0.0, 0.0);
-#else
   // Integrating modes: weight each sample by the ray length it stands for, so the result
   // is a line integral whatever the slice count. Slices are planes of constant eye depth;
   // along this ray they are sliceSpacing / cos(theta) apart.
