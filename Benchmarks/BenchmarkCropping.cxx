@@ -1,0 +1,968 @@
+// accelvolume_benchmark_cropping: replicates Table 2 of paper 004 (Kye et al. 2007, "GPU MIP
+// with clipping-plane re-rendering") on real volumes.
+//
+// For each dataset: MIP of a cropped sub-volume (20%..80% of every axis by default) seen
+// obliquely, rendered headless, with
+//   (a) vtkAccelVolumeSliceMapper, 1 slice per smallest voxel spacing (AutoAdjust on), re-rendering off
+//   (b) the same with boundary re-rendering on (the paper's method)
+//   (c) 1.5x slices, re-rendering off       (d) 2x slices, re-rendering off
+//   (e) vtkGPUVolumeRayCastMapper, same cropping, sample distance = smallest spacing
+//   (ref) 8x slices with re-rendering on: the "truth" the aliasing error is measured against.
+// Timing: a warm-up frame, then N frames each turning the camera 1 degree in azimuth; each
+// frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
+// Error: grey-level differences (0..255) from the reference at two fixed views (see the
+// printed description of the masks).
+#include "BenchmarkImageMetrics.h"
+#include "VolumeIO.h"
+
+#include "vtkAccelVolumeHeadlessRenderWindow.h"
+#include "vtkAccelVolumeSliceMapper.h"
+
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkGPUVolumeRayCastMapper.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef ACCELVOLUME_BENCHMARK_DATA_DIR
+#define ACCELVOLUME_BENCHMARK_DATA_DIR "../shared/data"
+#endif
+
+namespace fs = std::filesystem;
+using namespace accelvolume::benchmark;
+
+namespace
+{
+// ------------------------------------------------------------------------------------------
+// Settings
+
+struct Options
+{
+  std::string DataDir = ACCELVOLUME_BENCHMARK_DATA_DIR;
+  std::vector<std::string> Datasets = { "cthead", "cta_avm" };
+  int Width = 512;
+  int Height = 512;
+  int Frames = 10;
+  int ReferenceFrames = 3;
+  std::string GL = "egl";
+  std::string Json = "benchmark_cropping.json";
+  std::string Images;
+  double CropLow = 0.2;
+  double CropHigh = 0.8;
+  double BandRadius = 2.5;    // pixels either side of the projected crop-box outline
+  double AboveThreshold = 2.0; // grey levels: "visibly different" pixel
+  double Zoom = 1.0;           // after fitting the camera to the crop box
+  bool HaveWindow = false;     // --window overrides the per-dataset transfer-function window
+  double Window[2] = { 0, 1 };
+};
+
+struct View
+{
+  const char* Name;
+  double Azimuth;
+  double Elevation;
+};
+const View Views[] = { { "view1_az30_el25", 30.0, 25.0 }, { "view2_az-55_el40", -55.0, 40.0 } };
+
+struct DatasetWindow
+{
+  double Low;
+  double High;
+};
+
+// Transfer-function windows chosen per dataset (grey ramp, linear opacity ramp over the window).
+bool KnownWindow(const std::string& name, DatasetWindow& window)
+{
+  if (name == "cthead")
+  {
+    window = { 300.0, 2000.0 }; // 16-bit CT, range 0..3272: soft tissue faint, bone bright
+    return true;
+  }
+  if (name == "cta_avm")
+  {
+    window = { 30.0, 255.0 }; // 8-bit CTA, range 0..255: contrast-filled vessels
+    return true;
+  }
+  return false;
+}
+
+struct Config
+{
+  std::string Id;
+  std::string Label;
+  bool Gpu = false;
+  bool Rerender = false;
+  bool AutoAdjust = false;
+  double SliceFactor = 1.0; // slices per smallest voxel spacing
+  bool Reference = false;
+};
+
+std::vector<Config> MakeConfigs()
+{
+  return {
+    { "a", "slice 1x (auto), re-render off", false, false, true, 1.0, false },
+    { "b", "slice 1x (auto), re-render ON", false, true, true, 1.0, false },
+    { "c", "slice 1.5x, re-render off", false, false, false, 1.5, false },
+    { "d", "slice 2x, re-render off", false, false, false, 2.0, false },
+    { "e", "vtkGPUVolumeRayCastMapper 1x", true, false, false, 1.0, false },
+    { "ref", "slice 8x + re-render (reference)", false, true, false, 8.0, true },
+  };
+}
+
+struct ConfigResult
+{
+  Config Cfg;
+  std::vector<double> FrameMs;  // Render() + 1x1 read-back
+  std::vector<double> MapperMs; // slice mapper's own GetLastRenderTime (it waits for the GPU)
+  int Slices = 0;
+  int Faces = 0;
+  double SliceSpacing = 0;
+  std::vector<std::vector<std::uint8_t>> Images; // per view, RGB, bottom row first
+  std::vector<ErrorStats> Footprint;             // per view
+  std::vector<ErrorStats> Band;                  // per view
+  std::vector<ErrorStats> Face;                  // per view
+  ErrorStats FootprintAll;
+  ErrorStats BandAll;
+  ErrorStats FaceAll;
+  double MedianMs() const { return Median(this->FrameMs); }
+  double MinMs() const
+  {
+    return this->FrameMs.empty() ? 0.0 : *std::min_element(this->FrameMs.begin(), this->FrameMs.end());
+  }
+  // Median over the interleaved rounds of (this frame / the other's frame of the same round):
+  // robust to load changes on a shared machine.
+  double PairedRatio(const ConfigResult& other) const
+  {
+    std::vector<double> ratios;
+    for (size_t f = 0; f < this->FrameMs.size() && f < other.FrameMs.size(); ++f)
+    {
+      ratios.push_back(this->FrameMs[f] / other.FrameMs[f]);
+    }
+    return ratios.empty() ? std::nan("") : Median(ratios);
+  }
+  double MedianMapperMs() const { return Median(this->MapperMs); }
+};
+
+struct DatasetResult
+{
+  std::string Name;
+  std::string File;
+  std::string Description;
+  double Spacing[3] = { 1, 1, 1 };
+  double MinSpacing = 1;
+  double Window[2] = { 0, 1 };
+  double CropPlanes[6] = { 0, 0, 0, 0, 0, 0 };
+  double LoadSeconds = 0;
+  double TotalSeconds = 0;
+  std::vector<long long> FootprintPixels; // per view
+  std::vector<long long> BandPixels;      // per view
+  std::vector<long long> FacePixels;      // per view
+  std::vector<ConfigResult> Results;
+};
+
+void Usage()
+{
+  std::cout
+    << "Usage: accelvolume_benchmark_cropping [options]\n"
+       "  --data DIR          folder of the volumes and datasets.json (default "
+    << ACCELVOLUME_BENCHMARK_DATA_DIR
+    << ")\n"
+       "  --datasets A,B      dataset names (default cthead,cta_avm); a name maps to the file\n"
+       "                      NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder\n"
+       "  --size W H          image size (default 512 512)\n"
+       "  --frames N          timed frames per configuration (default 10)\n"
+       "  --reference-frames N timed frames of the 8x reference (default 3)\n"
+       "  --gl egl|osmesa|auto headless OpenGL backend (default egl)\n"
+       "  --json FILE         machine-readable results (default benchmark_cropping.json)\n"
+       "  --images DIR        save PNGs (and x8 difference images) of the first dataset\n"
+       "  --crop LOW HIGH     crop box as fractions of every axis (default 0.2 0.8)\n"
+       "  --band R            half-width in pixels of the outline band (default 2.5)\n"
+       "  --zoom Z            camera zoom after fitting the crop box (default 1.0)\n"
+       "  --window LOW HIGH   transfer-function window for every dataset (default: per dataset)\n";
+}
+
+bool ParseArguments(int argc, char* argv[], Options& options)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto need = [&](int count) {
+      if (i + count >= argc)
+      {
+        std::cerr << "missing value after " << arg << "\n";
+        return false;
+      }
+      return true;
+    };
+    if (arg == "--help" || arg == "-h")
+    {
+      Usage();
+      std::exit(0);
+    }
+    else if (arg == "--data" && need(1))
+    {
+      options.DataDir = argv[++i];
+    }
+    else if (arg == "--datasets" && need(1))
+    {
+      options.Datasets.clear();
+      std::stringstream stream(argv[++i]);
+      std::string name;
+      while (std::getline(stream, name, ','))
+      {
+        if (!name.empty())
+        {
+          options.Datasets.push_back(name);
+        }
+      }
+    }
+    else if (arg == "--size" && need(2))
+    {
+      options.Width = std::atoi(argv[++i]);
+      options.Height = std::atoi(argv[++i]);
+    }
+    else if (arg == "--frames" && need(1))
+    {
+      options.Frames = std::atoi(argv[++i]);
+    }
+    else if (arg == "--reference-frames" && need(1))
+    {
+      options.ReferenceFrames = std::atoi(argv[++i]);
+    }
+    else if (arg == "--gl" && need(1))
+    {
+      options.GL = argv[++i];
+    }
+    else if (arg == "--json" && need(1))
+    {
+      options.Json = argv[++i];
+    }
+    else if (arg == "--images" && need(1))
+    {
+      options.Images = argv[++i];
+    }
+    else if (arg == "--crop" && need(2))
+    {
+      options.CropLow = std::atof(argv[++i]);
+      options.CropHigh = std::atof(argv[++i]);
+    }
+    else if (arg == "--zoom" && need(1))
+    {
+      options.Zoom = std::atof(argv[++i]);
+    }
+    else if (arg == "--window" && need(2))
+    {
+      options.HaveWindow = true;
+      options.Window[0] = std::atof(argv[++i]);
+      options.Window[1] = std::atof(argv[++i]);
+    }
+    else if (arg == "--band" && need(1))
+    {
+      options.BandRadius = std::atof(argv[++i]);
+    }
+    else
+    {
+      std::cerr << "unknown or incomplete option: " << arg << "\n";
+      Usage();
+      return false;
+    }
+  }
+  if (options.Width < 16 || options.Height < 16 || options.Frames < 1 ||
+    options.ReferenceFrames < 1 || options.Datasets.empty() ||
+    !(options.CropLow >= 0 && options.CropLow < options.CropHigh && options.CropHigh <= 1) ||
+    options.BandRadius <= 0 || options.Zoom <= 0 ||
+    (options.HaveWindow && !(options.Window[0] < options.Window[1])))
+  {
+    std::cerr << "invalid option values\n";
+    return false;
+  }
+  return true;
+}
+
+// NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder.
+std::string FindDatasetFile(const std::string& dataDir, const std::string& name)
+{
+  const std::regex pattern(
+    "^" + std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+    R"(_\d+x\d+x\d+_[A-Za-z0-9]+\.raw(\.gz)?$)");
+  std::error_code ec;
+  std::vector<std::string> matches;
+  for (const auto& entry : fs::directory_iterator(dataDir, ec))
+  {
+    const std::string file = entry.path().filename().string();
+    if (std::regex_match(file, pattern))
+    {
+      matches.push_back(entry.path().string());
+    }
+  }
+  std::sort(matches.begin(), matches.end());
+  return matches.empty() ? std::string() : matches.front();
+}
+
+std::vector<std::uint8_t> Capture(vtkRenderWindow* window, int width, int height)
+{
+  vtkNew<vtkUnsignedCharArray> pixels;
+  window->GetPixelData(0, 0, width - 1, height - 1, 0, pixels.Get());
+  const auto* data = pixels->GetPointer(0);
+  return std::vector<std::uint8_t>(data, data + static_cast<size_t>(width) * height * 3);
+}
+
+bool WritePng(const std::string& path, const std::vector<std::uint8_t>& rgb, int width, int height)
+{
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(width, height, 1);
+  vtkNew<vtkUnsignedCharArray> array;
+  array->SetNumberOfComponents(3);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  std::copy(rgb.begin(), rgb.end(), array->GetPointer(0));
+  image->GetPointData()->SetScalars(array);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+
+std::string JsonEscape(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+  {
+    if (c == '"' || c == '\\')
+    {
+      out += '\\';
+      out += c;
+    }
+    else if (static_cast<unsigned char>(c) < 0x20)
+    {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+      out += buffer;
+    }
+    else
+    {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string Num(double value, int precision = 4)
+{
+  if (!std::isfinite(value))
+  {
+    return "null";
+  }
+  std::ostringstream stream;
+  stream << std::setprecision(precision) << std::fixed << value;
+  return stream.str();
+}
+
+double SafeRatio(double a, double b)
+{
+  return b > 0 ? a / b : std::nan("");
+}
+
+// ------------------------------------------------------------------------------------------
+
+bool RunDataset(const Options& options, const std::string& name, bool saveImages,
+  vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result)
+{
+  const auto datasetStart = std::chrono::steady_clock::now();
+  result.Name = name;
+  result.File = FindDatasetFile(options.DataDir, name);
+  if (result.File.empty())
+  {
+    std::cerr << "dataset " << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "
+              << options.DataDir << "\n";
+    return false;
+  }
+  accelvolume::cli::VolumeRequest request;
+  request.inputPath = result.File;
+  std::string error;
+  const auto loadStart = std::chrono::steady_clock::now();
+  vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
+  result.LoadSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+  if (!image)
+  {
+    std::cerr << "dataset " << name << ": " << error << "\n";
+    return false;
+  }
+  result.Description = accelvolume::cli::DescribeVolume(image);
+  image->GetSpacing(result.Spacing);
+  result.MinSpacing = std::min({ result.Spacing[0], result.Spacing[1], result.Spacing[2] });
+  double range[2];
+  image->GetPointData()->GetScalars()->GetRange(range);
+  DatasetWindow tf;
+  if (options.HaveWindow)
+  {
+    tf = { options.Window[0], options.Window[1] };
+  }
+  else if (!KnownWindow(name, tf))
+  {
+    tf = { range[0] + 0.1 * (range[1] - range[0]), range[1] };
+  }
+  result.Window[0] = tf.Low;
+  result.Window[1] = tf.High;
+
+  double bounds[6];
+  image->GetBounds(bounds);
+  double cropBounds[6];
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double length = bounds[2 * axis + 1] - bounds[2 * axis];
+    cropBounds[2 * axis] = bounds[2 * axis] + options.CropLow * length;
+    cropBounds[2 * axis + 1] = bounds[2 * axis] + options.CropHigh * length;
+  }
+  std::copy(cropBounds, cropBounds + 6, result.CropPlanes);
+
+  std::cout << "\n=== " << name << ": " << fs::path(result.File).filename().string() << " ("
+            << result.Description << ", spacing " << result.Spacing[0] << " " << result.Spacing[1]
+            << " " << result.Spacing[2] << ", scalar range " << range[0] << ".." << range[1]
+            << ", loaded in " << Num(result.LoadSeconds, 2) << " s)\n"
+            << "    TF window " << tf.Low << ".." << tf.High
+            << " (grey ramp, linear opacity ramp 0..1), crop box " << options.CropLow * 100 << "%.."
+            << options.CropHigh * 100 << "% of each axis = [" << cropBounds[0] << "," << cropBounds[1]
+            << "]x[" << cropBounds[2] << "," << cropBounds[3] << "]x[" << cropBounds[4] << ","
+            << cropBounds[5] << "]\n"
+            << std::flush;
+
+  // Scene: one renderer, two volumes sharing the property (one visible at a time).
+  vtkNew<vtkColorTransferFunction> colours;
+  colours->AddRGBPoint(tf.Low, 0, 0, 0);
+  colours->AddRGBPoint(tf.High, 1, 1, 1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(tf.Low, 0.0);
+  opacity->AddPoint(tf.High, 1.0);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetColor(colours);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToLinear();
+  property->ShadeOff();
+
+  vtkNew<vtkAccelVolumeSliceMapper> slice;
+  slice->SetInputData(image);
+  slice->SetBlendModeToMaximumIntensity();
+  slice->SetCropping(1);
+  slice->SetCroppingRegionPlanes(cropBounds);
+  slice->SetCroppingRegionFlagsToSubVolume();
+  slice->SetMaximumNumberOfSlices(1 << 16); // the 8x reference must not be widened
+  vtkNew<vtkVolume> sliceVolume;
+  sliceVolume->SetMapper(slice);
+  sliceVolume->SetProperty(property);
+
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
+  gpu->SetInputData(image);
+  gpu->SetBlendModeToMaximumIntensity();
+  gpu->SetCropping(1);
+  gpu->SetCroppingRegionPlanes(cropBounds);
+  gpu->SetCroppingRegionFlagsToSubVolume();
+  gpu->SetAutoAdjustSampleDistances(0);
+  gpu->SetSampleDistance(result.MinSpacing);
+  gpu->SetImageSampleDistance(1.0);
+  gpu->SetUseJittering(0);
+  vtkNew<vtkVolume> gpuVolume;
+  gpuVolume->SetMapper(gpu);
+  gpuVolume->SetProperty(property);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0, 0, 0);
+  renderer->AddVolume(sliceVolume);
+  renderer->AddVolume(gpuVolume);
+  window->AddRenderer(renderer);
+
+  // The fixed views: camera fitted to the crop box, turned so the cut faces are oblique.
+  std::vector<vtkSmartPointer<vtkCamera>> viewCameras;
+  for (const View& view : Views)
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0, 0, 1);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    renderer->ResetCamera(cropBounds);
+    camera->Azimuth(view.Azimuth);
+    camera->Elevation(view.Elevation);
+    camera->OrthogonalizeViewUp();
+    renderer->ResetCamera(cropBounds);
+    camera->Zoom(options.Zoom);
+    auto saved = vtkSmartPointer<vtkCamera>::New();
+    saved->DeepCopy(camera);
+    viewCameras.push_back(saved);
+  }
+  auto setView = [&](size_t v) {
+    renderer->GetActiveCamera()->DeepCopy(viewCameras[v]);
+    renderer->ResetCameraClippingRange();
+  };
+
+  // Crop-box footprint and outline band per view.
+  const int width = options.Width;
+  const int height = options.Height;
+  std::vector<std::vector<std::uint8_t>> hullMasks;
+  std::vector<std::vector<std::uint8_t>> bandMasks;
+  for (size_t v = 0; v < viewCameras.size(); ++v)
+  {
+    setView(v);
+    std::vector<Point2> corners;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      renderer->SetWorldPoint(cropBounds[corner & 1 ? 1 : 0], cropBounds[corner & 2 ? 3 : 2],
+        cropBounds[corner & 4 ? 5 : 4], 1.0);
+      renderer->WorldToDisplay();
+      double display[3];
+      renderer->GetDisplayPoint(display);
+      corners.push_back({ display[0], display[1] });
+    }
+    const std::vector<Point2> hull = ConvexHull(corners);
+    hullMasks.push_back(PolygonMask(hull, width, height));
+    bandMasks.push_back(OutlineBandMask(hull, width, height, options.BandRadius));
+  }
+
+  const std::vector<Config> configs = MakeConfigs();
+  const int cx = width / 2;
+  const int cy = height / 2;
+  vtkNew<vtkUnsignedCharArray> onePixel;
+  auto apply = [&](const Config& cfg) {
+    sliceVolume->SetVisibility(!cfg.Gpu);
+    gpuVolume->SetVisibility(cfg.Gpu);
+    if (!cfg.Gpu)
+    {
+      slice->SetBoundaryRerendering(cfg.Rerender);
+      slice->SetAutoAdjustSampleDistances(cfg.AutoAdjust);
+      slice->SetSampleDistance(result.MinSpacing / cfg.SliceFactor);
+    }
+  };
+  auto renderAndWait = [&]() {
+    window->Render();
+    static_cast<vtkRenderWindow*>(window)->GetPixelData(cx, cy, cx, cy, 0, onePixel.Get());
+  };
+  for (const Config& cfg : configs)
+  {
+    ConfigResult r;
+    r.Cfg = cfg;
+    result.Results.push_back(std::move(r));
+  }
+
+  // Warm-up (texture upload, shader compilation) of every configuration except the reference,
+  // which shares the slice mapper's texture and shaders with (a)..(d).
+  setView(0);
+  for (const Config& cfg : configs)
+  {
+    if (!cfg.Reference)
+    {
+      apply(cfg);
+      renderAndWait();
+    }
+  }
+  // Timed frames, interleaved: in round f every configuration renders the same camera (turned
+  // f+1 degrees from view 1), so load changes on a shared machine hit all of them alike.
+  const int referenceFrames = std::min(options.ReferenceFrames, options.Frames);
+  for (int f = 0; f < options.Frames; ++f)
+  {
+    renderer->GetActiveCamera()->Azimuth(1.0);
+    renderer->ResetCameraClippingRange();
+    for (ConfigResult& r : result.Results)
+    {
+      if (r.Cfg.Reference && f >= referenceFrames)
+      {
+        continue;
+      }
+      apply(r.Cfg);
+      const auto start = std::chrono::steady_clock::now();
+      renderAndWait();
+      const auto stop = std::chrono::steady_clock::now();
+      r.FrameMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+      if (!r.Cfg.Gpu)
+      {
+        r.MapperMs.push_back(1000.0 * slice->GetLastRenderTime());
+      }
+    }
+  }
+  // Fixed views for the error measurement.
+  for (ConfigResult& r : result.Results)
+  {
+    apply(r.Cfg);
+    for (size_t v = 0; v < viewCameras.size(); ++v)
+    {
+      setView(v);
+      window->Render();
+      r.Images.push_back(Capture(window, width, height));
+      if (v == 0 && !r.Cfg.Gpu)
+      {
+        r.Slices = slice->GetLastNumberOfSlices();
+        r.Faces = slice->GetLastNumberOfBoundaryFaces();
+        r.SliceSpacing = slice->GetLastSliceSpacing();
+      }
+    }
+    std::cout << "    " << std::left << std::setw(4) << r.Cfg.Id << std::setw(36) << r.Cfg.Label
+              << std::right << " median " << std::setw(8) << Num(r.MedianMs(), 1) << " ms over "
+              << r.FrameMs.size() << " frames";
+    if (!r.Cfg.Gpu)
+    {
+      std::cout << "  (" << r.Slices << " slices, spacing " << Num(r.SliceSpacing, 4) << ", "
+                << r.Faces << " faces)";
+    }
+    std::cout << "\n" << std::flush;
+  }
+
+  // Errors against the reference over the footprint (crop-box projection OR non-background
+  // reference pixels), over the outline band, and over the cut-face pixels (where the
+  // re-rendered faces change the 1x image by more than the threshold: there the boundary
+  // layer holds the maximum).
+  const ConfigResult* referencePtr = nullptr;
+  const ConfigResult* plainPtr = nullptr;
+  const ConfigResult* rerenderPtr = nullptr;
+  for (const ConfigResult& r : result.Results)
+  {
+    referencePtr = r.Cfg.Reference ? &r : referencePtr;
+    plainPtr = r.Cfg.Id == "a" ? &r : plainPtr;
+    rerenderPtr = r.Cfg.Id == "b" ? &r : rerenderPtr;
+  }
+  const ConfigResult& reference = *referencePtr;
+  for (size_t v = 0; v < viewCameras.size(); ++v)
+  {
+    const auto footprint =
+      MaskOr(hullMasks[v], NonBackgroundMask(reference.Images[v], width, height));
+    std::vector<std::uint8_t> faceMask(footprint.size(), 0);
+    for (size_t p = 0; p < faceMask.size(); ++p)
+    {
+      const auto& ia = plainPtr->Images[v];
+      const auto& ib = rerenderPtr->Images[v];
+      const double grey = std::abs((ia[3 * p] + ia[3 * p + 1] + ia[3 * p + 2]) / 3.0 -
+        (ib[3 * p] + ib[3 * p + 1] + ib[3 * p + 2]) / 3.0);
+      faceMask[p] = grey > options.AboveThreshold ? 1 : 0;
+    }
+    result.FootprintPixels.push_back(std::count(footprint.begin(), footprint.end(), 1));
+    result.BandPixels.push_back(std::count(bandMasks[v].begin(), bandMasks[v].end(), 1));
+    result.FacePixels.push_back(std::count(faceMask.begin(), faceMask.end(), 1));
+    for (ConfigResult& r : result.Results)
+    {
+      r.Footprint.push_back(
+        CompareImages(reference.Images[v], r.Images[v], footprint, options.AboveThreshold));
+      r.Band.push_back(
+        CompareImages(reference.Images[v], r.Images[v], bandMasks[v], options.AboveThreshold));
+      r.Face.push_back(
+        CompareImages(reference.Images[v], r.Images[v], faceMask, options.AboveThreshold));
+      r.FootprintAll.Add(r.Footprint.back());
+      r.BandAll.Add(r.Band.back());
+      r.FaceAll.Add(r.Face.back());
+    }
+  }
+
+  if (saveImages)
+  {
+    std::error_code ec;
+    fs::create_directories(options.Images, ec);
+    for (const ConfigResult& r : result.Results)
+    {
+      for (size_t v = 0; v < viewCameras.size(); ++v)
+      {
+        const std::string stem =
+          options.Images + "/" + name + "_" + Views[v].Name + "_" + r.Cfg.Id;
+        bool ok = WritePng(stem + ".png", r.Images[v], width, height);
+        if (!r.Cfg.Reference)
+        {
+          ok = WritePng(stem + "_diff_x8.png", DifferenceImage(reference.Images[v], r.Images[v], 8.0),
+                 width, height) && ok;
+        }
+        if (!ok)
+        {
+          std::cerr << "could not write " << stem << ".png\n";
+        }
+      }
+    }
+    std::cout << "    images written to " << options.Images << "/" << name
+              << "_<view>_<config>.png (+ _diff_x8.png: |config - ref| x8, red = darker than ref)\n";
+  }
+
+  window->RemoveRenderer(renderer);
+  result.TotalSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - datasetStart).count();
+  return true;
+}
+
+void PrintTable(const DatasetResult& d)
+{
+  const ConfigResult* oneAndHalf = nullptr;
+  const ConfigResult* base = nullptr;
+  const ConfigResult* rerender = nullptr;
+  const ConfigResult* doubled = nullptr;
+  for (const ConfigResult& r : d.Results)
+  {
+    base = r.Cfg.Id == "a" ? &r : base;
+    rerender = r.Cfg.Id == "b" ? &r : rerender;
+    doubled = r.Cfg.Id == "d" ? &r : doubled;
+    oneAndHalf = r.Cfg.Id == "c" ? &r : oneAndHalf;
+  }
+  std::cout << "\n" << d.Name << " (" << d.Description << "), MIP, errors in grey levels (0..255) vs ref,"
+            << " pooled over 2 views; pixels: footprint " << d.FootprintPixels[0] << "+"
+            << d.FootprintPixels[1] << ", band " << d.BandPixels[0] << "+" << d.BandPixels[1]
+            << ", cut-face " << d.FacePixels[0] << "+" << d.FacePixels[1] << "\n";
+  std::cout << std::left << std::setw(5) << "cfg" << std::setw(35) << "configuration" << std::right
+            << std::setw(7) << "slices" << std::setw(10) << "ms/frame" << std::setw(7) << "fps"
+            << std::setw(8) << "min ms" << std::setw(7) << "time x" << std::setw(7) << "RMS"
+            << std::setw(5) << "max" << std::setw(7) << "err x" << std::setw(8) << ">2lv%"
+            << std::setw(8) << "bandRMS" << std::setw(6) << "bmax" << std::setw(7) << "band x"
+            << std::setw(8) << "faceRMS" << std::setw(7) << "face x" << "\n";
+  for (const ConfigResult& r : d.Results)
+  {
+    const double ms = r.MedianMs();
+    std::cout << std::left << std::setw(5) << r.Cfg.Id << std::setw(35) << r.Cfg.Label
+              << std::right << std::setw(7) << (r.Cfg.Gpu ? std::string("-") : std::to_string(r.Slices))
+              << std::setw(10) << Num(ms, 1) << std::setw(7) << Num(1000.0 / ms, 2) << std::setw(8)
+              << Num(r.MinMs(), 1) << std::setw(7) << Num(r.PairedRatio(*base), 2) << std::setw(7)
+              << Num(r.FootprintAll.Rms(), 2) << std::setw(5) << Num(r.FootprintAll.Max, 0)
+              << std::setw(7) << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 2)
+              << std::setw(8) << Num(100.0 * r.FootprintAll.AboveFraction(), 2) << std::setw(8)
+              << Num(r.BandAll.Rms(), 2) << std::setw(6) << Num(r.BandAll.Max, 0) << std::setw(7)
+              << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 2) << std::setw(8)
+              << Num(r.FaceAll.Rms(), 2) << std::setw(7)
+              << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 2) << "\n";
+  }
+  const double overhead = 100.0 * (rerender->PairedRatio(*base) - 1.0);
+  std::cout << "  re-rendering overhead: " << Num(overhead, 1)
+            << "% of frame time (median of per-round b/a; from medians "
+            << Num(100.0 * (rerender->MedianMs() / base->MedianMs() - 1.0), 1) << "%, from minima "
+            << Num(100.0 * (rerender->MinMs() / base->MinMs() - 1.0), 1) << "%); paper: "
+            << Num(100.0 * (150.81 / 149.83 - 1.0), 1) << "%\n";
+  std::cout << "  1.5x slices: " << Num(100.0 * (oneAndHalf->PairedRatio(*base) - 1.0), 1)
+            << "% more time, 2x slices: " << Num(100.0 * (doubled->PairedRatio(*base) - 1.0), 1)
+            << "% more (paper: 400 vs 256 slices +" << Num(100.0 * (150.81 / 97.24 - 1.0), 1)
+            << "%, 512 vs 256 +" << Num(100.0 * (150.81 / 73.85 - 1.0), 1) << "%)\n";
+  auto verdict = [&](const char* what, const ErrorStats& b, const ErrorStats& dd) {
+    std::cout << (b.Rms() < dd.Rms() ? "holds" : "DOES NOT hold") << " " << what << " (b "
+              << Num(b.Rms(), 2) << " vs d " << Num(dd.Rms(), 2) << ")";
+  };
+  std::cout << "  \"re-rendering leaves less boundary error than doubling the slices\": ";
+  verdict("in the outline band", rerender->BandAll, doubled->BandAll);
+  std::cout << "; ";
+  verdict("on the cut-face pixels", rerender->FaceAll, doubled->FaceAll);
+  std::cout << "; ";
+  verdict("over the whole footprint", rerender->FootprintAll, doubled->FootprintAll);
+  std::cout << "\n";
+}
+
+void WriteJson(const Options& options, const std::string& renderer, const std::string& backend,
+  const std::vector<DatasetResult>& datasets)
+{
+  std::ofstream out(options.Json);
+  if (!out)
+  {
+    std::cerr << "cannot write " << options.Json << "\n";
+    return;
+  }
+  out << "{\n  \"benchmark\": \"cropping (paper 004 Table 2)\",\n";
+  out << "  \"gl_backend\": \"" << JsonEscape(backend) << "\",\n";
+  out << "  \"gl_renderer\": \"" << JsonEscape(renderer) << "\",\n";
+  out << "  \"size\": [" << options.Width << ", " << options.Height << "],\n";
+  out << "  \"frames\": " << options.Frames << ",\n  \"reference_frames\": "
+      << options.ReferenceFrames << ",\n";
+  out << "  \"crop_fraction\": [" << options.CropLow << ", " << options.CropHigh << "],\n";
+  out << "  \"band_radius_px\": " << options.BandRadius << ",\n";
+  out << "  \"above_threshold_grey_levels\": " << options.AboveThreshold << ",\n";
+  out << "  \"views\": [";
+  for (size_t v = 0; v < std::size(Views); ++v)
+  {
+    out << (v ? ", " : "") << "{\"name\": \"" << Views[v].Name << "\", \"azimuth\": "
+        << Views[v].Azimuth << ", \"elevation\": " << Views[v].Elevation << "}";
+  }
+  out << "],\n";
+  out << "  \"error_units\": \"grey levels 0..255 (mean of R,G,B) vs the 8x re-rendered slice reference\",\n";
+  out << "  \"paper_table2_fps\": {\"rerender_256\": 149.83, \"plain_256\": 150.81, "
+         "\"plain_400\": 97.24, \"plain_512\": 73.85},\n";
+  out << "  \"datasets\": [\n";
+  for (size_t i = 0; i < datasets.size(); ++i)
+  {
+    const DatasetResult& d = datasets[i];
+    const ConfigResult* base = nullptr;
+    const ConfigResult* rerender = nullptr;
+    const ConfigResult* doubled = nullptr;
+    for (const ConfigResult& r : d.Results)
+    {
+      base = r.Cfg.Id == "a" ? &r : base;
+      rerender = r.Cfg.Id == "b" ? &r : rerender;
+      doubled = r.Cfg.Id == "d" ? &r : doubled;
+    }
+    out << "    {\n      \"name\": \"" << JsonEscape(d.Name) << "\",\n      \"file\": \""
+        << JsonEscape(d.File) << "\",\n      \"volume\": \"" << JsonEscape(d.Description)
+        << "\",\n      \"spacing\": [" << d.Spacing[0] << ", " << d.Spacing[1] << ", "
+        << d.Spacing[2] << "],\n      \"tf_window\": [" << d.Window[0] << ", " << d.Window[1]
+        << "],\n      \"crop_planes\": [";
+    for (int k = 0; k < 6; ++k)
+    {
+      out << (k ? ", " : "") << Num(d.CropPlanes[k], 4);
+    }
+    out << "],\n      \"cut_face_pixels\": [" << d.FacePixels[0] << ", " << d.FacePixels[1]
+        << "],\n      \"footprint_pixels\": [" << d.FootprintPixels[0] << ", "
+        << d.FootprintPixels[1] << "],\n      \"band_pixels\": [" << d.BandPixels[0] << ", "
+        << d.BandPixels[1] << "],\n      \"seconds\": " << Num(d.TotalSeconds, 2)
+        << ",\n      \"rerender_overhead_percent\": "
+        << Num(100.0 * (rerender->PairedRatio(*base) - 1.0), 2)
+        << ",\n      \"rerender_beats_2x_in_band\": "
+        << (rerender->BandAll.Rms() < doubled->BandAll.Rms() ? "true" : "false")
+        << ",\n      \"rerender_beats_2x_on_cut_faces\": "
+        << (rerender->FaceAll.Rms() < doubled->FaceAll.Rms() ? "true" : "false")
+        << ",\n      \"rerender_beats_2x_in_footprint\": "
+        << (rerender->FootprintAll.Rms() < doubled->FootprintAll.Rms() ? "true" : "false")
+        << ",\n      \"configs\": [\n";
+    for (size_t k = 0; k < d.Results.size(); ++k)
+    {
+      const ConfigResult& r = d.Results[k];
+      out << "        {\"id\": \"" << r.Cfg.Id << "\", \"label\": \"" << JsonEscape(r.Cfg.Label)
+          << "\", \"mapper\": \"" << (r.Cfg.Gpu ? "vtkGPUVolumeRayCastMapper" : "vtkAccelVolumeSliceMapper")
+          << "\", \"boundary_rerendering\": " << (r.Cfg.Rerender ? "true" : "false")
+          << ", \"slice_factor\": " << r.Cfg.SliceFactor
+          << ", \"auto_adjust\": " << (r.Cfg.AutoAdjust ? "true" : "false");
+      if (!r.Cfg.Gpu)
+      {
+        out << ", \"slices\": " << r.Slices << ", \"boundary_faces\": " << r.Faces
+            << ", \"slice_spacing\": " << Num(r.SliceSpacing, 5);
+      }
+      out << ",\n         \"median_ms\": " << Num(r.MedianMs(), 3) << ", \"fps\": "
+          << Num(1000.0 / r.MedianMs(), 3) << ", \"min_ms\": " << Num(r.MinMs(), 3)
+          << ", \"time_ratio_vs_a\": " << Num(r.PairedRatio(*base), 4)
+          << ", \"median_ratio_vs_a\": " << Num(r.MedianMs() / base->MedianMs(), 4);
+      if (!r.Cfg.Gpu)
+      {
+        out << ", \"median_mapper_ms\": " << Num(r.MedianMapperMs(), 3);
+      }
+      out << ", \"frame_ms\": [";
+      for (size_t f = 0; f < r.FrameMs.size(); ++f)
+      {
+        out << (f ? ", " : "") << Num(r.FrameMs[f], 2);
+      }
+      out << "],\n         \"rms_error\": " << Num(r.FootprintAll.Rms(), 4)
+          << ", \"max_error\": " << Num(r.FootprintAll.Max, 2)
+          << ", \"error_ratio_vs_a\": " << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 4)
+          << ", \"above_threshold_fraction\": " << Num(r.FootprintAll.AboveFraction(), 5)
+          << ", \"band_rms_error\": " << Num(r.BandAll.Rms(), 4)
+          << ", \"band_max_error\": " << Num(r.BandAll.Max, 2)
+          << ", \"band_error_ratio_vs_a\": " << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 4)
+          << ", \"cut_face_rms_error\": " << Num(r.FaceAll.Rms(), 4)
+          << ", \"cut_face_max_error\": " << Num(r.FaceAll.Max, 2)
+          << ", \"cut_face_error_ratio_vs_a\": " << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 4)
+          << ",\n         \"per_view\": [";
+      for (size_t v = 0; v < r.Footprint.size(); ++v)
+      {
+        out << (v ? ", " : "") << "{\"view\": \"" << Views[v].Name << "\", \"rms_error\": "
+            << Num(r.Footprint[v].Rms(), 4) << ", \"max_error\": " << Num(r.Footprint[v].Max, 2)
+            << ", \"above_threshold_fraction\": " << Num(r.Footprint[v].AboveFraction(), 5)
+            << ", \"band_rms_error\": " << Num(r.Band[v].Rms(), 4)
+            << ", \"band_max_error\": " << Num(r.Band[v].Max, 2)
+            << ", \"cut_face_rms_error\": " << Num(r.Face[v].Rms(), 4) << "}";
+      }
+      out << "]}" << (k + 1 < d.Results.size() ? "," : "") << "\n";
+    }
+    out << "      ]\n    }" << (i + 1 < datasets.size() ? "," : "") << "\n";
+  }
+  out << "  ]\n}\n";
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  if (!ParseArguments(argc, argv, options))
+  {
+    return 2;
+  }
+  const int backend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.GL.c_str());
+  if (backend < 0 || backend == vtkAccelVolumeHeadlessRenderWindow::BACKEND_X)
+  {
+    std::cerr << "--gl must be egl, osmesa or auto\n";
+    return 2;
+  }
+  if (backend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
+    !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(backend))
+  {
+    std::cerr << "headless backend " << options.GL << " is not available here\n";
+    return 1;
+  }
+
+  vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
+  window->SetBackend(backend);
+  window->SetMultiSamples(0);
+  window->SetSize(options.Width, options.Height);
+  window->Render(); // creates the context
+  const std::string rendererName = window->GetOpenGLRendererString();
+  const std::string backendName =
+    vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
+
+  std::cout << "accelvolume_benchmark_cropping: paper 004 Table 2 (MIP of a cropped volume, "
+               "boundary re-rendering vs more slices)\n"
+            << "settings: " << options.Width << "x" << options.Height << ", MultiSamples 0, GL "
+            << backendName << " (" << rendererName << "), " << options.Frames
+            << " timed frames per config (reference: "
+            << std::min(options.ReferenceFrames, options.Frames)
+            << "), after one warm-up frame per config; frames interleaved across configs, camera "
+               "turned 1 deg azimuth per round; time = Render() + 1x1 read-back, median;\n"
+               "  'time x' = median over rounds of (config / (a)) in the same round (robust to load "
+               "from other processes)\n"
+            << "views: " << Views[0].Name << " (timed sequence starts here) and " << Views[1].Name
+            << "; camera fitted to the crop box, zoom " << options.Zoom << "\n"
+            << "data: " << options.DataDir << "\n"
+            << "error: grey levels (0..255) against ref = slice mapper, 8x slices, re-rendering on.\n"
+               "  RMS / max over the footprint = pixels inside the projected crop box OR non-black "
+               "in ref;\n"
+               "  band = pixels within "
+            << options.BandRadius
+            << " px of the projected crop-box outline (where slices clipped to the box leave "
+               "staircase edges);\n"
+               "  cut-face = pixels where re-rendering the faces changes the 1x image ((a) vs (b)) by > "
+            << options.AboveThreshold
+            << " grey levels: the boundary layer holds the maximum there;\n"
+               "  >2lv% = share of footprint pixels off by more than "
+            << options.AboveThreshold << " grey levels; 'x' columns are ratios to config (a).\n"
+            << std::flush;
+
+  std::vector<DatasetResult> datasets;
+  bool ok = true;
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < options.Datasets.size(); ++i)
+  {
+    DatasetResult result;
+    if (RunDataset(options, options.Datasets[i], i == 0 && !options.Images.empty(), window, result))
+    {
+      datasets.push_back(std::move(result));
+    }
+    else
+    {
+      ok = false;
+    }
+  }
+  for (const DatasetResult& d : datasets)
+  {
+    PrintTable(d);
+  }
+  std::cout << "\npaper Table 2 (Radeon 9800 Pro, 256x256x240 Big Head, fps): re-render 256 slices "
+               "149.83, plain 256 150.81, 400 97.24, 512 73.85\n";
+  WriteJson(options, rendererName, backendName, datasets);
+  std::cout << "results written to " << options.Json << "; total "
+            << Num(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1)
+            << " s\n";
+  return ok && !datasets.empty() ? 0 : 1;
+}
