@@ -11,11 +11,13 @@ set(_av_classes
 set(_av_core_sources
   Core/accelvolume/Geometry
   Core/accelvolume/Phantoms
-  Core/accelvolume/ReferenceRenderer)
+  Core/accelvolume/ReferenceRenderer
+  Core/accelvolume/SlabProxy)
 
 # Thin OpenGL helpers, excluded from wrapping and installation.
 set(_av_private_sources
   OpenGL/vtkAccelVolumeObjectFactory
+  OpenGL/vtkAccelVolumeSlicePasses
   OpenGL/vtkAccelVolumeSliceResources)
 
 set(_av_shaders

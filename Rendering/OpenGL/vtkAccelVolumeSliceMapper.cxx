@@ -1,6 +1,7 @@
 // Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -9,28 +10,18 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLBufferObject.h"
-#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
-#include "vtkOpenGLState.h"
-#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
-#include "vtkShaderProgram.h"
-#include "vtkTextureObject.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
-#include "AccelVolumeResolveFS.h"
-#include "AccelVolumeResolveVS.h"
-#include "AccelVolumeSliceFS.h"
-#include "AccelVolumeSliceVS.h"
 #include "accelvolume/Geometry.h"
+#include "accelvolume/SlabProxy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,44 +30,14 @@
 
 namespace
 {
-constexpr int MaximumClipPlanes = 8;
+constexpr int MaximumClipPlanes = vtkAccelVolumeSliceFrame::MaximumClipPlanes;
 
-// The shaders read matrices as GLSL column-major; vtkShaderProgram uploads VTK's row-major
-// elements untransposed, so hand it the transpose.
-void SetMatrixUniform(vtkShaderProgram* program, const char* name, vtkMatrix4x4* matrix)
+bool IsSupportedBlend(int blendMode)
 {
-  vtkNew<vtkMatrix4x4> transposed;
-  vtkMatrix4x4::Transpose(matrix, transposed);
-  program->SetUniformMatrix(name, transposed);
-}
-
-const char* BlendDefine(int blendMode)
-{
-  switch (blendMode)
-  {
-    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
-      return "#define ACCELVOLUME_BLEND_MAXIMUM\n";
-    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      return "#define ACCELVOLUME_BLEND_MINIMUM\n";
-    case vtkVolumeMapper::ADDITIVE_BLEND:
-      return "#define ACCELVOLUME_BLEND_ADDITIVE\n";
-    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
-      return "#define ACCELVOLUME_BLEND_AVERAGE\n";
-    default:
-      return nullptr;
-  }
-}
-
-std::string WithBlendDefine(const char* source, const char* define)
-{
-  std::string text = source;
-  const std::string marker = "//VTK::Output::Dec";
-  const size_t at = text.find(marker);
-  if (at != std::string::npos)
-  {
-    text.insert(at, define);
-  }
-  return text;
+  return blendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
+    blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
 }
 
 accelvolume::Vec3 MakeVec3(double x, double y, double z)
@@ -94,6 +55,7 @@ class vtkAccelVolumeSliceMapper::vtkInternals
 {
 public:
   vtkAccelVolumeSliceResources Resources;
+  vtkAccelVolumeSliceFrame Frame;
   std::string Renderer;
   std::vector<float> Vertices;
   bool ReportedError = false;
@@ -117,9 +79,11 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
   os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
+  os << indent << "SlabSamples: " << this->SlabSamples << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
   os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
   os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
 }
@@ -206,7 +170,7 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
                                                 << " (use char, short, int, float or double)");
       return false;
   }
-  if (!BlendDefine(this->BlendMode))
+  if (!IsSupportedBlend(this->BlendMode))
   {
     vtkErrorMacro("Blend mode " << this->BlendMode
                                 << " is not supported by the slice mapper yet (use maximum, "
@@ -410,33 +374,43 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     spacing = depthExtent / this->MaximumNumberOfSlices;
   }
   const double phase = 0.0;
+  const bool extremum =
+    this->BlendMode == MAXIMUM_INTENSITY_BLEND || this->BlendMode == MINIMUM_INTENSITY_BLEND;
+  const int slabSamples = extremum ? this->SlabSamples : 1;
+  accelvolume::ViewRays rays;
+  rays.depthGradient = depthGradient;
+  rays.depthOffset = depthOffset;
+  rays.perspective = camera->GetParallelProjection() == 0;
+  rays.eye = MakeVec3(eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
+  rays.direction = MakeVec3(-eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
 
   // Proxy geometry: per region, its slices then its boundary faces.
-  struct DrawRange
-  {
-    accelvolume::Box Region;
-    int SliceFirst;
-    int SliceCount;
-    int FaceFirst;
-    int FaceCount;
-  };
-  std::vector<DrawRange> draws;
+  std::vector<vtkAccelVolumeSliceFrame::Cell>& cells = internals.Frame.Cells;
+  cells.clear();
   std::vector<float>& vertices = internals.Vertices;
   vertices.clear();
   int sliceCount = 0;
+  int proxyCount = 0;
   int faceCount = 0;
   for (const accelvolume::Box& region : regions)
   {
-    DrawRange draw;
-    draw.Region = region;
+    vtkAccelVolumeSliceFrame::Cell draw;
+    draw.Lower = { static_cast<float>(region.lower.x), static_cast<float>(region.lower.y),
+      static_cast<float>(region.lower.z) };
+    draw.Upper = { static_cast<float>(region.upper.x), static_cast<float>(region.upper.y),
+      static_cast<float>(region.upper.z) };
     draw.SliceFirst = static_cast<int>(vertices.size() / 3);
-    const accelvolume::SliceStack stack = accelvolume::ComputeViewAlignedSlices(region, clip,
-      depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::BackToFront);
-    for (const accelvolume::Polygon& polygon : stack.polygons)
+    const std::vector<accelvolume::Polygon> polygons = slabSamples > 1
+      ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples).polygons
+      : accelvolume::ComputeViewAlignedSlices(region, clip, depthGradient, depthOffset, spacing,
+          phase, accelvolume::SliceOrder::BackToFront)
+          .polygons;
+    for (const accelvolume::Polygon& polygon : polygons)
     {
       accelvolume::AppendTriangleFan(polygon, vertices);
     }
-    sliceCount += static_cast<int>(stack.polygons.size());
+    proxyCount += static_cast<int>(polygons.size());
+    sliceCount += static_cast<int>(polygons.size()) * slabSamples;
     draw.SliceCount = static_cast<int>(vertices.size() / 3) - draw.SliceFirst;
     draw.FaceFirst = static_cast<int>(vertices.size() / 3);
     if (this->BoundaryRerendering)
@@ -452,169 +426,56 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     draw.FaceCount = static_cast<int>(vertices.size() / 3) - draw.FaceFirst;
     if (draw.SliceCount + draw.FaceCount > 0)
     {
-      draws.push_back(draw);
+      cells.push_back(draw);
     }
   }
   this->LastSliceSpacing = spacing;
   this->LastNumberOfSlices = sliceCount;
+  this->LastNumberOfProxyPolygons = proxyCount;
   this->LastNumberOfBoundaryFaces = faceCount;
 
-  vtkOpenGLState* state = window->GetState();
-  state->Push();
-  state->PushFramebufferBindings();
-  vtkAccelVolumeSliceResources& resources = internals.Resources;
-  if (!resources.PrepareTargets(window, width, height))
+  vtkAccelVolumeSliceFrame& frame = internals.Frame;
+  frame.BlendMode = this->BlendMode;
+  frame.SlabSamples = slabSamples;
+  frame.Width = width;
+  frame.Height = height;
+  frame.LowerLeft[0] = lowerLeft[0];
+  frame.LowerLeft[1] = lowerLeft[1];
+  for (int c = 0; c < 3; ++c)
   {
-    state->PopFramebufferBindings();
-    state->Pop();
-    vtkErrorMacro("Cannot allocate the float accumulation target (" << width << "x" << height << ")");
-    return;
+    frame.Dimensions[c] = static_cast<float>(dims[c]);
   }
+  frame.IndexToClip = indexToClip;
+  frame.IndexToEye = indexToEye;
+  frame.EyeToIndex = eyeToIndex;
+  frame.InverseProjection = inverseProjection;
+  frame.ClipPlaneCount = static_cast<int>(clip.size());
+  std::copy(&clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
+  frame.SliceSpacing = static_cast<float>(spacing);
+  frame.SlicePhase = static_cast<float>(phase);
+  frame.BoundaryRerendering = this->BoundaryRerendering != 0;
+  frame.Parallel = camera->GetParallelProjection() != 0;
+  const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
+  frame.AdditiveScale = static_cast<float>(1.0 / unit);
+  const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  frame.AverageRange[0] = static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth);
+  frame.AverageRange[1] = static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  frame.Vertices = &vertices;
   if (internals.Renderer.empty())
   {
     const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     internals.Renderer = name ? name : "unknown";
   }
-
-  // Opaque geometry drawn so far limits the rays.
-  resources.SceneDepth->Activate();
-  resources.SceneDepth->CopyFromFrameBuffer(lowerLeft[0], lowerLeft[1], 0, 0, width, height);
-
-  const int blend = this->BlendMode;
-  const char* define = BlendDefine(blend);
-  resources.Framebuffer->SaveCurrentBindingsAndBuffers();
-  resources.Framebuffer->Bind();
-  resources.Framebuffer->ActivateDrawBuffer(0);
-  state->vtkglViewport(0, 0, width, height);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthFunc(GL_LESS);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  if (blend == MAXIMUM_INTENSITY_BLEND)
-  {
-    state->vtkglClearColor(-1.0f, 0.0f, 0.0f, 0.0f);
-  }
-  else if (blend == MINIMUM_INTENSITY_BLEND)
-  {
-    state->vtkglClearColor(2.0f, 2.0f, 0.0f, 0.0f);
-  }
-  else
-  {
-    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  }
-  state->vtkglClear(GL_COLOR_BUFFER_BIT);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendEquation(blend == MAXIMUM_INTENSITY_BLEND
-      ? GL_MAX
-      : (blend == MINIMUM_INTENSITY_BLEND ? GL_MIN : GL_FUNC_ADD));
-  state->vtkglBlendFunc(GL_ONE, GL_ONE);
-
-  const std::string sliceFragment = WithBlendDefine(AccelVolumeSliceFS, define);
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    AccelVolumeSliceVS, sliceFragment.c_str(), "");
-  bool drew = false;
-  if (program && !draws.empty())
-  {
-    resources.VertexBuffer->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
-    resources.SliceArray->Bind();
-    resources.SliceArray->AddAttributeArray(
-      program, resources.VertexBuffer, "vertexIndex", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
-    resources.VolumeTexture->Activate();
-    resources.TransferTable->Activate();
-    program->SetUniformi("volumeTexture", resources.VolumeTexture->GetTextureUnit());
-    program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
-    program->SetUniformi("sceneDepth", resources.SceneDepth->GetTextureUnit());
-    const float dimensions[3] = { static_cast<float>(dims[0]), static_cast<float>(dims[1]),
-      static_cast<float>(dims[2]) };
-    program->SetUniform3f("volumeDimensions", dimensions);
-    program->SetUniformf("scalarScale", resources.ScalarScale);
-    program->SetUniformf("scalarBias", resources.ScalarBias);
-    program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
-    SetMatrixUniform(program, "indexToClip", indexToClip);
-    SetMatrixUniform(program, "indexToEye", indexToEye);
-    SetMatrixUniform(program, "eyeToIndex", eyeToIndex);
-    SetMatrixUniform(program, "inverseProjection", inverseProjection);
-    const float viewport[2] = { static_cast<float>(width), static_cast<float>(height) };
-    program->SetUniform2f("viewportSize", viewport);
-    program->SetUniformi("clipPlaneCount", static_cast<int>(clip.size()));
-    program->SetUniform4fv("clipPlanes", MaximumClipPlanes, clipUniforms);
-    program->SetUniformf("sliceSpacing", static_cast<float>(spacing));
-    program->SetUniformf("slicePhase", static_cast<float>(phase));
-    program->SetUniformi("boundaryRerendering", this->BoundaryRerendering ? 1 : 0);
-    program->SetUniformi("parallelProjection", camera->GetParallelProjection() ? 1 : 0);
-    const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
-    program->SetUniformf("additiveScale", static_cast<float>(1.0 / unit));
-    const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
-    const float averageRange[2] = {
-      static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth),
-      static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth)
-    };
-    program->SetUniform2f("averageRange", averageRange);
-    for (const DrawRange& draw : draws)
-    {
-      const float lower[3] = { static_cast<float>(draw.Region.lower.x),
-        static_cast<float>(draw.Region.lower.y), static_cast<float>(draw.Region.lower.z) };
-      const float upper[3] = { static_cast<float>(draw.Region.upper.x),
-        static_cast<float>(draw.Region.upper.y), static_cast<float>(draw.Region.upper.z) };
-      program->SetUniform3f("regionLower", lower);
-      program->SetUniform3f("regionUpper", upper);
-      if (draw.SliceCount > 0)
-      {
-        program->SetUniformi("isBoundaryFace", 0);
-        glDrawArrays(GL_TRIANGLES, draw.SliceFirst, draw.SliceCount);
-      }
-      if (draw.FaceCount > 0)
-      {
-        program->SetUniformi("isBoundaryFace", 1);
-        glDrawArrays(GL_TRIANGLES, draw.FaceFirst, draw.FaceCount);
-      }
-    }
-    resources.SliceArray->Release();
-    resources.VolumeTexture->Deactivate();
-    resources.TransferTable->Deactivate();
-    drew = true;
-  }
-  resources.SceneDepth->Deactivate();
-  resources.Framebuffer->RestorePreviousBindingsAndBuffers();
-
-  if (drew)
-  {
-    // Resolve: colour the accumulated value and blend it (premultiplied) over the scene.
-    state->vtkglViewport(lowerLeft[0], lowerLeft[1], width, height);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglBlendEquation(GL_FUNC_ADD);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    const std::string resolveFragment = WithBlendDefine(AccelVolumeResolveFS, define);
-    vtkShaderProgram* resolve = window->GetShaderCache()->ReadyShaderProgram(
-      AccelVolumeResolveVS, resolveFragment.c_str(), "");
-    if (resolve)
-    {
-      resources.Accumulation->Activate();
-      resources.TransferTable->Activate();
-      resolve->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
-      resolve->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
-      resolve->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
-      const float origin[2] = { static_cast<float>(lowerLeft[0]), static_cast<float>(lowerLeft[1]) };
-      resolve->SetUniform2f("viewportOrigin", origin);
-      resources.ResolveArray->Bind();
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      resources.ResolveArray->Release();
-      resources.Accumulation->Deactivate();
-      resources.TransferTable->Deactivate();
-    }
-  }
-  state->PopFramebufferBindings();
-  state->Pop();
+  const bool rendered = vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame);
 
   // Wait for the GPU so the reported time is the frame's real cost.
   glFinish();
   timer->StopTimer();
   this->LastRenderTime = timer->GetElapsedTime();
-  if (!program && !internals.ReportedError)
+  if (!rendered && !internals.ReportedError)
   {
     internals.ReportedError = true;
-    vtkErrorMacro("The slice shader did not compile; see the messages above");
+    vtkErrorMacro("Rendering failed: a shader did not compile or the float target ("
+      << width << "x" << height << ") could not be allocated; see the messages above");
   }
 }

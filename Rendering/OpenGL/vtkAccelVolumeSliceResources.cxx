@@ -211,14 +211,16 @@ void vtkAccelVolumeSliceResources::UpdateTransferTable(
   this->TableBuildTime.Modified();
 }
 
-bool vtkAccelVolumeSliceResources::PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height)
+bool vtkAccelVolumeSliceResources::PrepareTargets(
+  vtkOpenGLRenderWindow* window, int width, int height, int channels)
 {
   if (!this->Accumulation->GetHandle() ||
     static_cast<int>(this->Accumulation->GetWidth()) != width ||
-    static_cast<int>(this->Accumulation->GetHeight()) != height)
+    static_cast<int>(this->Accumulation->GetHeight()) != height ||
+    this->Accumulation->GetComponents() != channels)
   {
     this->Accumulation->SetContext(window);
-    if (!this->Accumulation->Create2D(width, height, 2, VTK_FLOAT, false))
+    if (!this->Accumulation->Create2D(width, height, channels, VTK_FLOAT, false))
     {
       return false;
     }

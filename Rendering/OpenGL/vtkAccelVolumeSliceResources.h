@@ -41,8 +41,11 @@ public:
   void UpdateTransferTable(
     vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
 
-  /** Sizes the accumulation target and the scene depth copy to the viewport. */
-  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height);
+  /**
+   * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
+   * integrating modes) and the scene depth copy to the viewport.
+   */
+  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -17,15 +17,16 @@ vec4 lookup(float value)
 void main()
 {
   vec2 sums = texelFetch(accumulation, ivec2(gl_FragCoord.xy - viewportOrigin), 0).rg;
+  // MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
 #if defined(ACCELVOLUME_BLEND_MAXIMUM)
-  if (sums.y <= 0.0)
+  if (sums.x < -0.5)
   {
     discard;
   }
   vec4 colour = lookup(sums.x);
   gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
 #elif defined(ACCELVOLUME_BLEND_MINIMUM)
-  if (sums.y > 1.5)
+  if (sums.x > 1.5)
   {
     discard;
   }

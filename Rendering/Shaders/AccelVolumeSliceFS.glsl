@@ -1,7 +1,10 @@
 //VTK::System::Dec
 // Proxy slice / boundary face fragment stage: samples the volume once and writes the
 // blend mode's accumulation value into an RG32F target (R: value, G: weight or coverage).
-// A prelude defines exactly one of ACCELVOLUME_BLEND_{MAXIMUM,MINIMUM,ADDITIVE,AVERAGE}.
+// A prelude defines exactly one of ACCELVOLUME_BLEND_{MAXIMUM,MINIMUM,ADDITIVE,AVERAGE},
+// ACCELVOLUME_SLAB_SAMPLES (slice depths per fragment, MIP/MinIP) and
+// ACCELVOLUME_BOUNDARY_FACE (0: proxy slices, 1: cut faces). They are compile-time constants
+// because llvmpipe pays for every branch and loop it cannot resolve while compiling.
 //VTK::Output::Dec
 
 in vec3 indexPosition;
@@ -23,7 +26,6 @@ uniform int clipPlaneCount;
 uniform vec4 clipPlanes[8];        // index space: keep dot(xyz, p) + w >= 0
 uniform float sliceSpacing;        // along the view direction (world units)
 uniform float slicePhase;
-uniform int isBoundaryFace;
 uniform int boundaryRerendering;
 uniform int parallelProjection;
 uniform float additiveScale;       // 1 / unit distance
@@ -92,8 +94,49 @@ void main()
 {
 #if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
   // Order-independent extremes: opaque geometry is handled by the early depth test against
-  // the scene depth attached to the target, so this is one texture fetch per fragment.
+  // the scene depth attached to the target, so a plain slice costs one texture fetch.
+#if ACCELVOLUME_SLAB_SAMPLES <= 1
   gl_FragData[0] = vec4(normalizedScalar(), 1.0, 0.0, 0.0);
+#else
+  // Slab: this fragment also takes the next slabSamples - 1 slice depths along its ray, so
+  // the rasteriser and the blender see a fraction of the fragments. Samples outside the
+  // region or behind geometry are skipped, which keeps the sample set of plain slicing.
+  vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
+  vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
+  float here = dot(eyePosition - rayOrigin, rayDirection);
+  float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+  vec2 interval = regionInterval(rayOrigin, rayDirection);
+  float enter = interval.x - 1.0e-3 * step;
+  float exit = min(interval.y, sceneDistance(rayOrigin, rayDirection)) + 1.0e-3 * step;
+  vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  vec3 textureStep = (mat3(eyeToIndex) * rayDirection) * step / volumeDimensions;
+#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+  float extreme = -1.0;
+#else
+  float extreme = 2.0;
+#endif
+  bool sampled = false;
+  for (int j = 0; j < ACCELVOLUME_SLAB_SAMPLES; ++j)
+  {
+    float t = here + float(j) * step;
+    if (t >= enter && t <= exit)
+    {
+      float value = texture(volumeTexture, textureCoordinate + float(j) * textureStep).r *
+          scalarScale + scalarBias;
+#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+      extreme = max(extreme, value);
+#else
+      extreme = min(extreme, value);
+#endif
+      sampled = true;
+    }
+  }
+  if (!sampled)
+  {
+    discard;
+  }
+  gl_FragData[0] = vec4(extreme, 1.0, 0.0, 0.0);
+#endif
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
@@ -112,7 +155,7 @@ void main()
   bool exitSampled = boundaryRerendering != 0 && boxExit <= geometry;
   bool enterSampled = boundaryRerendering != 0;
   float weight = 0.0;
-  if (isBoundaryFace != 0)
+#if ACCELVOLUME_BOUNDARY_FACE
   {
     // Trapezoid rule: a face sample covers half of the gap to its nearest slice.
     bool isEnter = abs(here - enter) <= abs(here - exit);
@@ -131,7 +174,7 @@ void main()
       weight = isEnter ? 0.5 * (firstSlice - enter) : 0.5 * (exit - lastSlice);
     }
   }
-  else
+#else
   {
     float lower = here - 0.5 * step;
     float upper = here + 0.5 * step;
@@ -145,6 +188,7 @@ void main()
     }
     weight = upper - lower;
   }
+#endif
   weight = max(weight, 0.0);
 #if defined(ACCELVOLUME_BLEND_ADDITIVE)
   gl_FragData[0] = vec4(weight * opacity(value) * value * additiveScale, weight, 0.0, 0.0);

@@ -82,6 +82,35 @@ inline void SetRampProperty(vtkVolumeProperty* property, double low, double high
   property->SetInterpolationTypeToLinear();
 }
 
+// Opaque-ish colours for the low values the minimum runs through (MinIP scenes).
+inline void SetMinimumProperty(vtkVolumeProperty* property)
+{
+  vtkNew<vtkColorTransferFunction> colours;
+  colours->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
+  colours->AddRGBPoint(60.0, 1.0, 0.9, 0.6);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.5);
+  opacity->AddPoint(60.0, 1.0);
+  property->SetColor(colours);
+  property->SetScalarOpacity(opacity);
+}
+
+// Square window without multisampling, camera fitted then turned to an oblique view.
+inline void SetupObliqueView(vtkRenderWindow* window, vtkRenderer* renderer, int size,
+  double azimuth, double elevation, bool perspective)
+{
+  window->SetSize(size, size);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetParallelProjection(perspective ? 0 : 1);
+  camera->Azimuth(azimuth);
+  camera->Elevation(elevation);
+  camera->OrthogonalizeViewUp();
+  renderer->ResetCamera();
+}
+
 // RGB in [0,1] of the window, bottom row first.
 inline std::vector<float> ReadPixels(vtkRenderWindow* window)
 {

@@ -42,15 +42,7 @@ Result Render(int blend, int slices, bool rerender, bool wantReference)
   vtkNew<vtkRenderer> renderer;
   renderer->AddVolume(volume);
   vtkNew<vtkRenderWindow> window;
-  window->SetSize(Size, Size);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->SetParallelProjection(1);
-  renderer->GetActiveCamera()->Azimuth(33);
-  renderer->GetActiveCamera()->Elevation(27);
-  renderer->GetActiveCamera()->OrthogonalizeViewUp();
-  renderer->ResetCamera();
+  SetupObliqueView(window, renderer, Size, 33, 27, false);
   window->Render();
   Result result;
   result.Image = ReadPixels(window);

@@ -35,14 +35,7 @@ bool RunCase(const Case& c)
   if (c.Blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND)
   {
     // The minimum runs through the faint background: map its low values brightly.
-    vtkNew<vtkColorTransferFunction> colours;
-    colours->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
-    colours->AddRGBPoint(60.0, 1.0, 0.9, 0.6);
-    vtkNew<vtkPiecewiseFunction> opacity;
-    opacity->AddPoint(0.0, 0.5);
-    opacity->AddPoint(60.0, 1.0);
-    volume->GetProperty()->SetColor(colours);
-    volume->GetProperty()->SetScalarOpacity(opacity);
+    SetMinimumProperty(volume->GetProperty());
   }
   else if (projection)
   {
@@ -82,16 +75,7 @@ bool RunCase(const Case& c)
   renderer->SetBackground(0, 0, 0);
   renderer->AddVolume(volume);
   vtkNew<vtkRenderWindow> window;
-  window->SetSize(Size, Size);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->ResetCamera();
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetParallelProjection(c.Perspective ? 0 : 1);
-  camera->Azimuth(35);
-  camera->Elevation(25);
-  camera->OrthogonalizeViewUp();
-  renderer->ResetCamera();
+  SetupObliqueView(window, renderer, Size, 35, 25, c.Perspective);
   window->Render();
   const std::vector<float> ours = ReadPixels(window);
   const std::vector<float> reference = RenderReferenceImage(image, volume, renderer, Size, Size, settings);

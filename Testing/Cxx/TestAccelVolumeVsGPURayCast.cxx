@@ -21,14 +21,7 @@ std::vector<float> RenderWith(
   volume->SetMapper(mapper);
   if (blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND)
   {
-    vtkNew<vtkColorTransferFunction> colours;
-    colours->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
-    colours->AddRGBPoint(60.0, 1.0, 0.9, 0.6);
-    vtkNew<vtkPiecewiseFunction> opacity;
-    opacity->AddPoint(0.0, 0.5);
-    opacity->AddPoint(60.0, 1.0);
-    volume->GetProperty()->SetColor(colours);
-    volume->GetProperty()->SetScalarOpacity(opacity);
+    accelvolume_test::SetMinimumProperty(volume->GetProperty());
   }
   else
   {
@@ -37,15 +30,7 @@ std::vector<float> RenderWith(
   vtkNew<vtkRenderer> renderer;
   renderer->AddVolume(volume);
   vtkNew<vtkRenderWindow> window;
-  window->SetSize(Size, Size);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->SetParallelProjection(perspective ? 0 : 1);
-  renderer->GetActiveCamera()->Azimuth(40);
-  renderer->GetActiveCamera()->Elevation(-20);
-  renderer->GetActiveCamera()->OrthogonalizeViewUp();
-  renderer->ResetCamera();
+  accelvolume_test::SetupObliqueView(window, renderer, Size, 40, -20, perspective);
   window->Render();
   return accelvolume_test::ReadPixels(window);
 }

@@ -36,14 +36,7 @@ int TestAccelVolumeXWindow(int, char*[])
     return EXIT_FAILURE;
   }
   std::cout << "window class: " << window->GetClassName() << "\n";
-  window->SetSize(Size, Size);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Azimuth(25);
-  renderer->GetActiveCamera()->Elevation(15);
-  renderer->GetActiveCamera()->OrthogonalizeViewUp();
-  renderer->ResetCamera();
+  SetupObliqueView(window, renderer, Size, 25, 15, true);
   window->Render();
   const std::vector<float> ours = ReadPixels(window);
   ReferenceSettings settings;

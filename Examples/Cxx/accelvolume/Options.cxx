@@ -248,6 +248,15 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         options.boundaryRerender =
           ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
       } },
+    { "--slab-samples",
+      [&](const std::string& f)
+      {
+        options.slabSamples = reader.Integers(f, 1)[0];
+        if (options.slabSamples < 1 || options.slabSamples > 64)
+        {
+          throw Usage("--slab-samples must be between 1 and 64");
+        }
+      } },
     { "--sample-distance",
       [&](const std::string& f)
       {
@@ -449,6 +458,8 @@ std::string RenderHelp()
          "                             VTK mappers get the volume diagonal / N)\n"
          "  --crop X0 X1 Y0 Y1 Z0 Z1   keep this index-space sub-volume (cropping, SubVolume)\n"
          "  --boundary-rerender on|off re-render the cut faces (slice mapper; default on)\n"
+         "  --slab-samples N           MIP/MinIP slice depths sampled per proxy fragment (slice\n"
+         "                             mapper; 1 = classic slicing, the default)\n"
          "\n"
          "View and output:\n"
          "  --size W H                 image size, 1..16384 (default 512 512)\n"

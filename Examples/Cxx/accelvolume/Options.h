@@ -69,6 +69,7 @@ struct Options
   bool haveCrop = false;
   double crop[6] = { 0, 0, 0, 0, 0, 0 }; // index coordinates
   bool boundaryRerender = true;
+  int slabSamples = 0; // 0 = the mapper's default
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

@@ -284,6 +284,10 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
       slice->SetSampleDistance(result.sampleDistance);
       slice->SetNumberOfSlices(options.slices);
       slice->SetBoundaryRerendering(options.boundaryRerender);
+      if (options.slabSamples > 0)
+      {
+        slice->SetSlabSamples(options.slabSamples);
+      }
       slice->SetAdditiveUnitDistance(result.raysumUnit);
       sliceMapper = slice;
       mapper = slice;
@@ -404,6 +408,7 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
     rendererName = sliceMapper->GetOpenGLRenderer();
     result.sampleDistance = sliceMapper->GetLastSliceSpacing();
     result.slices = sliceMapper->GetLastNumberOfSlices();
+    result.slabSamples = sliceMapper->GetSlabSamples();
   }
   else if (headless)
   {

@@ -49,6 +49,7 @@ struct RenderResult
   double sampleDistance = 0;    // world distance between samples / slices actually used
   std::string sampleDistanceSource; // "min-spacing", "flag" or "slices"
   int slices = -1;              // slice mapper's last slice count; -1 for other mappers
+  int slabSamples = -1;         // slice mapper's samples per proxy fragment; -1 for others
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
 };
 

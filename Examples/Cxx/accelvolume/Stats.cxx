@@ -156,6 +156,8 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"sample_distance_source\": " << JsonString(result.sampleDistanceSource) << ",\n"
          << "  \"slices\": " << (result.slices >= 0 ? std::to_string(result.slices) : "null")
          << ",\n"
+         << "  \"slab_samples\": "
+         << (result.slabSamples >= 0 ? std::to_string(result.slabSamples) : "null") << ",\n"
          << "  \"boundary_rerender\": "
          << (options.mapper == MapperKind::Slice ? (options.boundaryRerender ? "true" : "false")
                                                  : "null")

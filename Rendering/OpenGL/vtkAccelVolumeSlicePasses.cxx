@@ -1,0 +1,235 @@
+// The slice mapper's OpenGL passes: accumulate slices and cut faces, then resolve to colour.
+#include "vtkAccelVolumeSlicePasses.h"
+
+#include "vtkAccelVolumeSliceResources.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolumeMapper.h"
+#include "vtk_glew.h"
+
+#include "AccelVolumeResolveFS.h"
+#include "AccelVolumeResolveVS.h"
+#include "AccelVolumeSliceFS.h"
+#include "AccelVolumeSliceVS.h"
+
+#include <string>
+
+namespace
+{
+// The shaders read matrices as GLSL column-major; vtkShaderProgram uploads VTK's row-major
+// elements untransposed, so hand it the transpose.
+void SetMatrixUniform(vtkShaderProgram* program, const char* name, vtkMatrix4x4* matrix)
+{
+  vtkNew<vtkMatrix4x4> transposed;
+  vtkMatrix4x4::Transpose(matrix, transposed);
+  program->SetUniformMatrix(name, transposed);
+}
+
+std::string BlendName(int blendMode)
+{
+  switch (blendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "MAXIMUM";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "MINIMUM";
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return "ADDITIVE";
+    default:
+      return "AVERAGE";
+  }
+}
+
+// Inserts the variant's #defines before the output declarations (after #version).
+std::string ShaderVariant(const char* source, int blendMode, int slabSamples, bool boundaryFace)
+{
+  std::string text = source;
+  const std::string prelude = "#define ACCELVOLUME_BLEND_" + BlendName(blendMode) +
+    "\n#define ACCELVOLUME_SLAB_SAMPLES " + std::to_string(slabSamples) +
+    "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") + "\n";
+  const size_t at = text.find("//VTK::Output::Dec");
+  text.insert(at == std::string::npos ? 0 : at, prelude);
+  return text;
+}
+
+void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  program->SetUniformi("volumeTexture", resources.VolumeTexture->GetTextureUnit());
+  program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
+  program->SetUniformi("sceneDepth", resources.SceneDepth->GetTextureUnit());
+  program->SetUniform3f("volumeDimensions", frame.Dimensions);
+  program->SetUniformf("scalarScale", resources.ScalarScale);
+  program->SetUniformf("scalarBias", resources.ScalarBias);
+  program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
+  SetMatrixUniform(program, "indexToClip", frame.IndexToClip);
+  SetMatrixUniform(program, "indexToEye", frame.IndexToEye);
+  SetMatrixUniform(program, "eyeToIndex", frame.EyeToIndex);
+  SetMatrixUniform(program, "inverseProjection", frame.InverseProjection);
+  const float viewport[2] = { static_cast<float>(frame.Width), static_cast<float>(frame.Height) };
+  program->SetUniform2f("viewportSize", viewport);
+  program->SetUniformi("clipPlaneCount", frame.ClipPlaneCount);
+  program->SetUniform4fv("clipPlanes", vtkAccelVolumeSliceFrame::MaximumClipPlanes, frame.ClipPlanes);
+  program->SetUniformf("sliceSpacing", frame.SliceSpacing);
+  program->SetUniformf("slicePhase", frame.SlicePhase);
+  program->SetUniformi("boundaryRerendering", frame.BoundaryRerendering ? 1 : 0);
+  program->SetUniformi("parallelProjection", frame.Parallel ? 1 : 0);
+  program->SetUniformf("additiveScale", frame.AdditiveScale);
+  program->SetUniform2f("averageRange", frame.AverageRange);
+}
+
+// Draws every cell's slices (faces == false) or cut faces (faces == true) with one program.
+bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, bool faces)
+{
+  const std::string fragment =
+    ShaderVariant(AccelVolumeSliceFS, frame.BlendMode, faces ? 1 : frame.SlabSamples, faces);
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeSliceVS, fragment.c_str(), "");
+  if (!program)
+  {
+    return false;
+  }
+  // The vertex layout is bound per program (slices and faces use different variants).
+  resources.SliceArray->ShaderProgramChanged();
+  resources.SliceArray->Bind();
+  resources.SliceArray->AddAttributeArray(
+    program, resources.VertexBuffer, "vertexIndex", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
+  SetFrameUniforms(program, resources, frame);
+  for (const vtkAccelVolumeSliceFrame::Cell& cell : frame.Cells)
+  {
+    const int first = faces ? cell.FaceFirst : cell.SliceFirst;
+    const int count = faces ? cell.FaceCount : cell.SliceCount;
+    if (count > 0)
+    {
+      program->SetUniform3f("regionLower", cell.Lower.data());
+      program->SetUniform3f("regionUpper", cell.Upper.data());
+      glDrawArrays(GL_TRIANGLES, first, count);
+    }
+  }
+  resources.SliceArray->Release();
+  return true;
+}
+
+// Pass 1: MAX / MIN / additive blending of one value per fragment into the float target.
+bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  vtkOpenGLState* state = window->GetState();
+  resources.Framebuffer->SaveCurrentBindingsAndBuffers();
+  resources.Framebuffer->Bind();
+  resources.Framebuffer->ActivateDrawBuffer(0);
+  state->vtkglViewport(0, 0, frame.Width, frame.Height);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  // The scene depth is the target's depth buffer: fragments behind opaque geometry fail early.
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_LESS);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  const bool maximum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
+  const bool minimum = frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  // Cleared to values no sample reaches, so the resolve pass can tell uncovered pixels.
+  if (maximum)
+  {
+    state->vtkglClearColor(-1.0f, 0.0f, 0.0f, 0.0f);
+  }
+  else if (minimum)
+  {
+    state->vtkglClearColor(2.0f, 2.0f, 0.0f, 0.0f);
+  }
+  else
+  {
+    state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  }
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendEquation(maximum ? GL_MAX : (minimum ? GL_MIN : GL_FUNC_ADD));
+  state->vtkglBlendFunc(GL_ONE, GL_ONE);
+
+  resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
+  resources.VolumeTexture->Activate();
+  resources.TransferTable->Activate();
+  resources.SceneDepth->Activate();
+  // Slices then faces: every blend here is order-independent.
+  bool ok = DrawCells(window, resources, frame, false);
+  if (ok && frame.BoundaryRerendering)
+  {
+    ok = DrawCells(window, resources, frame, true);
+  }
+  resources.VolumeTexture->Deactivate();
+  resources.TransferTable->Deactivate();
+  resources.SceneDepth->Deactivate();
+  resources.Framebuffer->RestorePreviousBindingsAndBuffers();
+  return ok;
+}
+
+// Pass 2: colour the accumulated value as VTK's GPU ray caster does and blend it
+// (premultiplied) over the scene.
+bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  vtkOpenGLState* state = window->GetState();
+  state->vtkglViewport(frame.LowerLeft[0], frame.LowerLeft[1], frame.Width, frame.Height);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglBlendEquation(GL_FUNC_ADD);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  const std::string fragment = ShaderVariant(AccelVolumeResolveFS, frame.BlendMode, 1, false);
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, fragment.c_str(), "");
+  if (!program)
+  {
+    return false;
+  }
+  resources.Accumulation->Activate();
+  resources.TransferTable->Activate();
+  program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
+  program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
+  program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
+  const float origin[2] = { static_cast<float>(frame.LowerLeft[0]),
+    static_cast<float>(frame.LowerLeft[1]) };
+  program->SetUniform2f("viewportOrigin", origin);
+  resources.ResolveArray->Bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  resources.ResolveArray->Release();
+  resources.Accumulation->Deactivate();
+  resources.TransferTable->Deactivate();
+  return true;
+}
+}
+
+bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame)
+{
+  if (frame.Cells.empty())
+  {
+    return true; // everything cropped or clipped away
+  }
+  vtkOpenGLState* state = window->GetState();
+  state->Push();
+  state->PushFramebufferBindings();
+  // Extremes need one float channel (less blending traffic); sums also need their weight.
+  const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+    frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, extremum ? 1 : 2);
+  if (ok)
+  {
+    // Opaque geometry drawn so far limits the rays.
+    resources.SceneDepth->Activate();
+    resources.SceneDepth->CopyFromFrameBuffer(
+      frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.Width, frame.Height);
+    resources.SceneDepth->Deactivate();
+    ok = Accumulate(window, resources, frame) && Resolve(window, resources, frame);
+  }
+  state->PopFramebufferBindings();
+  state->Pop();
+  return ok;
+}

@@ -1,0 +1,61 @@
+/**
+ * @file    vtkAccelVolumeSlicePasses.h
+ * @brief   The two OpenGL passes of vtkAccelVolumeSliceMapper (private to the module):
+ *          accumulate the proxy slices and cut faces into the float target, then resolve
+ *          the accumulated values into colours over the scene.
+ */
+#ifndef vtkAccelVolumeSlicePasses_h
+#define vtkAccelVolumeSlicePasses_h
+
+#include <array>
+#include <vector>
+
+class vtkAccelVolumeSliceResources;
+class vtkMatrix4x4;
+class vtkOpenGLRenderWindow;
+
+// Everything one frame's passes need, computed by the mapper.
+struct vtkAccelVolumeSliceFrame
+{
+  // A convex cell of the cropped volume: its index-space box and its vertex ranges.
+  struct Cell
+  {
+    std::array<float, 3> Lower;
+    std::array<float, 3> Upper;
+    int SliceFirst = 0;
+    int SliceCount = 0;
+    int FaceFirst = 0;
+    int FaceCount = 0;
+  };
+  static constexpr int MaximumClipPlanes = 8;
+
+  int BlendMode = 0; // vtkVolumeMapper blend mode (MIP, MinIP, additive, average)
+  int SlabSamples = 1;
+  int Width = 0;
+  int Height = 0;
+  int LowerLeft[2] = { 0, 0 };
+  float Dimensions[3] = { 1, 1, 1 };
+  vtkMatrix4x4* IndexToClip = nullptr;
+  vtkMatrix4x4* IndexToEye = nullptr;
+  vtkMatrix4x4* EyeToIndex = nullptr;
+  vtkMatrix4x4* InverseProjection = nullptr;
+  int ClipPlaneCount = 0;
+  float ClipPlanes[MaximumClipPlanes][4] = {};
+  float SliceSpacing = 1;
+  float SlicePhase = 0;
+  bool BoundaryRerendering = true;
+  bool Parallel = false;
+  float AdditiveScale = 1;
+  float AverageRange[2] = { 0, 1 };
+  std::vector<Cell> Cells;
+  const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles
+};
+
+/**
+ * Runs both passes inside a saved/restored OpenGL state. Returns false when a shader did not
+ * compile or the targets could not be allocated (the scene is left untouched then).
+ */
+bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame);
+
+#endif
