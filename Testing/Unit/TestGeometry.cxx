@@ -1,4 +1,5 @@
 // TestGeometry: checks slice proxy geometry against brute-force estimates.
+#include "RandomGeometry.h"
 #include "accelvolume/Geometry.h"
 
 #include <gtest/gtest.h>
@@ -14,29 +15,10 @@ using namespace accelvolume;
 constexpr double OnPlaneTolerance = 1e-9;
 constexpr double Pi = 3.14159265358979323846;
 
-double Uniform(std::mt19937& random, double low, double high)
-{
-  return std::uniform_real_distribution<double>(low, high)(random);
-}
-
-Vec3 RandomPoint(std::mt19937& random, const Box& box)
-{
-  return { Uniform(random, box.lower.x, box.upper.x), Uniform(random, box.lower.y, box.upper.y),
-    Uniform(random, box.lower.z, box.upper.z) };
-}
-
-Vec3 RandomUnit(std::mt19937& random)
-{
-  std::normal_distribution<double> normal;
-  return Normalize({ normal(random), normal(random), normal(random) });
-}
-
-Box RandomBox(std::mt19937& random)
-{
-  const Vec3 lower{ Uniform(random, -5, 5), Uniform(random, -5, 5), Uniform(random, -5, 5) };
-  return { lower,
-    lower + Vec3{ Uniform(random, 0.2, 4), Uniform(random, 0.2, 4), Uniform(random, 0.2, 4) } };
-}
+using accelvolume_test::RandomBox;
+using accelvolume_test::RandomPoint;
+using accelvolume_test::RandomUnit;
+using accelvolume_test::Uniform;
 
 // A half-space whose plane passes through a random point of the box.
 HalfSpace RandomHalfSpace(std::mt19937& random, const Box& box)

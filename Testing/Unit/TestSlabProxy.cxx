@@ -1,4 +1,5 @@
 // TestSlabProxy: checks slab proxy polygons for coverage and tightness by brute force.
+#include "RandomGeometry.h"
 #include "accelvolume/SlabProxy.h"
 
 #include <gtest/gtest.h>
@@ -13,29 +14,10 @@ using namespace accelvolume;
 
 constexpr double Tolerance = 1e-9;
 
-double Uniform(std::mt19937& random, double low, double high)
-{
-  return std::uniform_real_distribution<double>(low, high)(random);
-}
-
-Vec3 RandomPoint(std::mt19937& random, const Box& box)
-{
-  return { Uniform(random, box.lower.x, box.upper.x), Uniform(random, box.lower.y, box.upper.y),
-    Uniform(random, box.lower.z, box.upper.z) };
-}
-
-Vec3 RandomUnit(std::mt19937& random)
-{
-  std::normal_distribution<double> normal;
-  return Normalize({ normal(random), normal(random), normal(random) });
-}
-
-Box RandomBox(std::mt19937& random)
-{
-  const Vec3 lower{ Uniform(random, -5, 5), Uniform(random, -5, 5), Uniform(random, -5, 5) };
-  return { lower,
-    lower + Vec3{ Uniform(random, 0.2, 4), Uniform(random, 0.2, 4), Uniform(random, 0.2, 4) } };
-}
+using accelvolume_test::RandomBox;
+using accelvolume_test::RandomPoint;
+using accelvolume_test::RandomUnit;
+using accelvolume_test::Uniform;
 
 std::vector<HalfSpace> RandomClip(std::mt19937& random, const Box& box)
 {

@@ -275,6 +275,30 @@ std::vector<Polygon> ComputeRegionBoundaryFaces(
   return faces;
 }
 
+void SampleIndexRange(double minimumDepth, double maximumDepth, double phase, double spacing,
+  long long& first, long long& last)
+{
+  first = static_cast<long long>(std::floor((minimumDepth - phase) / spacing)) + 1;
+  last = static_cast<long long>(std::ceil((maximumDepth - phase) / spacing)) - 1;
+  // Rounding in the divisions may land one step off the strict range.
+  while (phase + (first - 1) * spacing > minimumDepth)
+  {
+    --first;
+  }
+  while (phase + first * spacing <= minimumDepth)
+  {
+    ++first;
+  }
+  while (phase + (last + 1) * spacing < maximumDepth)
+  {
+    ++last;
+  }
+  while (phase + last * spacing >= maximumDepth)
+  {
+    --last;
+  }
+}
+
 SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpace>& clip,
   const Vec3& depthGradient, double depthOffset, double spacing, double phase, SliceOrder order)
 {
@@ -298,25 +322,9 @@ SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpa
   {
     return stack;
   }
-  long long first = static_cast<long long>(std::floor((minimumDepth - phase) / spacing)) + 1;
-  long long last = static_cast<long long>(std::ceil((maximumDepth - phase) / spacing)) - 1;
-  // Rounding in the divisions may land one step off the strict range.
-  while (phase + (first - 1) * spacing > minimumDepth)
-  {
-    --first;
-  }
-  while (phase + first * spacing <= minimumDepth)
-  {
-    ++first;
-  }
-  while (phase + (last + 1) * spacing < maximumDepth)
-  {
-    ++last;
-  }
-  while (phase + last * spacing >= maximumDepth)
-  {
-    --last;
-  }
+  long long first = 0;
+  long long last = -1;
+  SampleIndexRange(minimumDepth, maximumDepth, phase, spacing, first, last);
   for (long long k = first; k <= last; ++k)
   {
     const double depth = phase + static_cast<double>(k) * spacing;

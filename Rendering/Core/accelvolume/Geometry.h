@@ -114,6 +114,11 @@ enum class SliceOrder
 // where depth decreases). A region without volume (a flat box, or clip planes leaving only a
 // plane) gives no slices: callers wanting such data drawn should pad the box, e.g. by half a voxel
 // to the texture extent. Spacing <= 0 or a zero gradient gives no slices.
+// Integer range [first, last] of the sample depths phase + k * spacing lying strictly inside
+// (minimumDepth, maximumDepth), robust to rounding; first > last when there is none.
+void SampleIndexRange(double minimumDepth, double maximumDepth, double phase, double spacing,
+  long long& first, long long& last);
+
 SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpace>& clip,
   const Vec3& depthGradient, double depthOffset, double spacing, double phase, SliceOrder order);
 

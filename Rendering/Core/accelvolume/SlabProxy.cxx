@@ -239,24 +239,9 @@ SlabStack ComputeSlabProxyPolygons(const Box& region, const std::vector<HalfSpac
   }
   // Sample indices strictly inside the depth range, fixed up exactly as ComputeViewAlignedSlices
   // does so that both pick the same samples.
-  long long first = static_cast<long long>(std::floor((minimumDepth - phase) / spacing)) + 1;
-  long long last = static_cast<long long>(std::ceil((maximumDepth - phase) / spacing)) - 1;
-  while (phase + (first - 1) * spacing > minimumDepth)
-  {
-    --first;
-  }
-  while (phase + first * spacing <= minimumDepth)
-  {
-    ++first;
-  }
-  while (phase + (last + 1) * spacing < maximumDepth)
-  {
-    ++last;
-  }
-  while (phase + last * spacing >= maximumDepth)
-  {
-    --last;
-  }
+  long long first = 0;
+  long long last = -1;
+  SampleIndexRange(minimumDepth, maximumDepth, phase, spacing, first, last);
   if (first > last)
   {
     return stack;
