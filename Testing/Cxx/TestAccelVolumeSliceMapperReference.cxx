@@ -15,6 +15,7 @@ struct Case
   bool Perspective;
   bool Crop;
   bool Clip;
+  bool Oriented = false; // origin, direction matrix and a rotated, moved vtkVolume
 };
 
 bool RunCase(const Case& c)
@@ -32,6 +33,14 @@ bool RunCase(const Case& c)
   mapper->SetAdditiveUnitDistance(10.0);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
+  if (c.Oriented)
+  {
+    image->SetOrigin(-7.0, 3.0, 11.0);
+    image->SetDirectionMatrix(0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+    volume->RotateX(25);
+    volume->RotateZ(-40);
+    volume->SetPosition(4, -2, 9);
+  }
   if (c.Blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND)
   {
     // The minimum runs through the faint background: map its low values brightly.
@@ -105,6 +114,8 @@ int TestAccelVolumeSliceMapperReference(int, char*[])
     { "raysum perspective crop clip", vtkVolumeMapper::ADDITIVE_BLEND, true, true, true },
     { "average parallel crop", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, false, true, false },
     { "average perspective", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, true, false, false },
+    { "MIP oriented volume", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, true, false, false, true },
+    { "raysum oriented volume", vtkVolumeMapper::ADDITIVE_BLEND, false, false, false, true },
   };
   bool ok = true;
   for (const Case& c : cases)
