@@ -3,11 +3,11 @@
 //
 // For each dataset: MIP of a cropped sub-volume (20%..80% of every axis by default) seen
 // obliquely, rendered headless, with
-//   (a) vtkAccelVolumeSliceMapper, 1 slice per smallest voxel spacing (AutoAdjust on), re-rendering off
-//   (b) the same with boundary re-rendering on (the paper's method)
-//   (c) 1.5x slices, re-rendering off       (d) 2x slices, re-rendering off
-//   (e) vtkGPUVolumeRayCastMapper, same cropping, sample distance = smallest spacing
-//   (ref) 8x slices with re-rendering on: the "truth" the aliasing error is measured against.
+//   (a) vtkAccelVolumeSliceMapper, 1 slice per smallest voxel spacing (AutoAdjust on), re-rendering
+//   off (b) the same with boundary re-rendering on (the paper's method) (c) 1.5x slices,
+//   re-rendering off       (d) 2x slices, re-rendering off (e) vtkGPUVolumeRayCastMapper, same
+//   cropping, sample distance = smallest spacing (ref) 8x slices with re-rendering on: the "truth"
+//   the aliasing error is measured against.
 // Timing: a warm-up frame, then N frames each turning the camera 1 degree in azimuth; each
 // frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
@@ -73,7 +73,7 @@ struct Options
   std::string Images;
   double CropLow = 0.2;
   double CropHigh = 0.8;
-  double BandRadius = 2.5;    // pixels either side of the projected crop-box outline
+  double BandRadius = 2.5;     // pixels either side of the projected crop-box outline
   double AboveThreshold = 2.0; // grey levels: "visibly different" pixel
   double Zoom = 1.0;           // after fitting the camera to the crop box
   bool HaveWindow = false;     // --window overrides the per-dataset transfer-function window
@@ -151,7 +151,8 @@ struct ConfigResult
   double MedianMs() const { return Median(this->FrameMs); }
   double MinMs() const
   {
-    return this->FrameMs.empty() ? 0.0 : *std::min_element(this->FrameMs.begin(), this->FrameMs.end());
+    return this->FrameMs.empty() ? 0.0
+                                 : *std::min_element(this->FrameMs.begin(), this->FrameMs.end());
   }
   // Median over the interleaved rounds of (this frame / the other's frame of the same round):
   // robust to load changes on a shared machine.
@@ -210,7 +211,8 @@ bool ParseArguments(int argc, char* argv[], Options& options)
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    auto need = [&](int count) {
+    auto need = [&](int count)
+    {
       if (i + count >= argc)
       {
         std::cerr << "missing value after " << arg << "\n";
@@ -306,8 +308,8 @@ bool ParseArguments(int argc, char* argv[], Options& options)
 // NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder.
 std::string FindDatasetFile(const std::string& dataDir, const std::string& name)
 {
-  const std::regex pattern(
-    "^" + std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+  const std::regex pattern("^" +
+    std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
     R"(_\d+x\d+x\d+_[A-Za-z0-9]+\.raw(\.gz)?$)");
   std::error_code ec;
   std::vector<std::string> matches;
@@ -447,9 +449,9 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
             << ", loaded in " << Num(result.LoadSeconds, 2) << " s)\n"
             << "    TF window " << tf.Low << ".." << tf.High
             << " (grey ramp, linear opacity ramp 0..1), crop box " << options.CropLow * 100 << "%.."
-            << options.CropHigh * 100 << "% of each axis = [" << cropBounds[0] << "," << cropBounds[1]
-            << "]x[" << cropBounds[2] << "," << cropBounds[3] << "]x[" << cropBounds[4] << ","
-            << cropBounds[5] << "]\n"
+            << options.CropHigh * 100 << "% of each axis = [" << cropBounds[0] << ","
+            << cropBounds[1] << "]x[" << cropBounds[2] << "," << cropBounds[3] << "]x["
+            << cropBounds[4] << "," << cropBounds[5] << "]\n"
             << std::flush;
 
   // Scene: one renderer, two volumes sharing the property (one visible at a time).
@@ -514,7 +516,8 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
     saved->DeepCopy(camera);
     viewCameras.push_back(saved);
   }
-  auto setView = [&](size_t v) {
+  auto setView = [&](size_t v)
+  {
     renderer->GetActiveCamera()->DeepCopy(viewCameras[v]);
     renderer->ResetCameraClippingRange();
   };
@@ -546,7 +549,8 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
   const int cx = width / 2;
   const int cy = height / 2;
   vtkNew<vtkUnsignedCharArray> onePixel;
-  auto apply = [&](const Config& cfg) {
+  auto apply = [&](const Config& cfg)
+  {
     sliceVolume->SetVisibility(!cfg.Gpu);
     gpuVolume->SetVisibility(cfg.Gpu);
     if (!cfg.Gpu)
@@ -556,7 +560,8 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
       slice->SetSampleDistance(result.MinSpacing / cfg.SliceFactor);
     }
   };
-  auto renderAndWait = [&]() {
+  auto renderAndWait = [&]()
+  {
     window->Render();
     static_cast<vtkRenderWindow*>(window)->GetPixelData(cx, cy, cx, cy, 0, onePixel.Get());
   };
@@ -681,13 +686,13 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
     {
       for (size_t v = 0; v < viewCameras.size(); ++v)
       {
-        const std::string stem =
-          options.Images + "/" + name + "_" + Views[v].Name + "_" + r.Cfg.Id;
+        const std::string stem = options.Images + "/" + name + "_" + Views[v].Name + "_" + r.Cfg.Id;
         bool ok = WritePng(stem + ".png", r.Images[v], width, height);
         if (!r.Cfg.Reference)
         {
-          ok = WritePng(stem + "_diff_x8.png", DifferenceImage(reference.Images[v], r.Images[v], 8.0),
-                 width, height) && ok;
+          ok = WritePng(stem + "_diff_x8.png",
+                 DifferenceImage(reference.Images[v], r.Images[v], 8.0), width, height) &&
+            ok;
         }
         if (!ok)
         {
@@ -695,8 +700,9 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
         }
       }
     }
-    std::cout << "    images written to " << options.Images << "/" << name
-              << "_<view>_<config>.png (+ _diff_x8.png: |config - ref| x8, red = darker than ref)\n";
+    std::cout
+      << "    images written to " << options.Images << "/" << name
+      << "_<view>_<config>.png (+ _diff_x8.png: |config - ref| x8, red = darker than ref)\n";
   }
 
   window->RemoveRenderer(renderer);
@@ -718,7 +724,8 @@ void PrintTable(const DatasetResult& d)
     doubled = r.Cfg.Id == "d" ? &r : doubled;
     oneAndHalf = r.Cfg.Id == "c" ? &r : oneAndHalf;
   }
-  std::cout << "\n" << d.Name << " (" << d.Description << "), MIP, errors in grey levels (0..255) vs ref,"
+  std::cout << "\n"
+            << d.Name << " (" << d.Description << "), MIP, errors in grey levels (0..255) vs ref,"
             << " pooled over 2 views; pixels: footprint " << d.FootprintPixels[0] << "+"
             << d.FootprintPixels[1] << ", band " << d.BandPixels[0] << "+" << d.BandPixels[1]
             << ", cut-face " << d.FacePixels[0] << "+" << d.FacePixels[1] << "\n";
@@ -727,12 +734,13 @@ void PrintTable(const DatasetResult& d)
             << std::setw(8) << "min ms" << std::setw(7) << "time x" << std::setw(7) << "RMS"
             << std::setw(5) << "max" << std::setw(7) << "err x" << std::setw(8) << ">2lv%"
             << std::setw(8) << "bandRMS" << std::setw(6) << "bmax" << std::setw(7) << "band x"
-            << std::setw(8) << "faceRMS" << std::setw(7) << "face x" << "\n";
+            << std::setw(8) << "faceRMS" << std::setw(7) << "face x"
+            << "\n";
   for (const ConfigResult& r : d.Results)
   {
     const double ms = r.MedianMs();
-    std::cout << std::left << std::setw(5) << r.Cfg.Id << std::setw(35) << r.Cfg.Label
-              << std::right << std::setw(7) << (r.Cfg.Gpu ? std::string("-") : std::to_string(r.Slices))
+    std::cout << std::left << std::setw(5) << r.Cfg.Id << std::setw(35) << r.Cfg.Label << std::right
+              << std::setw(7) << (r.Cfg.Gpu ? std::string("-") : std::to_string(r.Slices))
               << std::setw(10) << Num(ms, 1) << std::setw(7) << Num(1000.0 / ms, 2) << std::setw(8)
               << Num(r.MinMs(), 1) << std::setw(7) << Num(r.PairedRatio(*base), 2) << std::setw(7)
               << Num(r.FootprintAll.Rms(), 2) << std::setw(5) << Num(r.FootprintAll.Max, 0)
@@ -747,13 +755,14 @@ void PrintTable(const DatasetResult& d)
   std::cout << "  re-rendering overhead: " << Num(overhead, 1)
             << "% of frame time (median of per-round b/a; from medians "
             << Num(100.0 * (rerender->MedianMs() / base->MedianMs() - 1.0), 1) << "%, from minima "
-            << Num(100.0 * (rerender->MinMs() / base->MinMs() - 1.0), 1) << "%); paper: "
-            << Num(100.0 * (150.81 / 149.83 - 1.0), 1) << "%\n";
+            << Num(100.0 * (rerender->MinMs() / base->MinMs() - 1.0), 1)
+            << "%); paper: " << Num(100.0 * (150.81 / 149.83 - 1.0), 1) << "%\n";
   std::cout << "  1.5x slices: " << Num(100.0 * (oneAndHalf->PairedRatio(*base) - 1.0), 1)
             << "% more time, 2x slices: " << Num(100.0 * (doubled->PairedRatio(*base) - 1.0), 1)
             << "% more (paper: 400 vs 256 slices +" << Num(100.0 * (150.81 / 97.24 - 1.0), 1)
             << "%, 512 vs 256 +" << Num(100.0 * (150.81 / 73.85 - 1.0), 1) << "%)\n";
-  auto verdict = [&](const char* what, const ErrorStats& b, const ErrorStats& dd) {
+  auto verdict = [&](const char* what, const ErrorStats& b, const ErrorStats& dd)
+  {
     std::cout << (b.Rms() < dd.Rms() ? "holds" : "DOES NOT hold") << " " << what << " (b "
               << Num(b.Rms(), 2) << " vs d " << Num(dd.Rms(), 2) << ")";
   };
@@ -779,19 +788,21 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
   out << "  \"gl_backend\": \"" << JsonEscape(backend) << "\",\n";
   out << "  \"gl_renderer\": \"" << JsonEscape(renderer) << "\",\n";
   out << "  \"size\": [" << options.Width << ", " << options.Height << "],\n";
-  out << "  \"frames\": " << options.Frames << ",\n  \"reference_frames\": "
-      << options.ReferenceFrames << ",\n";
+  out << "  \"frames\": " << options.Frames
+      << ",\n  \"reference_frames\": " << options.ReferenceFrames << ",\n";
   out << "  \"crop_fraction\": [" << options.CropLow << ", " << options.CropHigh << "],\n";
   out << "  \"band_radius_px\": " << options.BandRadius << ",\n";
   out << "  \"above_threshold_grey_levels\": " << options.AboveThreshold << ",\n";
   out << "  \"views\": [";
   for (size_t v = 0; v < std::size(Views); ++v)
   {
-    out << (v ? ", " : "") << "{\"name\": \"" << Views[v].Name << "\", \"azimuth\": "
-        << Views[v].Azimuth << ", \"elevation\": " << Views[v].Elevation << "}";
+    out << (v ? ", " : "") << "{\"name\": \"" << Views[v].Name
+        << "\", \"azimuth\": " << Views[v].Azimuth << ", \"elevation\": " << Views[v].Elevation
+        << "}";
   }
   out << "],\n";
-  out << "  \"error_units\": \"grey levels 0..255 (mean of R,G,B) vs the 8x re-rendered slice reference\",\n";
+  out << "  \"error_units\": \"grey levels 0..255 (mean of R,G,B) vs the 8x re-rendered slice "
+         "reference\",\n";
   out << "  \"paper_table2_fps\": {\"rerender_256\": 149.83, \"plain_256\": 150.81, "
          "\"plain_400\": 97.24, \"plain_512\": 73.85},\n";
   out << "  \"datasets\": [\n";
@@ -833,7 +844,8 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
     {
       const ConfigResult& r = d.Results[k];
       out << "        {\"id\": \"" << r.Cfg.Id << "\", \"label\": \"" << JsonEscape(r.Cfg.Label)
-          << "\", \"mapper\": \"" << (r.Cfg.Gpu ? "vtkGPUVolumeRayCastMapper" : "vtkAccelVolumeSliceMapper")
+          << "\", \"mapper\": \""
+          << (r.Cfg.Gpu ? "vtkGPUVolumeRayCastMapper" : "vtkAccelVolumeSliceMapper")
           << "\", \"boundary_rerendering\": " << (r.Cfg.Rerender ? "true" : "false")
           << ", \"slice_factor\": " << r.Cfg.SliceFactor
           << ", \"auto_adjust\": " << (r.Cfg.AutoAdjust ? "true" : "false");
@@ -842,8 +854,8 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
         out << ", \"slices\": " << r.Slices << ", \"boundary_faces\": " << r.Faces
             << ", \"slice_spacing\": " << Num(r.SliceSpacing, 5);
       }
-      out << ",\n         \"median_ms\": " << Num(r.MedianMs(), 3) << ", \"fps\": "
-          << Num(1000.0 / r.MedianMs(), 3) << ", \"min_ms\": " << Num(r.MinMs(), 3)
+      out << ",\n         \"median_ms\": " << Num(r.MedianMs(), 3)
+          << ", \"fps\": " << Num(1000.0 / r.MedianMs(), 3) << ", \"min_ms\": " << Num(r.MinMs(), 3)
           << ", \"time_ratio_vs_a\": " << Num(r.PairedRatio(*base), 4)
           << ", \"median_ratio_vs_a\": " << Num(r.MedianMs() / base->MedianMs(), 4);
       if (!r.Cfg.Gpu)
@@ -856,20 +868,22 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
         out << (f ? ", " : "") << Num(r.FrameMs[f], 2);
       }
       out << "],\n         \"rms_error\": " << Num(r.FootprintAll.Rms(), 4)
-          << ", \"max_error\": " << Num(r.FootprintAll.Max, 2)
-          << ", \"error_ratio_vs_a\": " << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 4)
+          << ", \"max_error\": " << Num(r.FootprintAll.Max, 2) << ", \"error_ratio_vs_a\": "
+          << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 4)
           << ", \"above_threshold_fraction\": " << Num(r.FootprintAll.AboveFraction(), 5)
           << ", \"band_rms_error\": " << Num(r.BandAll.Rms(), 4)
-          << ", \"band_max_error\": " << Num(r.BandAll.Max, 2)
-          << ", \"band_error_ratio_vs_a\": " << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 4)
+          << ", \"band_max_error\": " << Num(r.BandAll.Max, 2) << ", \"band_error_ratio_vs_a\": "
+          << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 4)
           << ", \"cut_face_rms_error\": " << Num(r.FaceAll.Rms(), 4)
           << ", \"cut_face_max_error\": " << Num(r.FaceAll.Max, 2)
-          << ", \"cut_face_error_ratio_vs_a\": " << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 4)
+          << ", \"cut_face_error_ratio_vs_a\": "
+          << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 4)
           << ",\n         \"per_view\": [";
       for (size_t v = 0; v < r.Footprint.size(); ++v)
       {
-        out << (v ? ", " : "") << "{\"view\": \"" << Views[v].Name << "\", \"rms_error\": "
-            << Num(r.Footprint[v].Rms(), 4) << ", \"max_error\": " << Num(r.Footprint[v].Max, 2)
+        out << (v ? ", " : "") << "{\"view\": \"" << Views[v].Name
+            << "\", \"rms_error\": " << Num(r.Footprint[v].Rms(), 4)
+            << ", \"max_error\": " << Num(r.Footprint[v].Max, 2)
             << ", \"above_threshold_fraction\": " << Num(r.Footprint[v].AboveFraction(), 5)
             << ", \"band_rms_error\": " << Num(r.Band[v].Rms(), 4)
             << ", \"band_max_error\": " << Num(r.Band[v].Max, 2)
@@ -912,32 +926,32 @@ int main(int argc, char* argv[])
   const std::string backendName =
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
 
-  std::cout << "accelvolume_benchmark_cropping: paper 004 Table 2 (MIP of a cropped volume, "
-               "boundary re-rendering vs more slices)\n"
-            << "settings: " << options.Width << "x" << options.Height << ", MultiSamples 0, GL "
-            << backendName << " (" << rendererName << "), " << options.Frames
-            << " timed frames per config (reference: "
-            << std::min(options.ReferenceFrames, options.Frames)
-            << "), after one warm-up frame per config; frames interleaved across configs, camera "
-               "turned 1 deg azimuth per round; time = Render() + 1x1 read-back, median;\n"
-               "  'time x' = median over rounds of (config / (a)) in the same round (robust to load "
-               "from other processes)\n"
-            << "views: " << Views[0].Name << " (timed sequence starts here) and " << Views[1].Name
-            << "; camera fitted to the crop box, zoom " << options.Zoom << "\n"
-            << "data: " << options.DataDir << "\n"
-            << "error: grey levels (0..255) against ref = slice mapper, 8x slices, re-rendering on.\n"
-               "  RMS / max over the footprint = pixels inside the projected crop box OR non-black "
-               "in ref;\n"
-               "  band = pixels within "
-            << options.BandRadius
-            << " px of the projected crop-box outline (where slices clipped to the box leave "
-               "staircase edges);\n"
-               "  cut-face = pixels where re-rendering the faces changes the 1x image ((a) vs (b)) by > "
-            << options.AboveThreshold
-            << " grey levels: the boundary layer holds the maximum there;\n"
-               "  >2lv% = share of footprint pixels off by more than "
-            << options.AboveThreshold << " grey levels; 'x' columns are ratios to config (a).\n"
-            << std::flush;
+  std::cout
+    << "accelvolume_benchmark_cropping: paper 004 Table 2 (MIP of a cropped volume, "
+       "boundary re-rendering vs more slices)\n"
+    << "settings: " << options.Width << "x" << options.Height << ", MultiSamples 0, GL "
+    << backendName << " (" << rendererName << "), " << options.Frames
+    << " timed frames per config (reference: " << std::min(options.ReferenceFrames, options.Frames)
+    << "), after one warm-up frame per config; frames interleaved across configs, camera "
+       "turned 1 deg azimuth per round; time = Render() + 1x1 read-back, median;\n"
+       "  'time x' = median over rounds of (config / (a)) in the same round (robust to load "
+       "from other processes)\n"
+    << "views: " << Views[0].Name << " (timed sequence starts here) and " << Views[1].Name
+    << "; camera fitted to the crop box, zoom " << options.Zoom << "\n"
+    << "data: " << options.DataDir << "\n"
+    << "error: grey levels (0..255) against ref = slice mapper, 8x slices, re-rendering on.\n"
+       "  RMS / max over the footprint = pixels inside the projected crop box OR non-black "
+       "in ref;\n"
+       "  band = pixels within "
+    << options.BandRadius
+    << " px of the projected crop-box outline (where slices clipped to the box leave "
+       "staircase edges);\n"
+       "  cut-face = pixels where re-rendering the faces changes the 1x image ((a) vs (b)) by > "
+    << options.AboveThreshold
+    << " grey levels: the boundary layer holds the maximum there;\n"
+       "  >2lv% = share of footprint pixels off by more than "
+    << options.AboveThreshold << " grey levels; 'x' columns are ratios to config (a).\n"
+    << std::flush;
 
   std::vector<DatasetResult> datasets;
   bool ok = true;
@@ -962,7 +976,8 @@ int main(int argc, char* argv[])
                "149.83, plain 256 150.81, 400 97.24, 512 73.85\n";
   WriteJson(options, rendererName, backendName, datasets);
   std::cout << "results written to " << options.Json << "; total "
-            << Num(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1)
+            << Num(
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1)
             << " s\n";
   return ok && !datasets.empty() ? 0 : 1;
 }

@@ -114,12 +114,14 @@ std::vector<std::uint8_t> NonBackgroundMask(
   std::vector<std::uint8_t> mask(static_cast<size_t>(width) * height, 0);
   for (size_t p = 0; p < mask.size(); ++p)
   {
-    mask[p] = (rgb[3 * p] > threshold || rgb[3 * p + 1] > threshold || rgb[3 * p + 2] > threshold) ? 1 : 0;
+    mask[p] =
+      (rgb[3 * p] > threshold || rgb[3 * p + 1] > threshold || rgb[3 * p + 2] > threshold) ? 1 : 0;
   }
   return mask;
 }
 
-std::vector<std::uint8_t> MaskOr(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
+std::vector<std::uint8_t> MaskOr(
+  const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
 {
   std::vector<std::uint8_t> result(a.size());
   for (size_t p = 0; p < a.size(); ++p)
@@ -129,7 +131,8 @@ std::vector<std::uint8_t> MaskOr(const std::vector<std::uint8_t>& a, const std::
   return result;
 }
 
-std::vector<std::uint8_t> MaskAnd(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
+std::vector<std::uint8_t> MaskAnd(
+  const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
 {
   std::vector<std::uint8_t> result(a.size());
   for (size_t p = 0; p < a.size(); ++p)
@@ -146,7 +149,8 @@ double ErrorStats::Rms() const
 
 double ErrorStats::AboveFraction() const
 {
-  return this->Pixels > 0 ? static_cast<double>(this->Above) / static_cast<double>(this->Pixels) : 0.0;
+  return this->Pixels > 0 ? static_cast<double>(this->Above) / static_cast<double>(this->Pixels)
+                          : 0.0;
 }
 
 void ErrorStats::Add(const ErrorStats& other)
@@ -180,8 +184,8 @@ ErrorStats CompareImages(const std::vector<std::uint8_t>& reference,
   return stats;
 }
 
-std::vector<std::uint8_t> DifferenceImage(const std::vector<std::uint8_t>& reference,
-  const std::vector<std::uint8_t>& image, double gain)
+std::vector<std::uint8_t> DifferenceImage(
+  const std::vector<std::uint8_t>& reference, const std::vector<std::uint8_t>& image, double gain)
 {
   std::vector<std::uint8_t> result(reference.size());
   for (size_t p = 0; p < reference.size() / 3; ++p)

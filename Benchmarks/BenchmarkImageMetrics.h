@@ -31,8 +31,10 @@ std::vector<std::uint8_t> NonBackgroundMask(
   const std::vector<std::uint8_t>& rgb, int width, int height, int threshold = 0);
 
 // Elementwise OR / AND of two masks of the same size.
-std::vector<std::uint8_t> MaskOr(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
-std::vector<std::uint8_t> MaskAnd(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
+std::vector<std::uint8_t> MaskOr(
+  const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
+std::vector<std::uint8_t> MaskAnd(
+  const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
 
 // Accumulated error of grey levels (mean of R, G, B; 0..255) over the pixels of a mask.
 struct ErrorStats
@@ -52,8 +54,8 @@ ErrorStats CompareImages(const std::vector<std::uint8_t>& reference,
   double aboveThreshold);
 
 // |image - reference| of the grey levels scaled by `gain`, clamped, as RGB (for inspection).
-std::vector<std::uint8_t> DifferenceImage(const std::vector<std::uint8_t>& reference,
-  const std::vector<std::uint8_t>& image, double gain);
+std::vector<std::uint8_t> DifferenceImage(
+  const std::vector<std::uint8_t>& reference, const std::vector<std::uint8_t>& image, double gain);
 
 double Median(std::vector<double> values);
 

@@ -324,8 +324,8 @@ bool vtkAccelVolumeHeadlessRenderWindow::CreateContext()
       config = nullptr; // EGL_KHR_no_config_context: the context renders to FBOs only anyway
     }
     eglBindAPI(EGL_OPENGL_API);
-    const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION,
-      2, EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+    const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
     internals.EGLContextHandle =
       eglCreateContext(internals.Display, config, EGL_NO_CONTEXT, contextAttributes);
     if (internals.EGLContextHandle == EGL_NO_CONTEXT)
@@ -408,8 +408,8 @@ void vtkAccelVolumeHeadlessRenderWindow::MakeCurrent()
       !eglMakeCurrent(
         internals.Display, EGL_NO_SURFACE, EGL_NO_SURFACE, internals.EGLContextHandle))
     {
-      vtkErrorMacro("EGL: eglMakeCurrent failed (error 0x" << std::hex << eglGetError()
-                                                            << std::dec << ")");
+      vtkErrorMacro(
+        "EGL: eglMakeCurrent failed (error 0x" << std::hex << eglGetError() << std::dec << ")");
     }
     return;
   }
@@ -520,8 +520,8 @@ void vtkAccelVolumeHeadlessRenderWindow::OpenGLInitContext()
     const GLenum result = glewInit();
     if (result != GLEW_OK && result < FirstGLXOnlyGlewError)
     {
-      vtkErrorMacro("GLEW could not be initialized: "
-        << reinterpret_cast<const char*>(glewGetErrorString(result)));
+      vtkErrorMacro("GLEW could not be initialized: " << reinterpret_cast<const char*>(
+                      glewGetErrorString(result)));
       return;
     }
     if (!GLEW_VERSION_3_2)

@@ -57,7 +57,8 @@ ProcAddress Resolve(const char* forwardName, const GLubyte* name)
 void vtkAccelVolumeRegisterOSMesaContext(void* context, bool registered)
 {
   std::lock_guard<std::mutex> lock(ContextsMutex);
-  OwnContexts.erase(std::remove(OwnContexts.begin(), OwnContexts.end(), context), OwnContexts.end());
+  OwnContexts.erase(
+    std::remove(OwnContexts.begin(), OwnContexts.end(), context), OwnContexts.end());
   if (registered)
   {
     OwnContexts.push_back(context);

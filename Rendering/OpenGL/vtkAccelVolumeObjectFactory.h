@@ -28,7 +28,8 @@ public:
   static void Install(int backend);
   /** The backend windows made by the factory use. */
   static int GetBackend();
-  /** The backend the environment asks for: ACCELVOLUME_GL, else X when DISPLAY is set, else headless. */
+  /** The backend the environment asks for: ACCELVOLUME_GL, else X when DISPLAY is set, else
+   * headless. */
   static int BackendFromEnvironment();
 
 protected:

@@ -126,13 +126,13 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
   input->GetDimensions(dims);
   if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || input->GetNumberOfPoints() < 1)
   {
-    vtkErrorMacro("Empty input image (dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2]
-                                                   << ")");
+    vtkErrorMacro(
+      "Empty input image (dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2] << ")");
     return false;
   }
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   if (!scalars)
   {
     vtkErrorMacro("Input has no point scalars to render");
@@ -167,7 +167,7 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
       break;
     default:
       vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
-                                                << " (use char, short, int, float or double)");
+                                               << " (use char, short, int, float or double)");
       return false;
   }
   if (!IsSupportedBlend(this->BlendMode))
@@ -263,7 +263,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 
   // Volume box in index space; a one-voxel axis becomes a slab one voxel thick.
   accelvolume::Box volumeBox;
-  volumeBox.lower = MakeVec3(dims[0] > 1 ? 0.0 : -0.5, dims[1] > 1 ? 0.0 : -0.5, dims[2] > 1 ? 0.0 : -0.5);
+  volumeBox.lower =
+    MakeVec3(dims[0] > 1 ? 0.0 : -0.5, dims[1] > 1 ? 0.0 : -0.5, dims[2] > 1 ? 0.0 : -0.5);
   volumeBox.upper = MakeVec3(dims[0] > 1 ? dims[0] - 1.0 : 0.5, dims[1] > 1 ? dims[1] - 1.0 : 0.5,
     dims[2] > 1 ? dims[2] - 1.0 : 0.5);
 
@@ -323,8 +324,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 
   // Eye depth (distance in front of the camera plane) as a function of the index point.
-  const accelvolume::Vec3 depthGradient = MakeVec3(-indexToEye->GetElement(2, 0),
-    -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
+  const accelvolume::Vec3 depthGradient = MakeVec3(
+    -indexToEye->GetElement(2, 0), -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
   const double depthOffset = -indexToEye->GetElement(2, 3);
 
   // Slice spacing in world units.
@@ -333,9 +334,10 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     if (dims[c] > 1)
     {
-      const double length = std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
-        indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
-        indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
+      const double length =
+        std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
+          indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
+          indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
       voxelSpacing = std::min(voxelSpacing, length);
     }
   }
@@ -381,8 +383,10 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   rays.depthGradient = depthGradient;
   rays.depthOffset = depthOffset;
   rays.perspective = camera->GetParallelProjection() == 0;
-  rays.eye = MakeVec3(eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
-  rays.direction = MakeVec3(-eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
+  rays.eye = MakeVec3(
+    eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
+  rays.direction = MakeVec3(
+    -eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
 
   // Proxy geometry: per region, its slices then its boundary faces.
   std::vector<vtkAccelVolumeSliceFrame::Cell>& cells = internals.Frame.Cells;
@@ -401,7 +405,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       static_cast<float>(region.upper.z) };
     draw.SliceFirst = static_cast<int>(vertices.size() / 3);
     const std::vector<accelvolume::Polygon> polygons = slabSamples > 1
-      ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples).polygons
+      ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples)
+          .polygons
       : accelvolume::ComputeViewAlignedSlices(region, clip, depthGradient, depthOffset, spacing,
           phase, accelvolume::SliceOrder::BackToFront)
           .polygons;
@@ -450,7 +455,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.EyeToIndex = eyeToIndex;
   frame.InverseProjection = inverseProjection;
   frame.ClipPlaneCount = static_cast<int>(clip.size());
-  std::copy(&clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
+  std::copy(
+    &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
   frame.SliceSpacing = static_cast<float>(spacing);
   frame.SlicePhase = static_cast<float>(phase);
   frame.BoundaryRerendering = this->BoundaryRerendering != 0;
@@ -458,8 +464,10 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
   frame.AdditiveScale = static_cast<float>(1.0 / unit);
   const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
-  frame.AverageRange[0] = static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth);
-  frame.AverageRange[1] = static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  frame.AverageRange[0] =
+    static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth);
+  frame.AverageRange[1] =
+    static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth);
   frame.Vertices = &vertices;
   if (internals.Renderer.empty())
   {

@@ -37,7 +37,7 @@
 #define vtkAccelVolumeSliceMapper_h
 
 #include "vtkRenderingAccelVolumeModule.h" // For export macro
-#include "vtkTimeStamp.h" // For vtkTimeStamp
+#include "vtkTimeStamp.h"                  // For vtkTimeStamp
 #include "vtkVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr

@@ -77,7 +77,8 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   const float viewport[2] = { static_cast<float>(frame.Width), static_cast<float>(frame.Height) };
   program->SetUniform2f("viewportSize", viewport);
   program->SetUniformi("clipPlaneCount", frame.ClipPlaneCount);
-  program->SetUniform4fv("clipPlanes", vtkAccelVolumeSliceFrame::MaximumClipPlanes, frame.ClipPlanes);
+  program->SetUniform4fv(
+    "clipPlanes", vtkAccelVolumeSliceFrame::MaximumClipPlanes, frame.ClipPlanes);
   program->SetUniformf("sliceSpacing", frame.SliceSpacing);
   program->SetUniformf("slicePhase", frame.SlicePhase);
   program->SetUniformi("boundaryRerendering", frame.BoundaryRerendering ? 1 : 0);

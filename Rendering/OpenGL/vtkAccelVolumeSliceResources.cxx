@@ -32,7 +32,8 @@ void OffsetCopy(const Source* source, size_t count, int offset, std::vector<Targ
 }
 
 template <typename Source>
-void NormalizeCopy(const Source* source, size_t count, const double range[2], std::vector<float>& target)
+void NormalizeCopy(
+  const Source* source, size_t count, const double range[2], std::vector<float>& target)
 {
   const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
   target.resize(count);
@@ -40,8 +41,9 @@ void NormalizeCopy(const Source* source, size_t count, const double range[2], st
   {
     const double value = static_cast<double>(source[i]);
     // NaN samples become the minimum; +/-Inf clamp to the ends of the finite range.
-    target[i] = std::isnan(value) ? 0.0f
-                                  : static_cast<float>(std::min(1.0, std::max(0.0, (value - range[0]) / width)));
+    target[i] = std::isnan(value)
+      ? 0.0f
+      : static_cast<float>(std::min(1.0, std::max(0.0, (value - range[0]) / width)));
   }
 }
 }
@@ -68,7 +70,8 @@ bool vtkAccelVolumeSliceResources::UploadVolume(vtkOpenGLRenderWindow* window, v
   if (stale)
   {
     const int maximumSize = vtkTextureObject::GetMaximumTextureSize3D(window);
-    if (maximumSize > 0 && (dims[0] > maximumSize || dims[1] > maximumSize || dims[2] > maximumSize))
+    if (maximumSize > 0 &&
+      (dims[0] > maximumSize || dims[1] > maximumSize || dims[2] > maximumSize))
     {
       error = "volume " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
         std::to_string(dims[2]) + " exceeds GL_MAX_3D_TEXTURE_SIZE " + std::to_string(maximumSize);
@@ -166,7 +169,8 @@ void vtkAccelVolumeSliceResources::UpdateTransferTable(
   vtkMTimeType newest = property->GetMTime();
   newest = std::max(newest, opacity->GetMTime());
   newest = std::max(newest,
-    gray ? property->GetGrayTransferFunction(0)->GetMTime() : property->GetRGBTransferFunction(0)->GetMTime());
+    gray ? property->GetGrayTransferFunction(0)->GetMTime()
+         : property->GetRGBTransferFunction(0)->GetMTime());
   if (this->TransferTable->GetHandle() && this->TableProperty == property &&
     newest <= this->TableBuildTime && range[0] == this->TableRange[0] &&
     range[1] == this->TableRange[1])

@@ -17,7 +17,8 @@ struct Scene
   vtkNew<vtkRenderWindow> Window;
 
   // 300x300 window, phantom volume, grey (or colour) ramp, oblique view.
-  explicit Scene(const char* phantom = "vessels", int blend = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
+  explicit Scene(
+    const char* phantom = "vessels", int blend = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
   {
     this->Image = MakePhantom(phantom, 64, 56, 48, 1.0, 1.0, 1.25);
     this->Mapper->SetInputData(this->Image);

@@ -13,10 +13,10 @@
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
-#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -27,8 +27,8 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -60,7 +60,8 @@ inline vtkSmartPointer<vtkImageData> MakePhantom(const std::string& name, int nx
 }
 
 // Grey ramp colour and a linear opacity ramp over [low, high].
-inline void SetRampProperty(vtkVolumeProperty* property, double low, double high, bool colour = false)
+inline void SetRampProperty(
+  vtkVolumeProperty* property, double low, double high, bool colour = false)
 {
   vtkNew<vtkColorTransferFunction> colours;
   if (colour)
@@ -146,8 +147,8 @@ struct ReferenceSettings
   int blendMode = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
   double stepWorld = 0.1;
   double additiveUnit = 1.0;
-  double averageRange[2] = { 0.0, 1.0 }; // normalized
-  std::vector<accelvolume::Box> regions;   // empty = whole volume
+  double averageRange[2] = { 0.0, 1.0 };    // normalized
+  std::vector<accelvolume::Box> regions;    // empty = whole volume
   std::vector<accelvolume::HalfSpace> clip; // index space
 };
 
@@ -166,7 +167,8 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
   core.values.resize(static_cast<size_t>(scalars->GetNumberOfTuples()));
   for (size_t i = 0; i < core.values.size(); ++i)
   {
-    core.values[i] = static_cast<float>((scalars->GetTuple1(static_cast<vtkIdType>(i)) - range[0]) / span);
+    core.values[i] =
+      static_cast<float>((scalars->GetTuple1(static_cast<vtkIdType>(i)) - range[0]) / span);
   }
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), image->GetIndexToPhysicalMatrix(), indexToWorld);
@@ -213,7 +215,8 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
   }
   const auto pixels = accelvolume::RenderReference(core, regions, settings.clip, opacityTable,
     ToCoreCamera(renderer->GetActiveCamera()), width, height, options, raysEnd);
-  auto lookup = [&](const std::vector<float>& table, int components, int component, float value) {
+  auto lookup = [&](const std::vector<float>& table, int components, int component, float value)
+  {
     const float position = std::min(1.0f, std::max(0.0f, value)) * (TableSize - 1);
     const int below = std::min(TableSize - 2, static_cast<int>(position));
     const float fraction = position - below;
@@ -311,7 +314,8 @@ inline ImageDifference CompareImages(
   return result;
 }
 
-inline bool Report(const char* what, const ImageDifference& d, double meanLimit, double fractionLimit)
+inline bool Report(
+  const char* what, const ImageDifference& d, double meanLimit, double fractionLimit)
 {
   const bool ok = d.mean <= meanLimit && d.fractionAbove <= fractionLimit;
   std::cout << what << ": mean |diff| " << d.mean << " (limit " << meanLimit << "), max "

@@ -54,24 +54,32 @@ bool Expect(const char* what, const std::function<void(vtkAccelVolumeSliceMapper
 int TestAccelVolumeBadInput(int, char*[])
 {
   bool ok = true;
-  ok = Expect("no input", [](vtkAccelVolumeSliceMapper*) {}, "No input") && ok;
-  ok = Expect("empty image",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "no input", [](vtkAccelVolumeSliceMapper*) {}, "No input") &&
+    ok;
+  ok = Expect(
+         "empty image",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            vtkNew<vtkImageData> empty;
            mapper->SetInputData(empty);
          },
          "Empty input") &&
     ok;
-  ok = Expect("no scalars",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "no scalars",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
            mapper->SetInputData(image);
          },
          "no point scalars") &&
     ok;
-  ok = Expect("three components",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "three components",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
            image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
@@ -79,8 +87,10 @@ int TestAccelVolumeBadInput(int, char*[])
          },
          "single-component") &&
     ok;
-  ok = Expect("unsigned int scalars",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "unsigned int scalars",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
            image->AllocateScalars(VTK_UNSIGNED_INT, 1);
@@ -88,15 +98,19 @@ int TestAccelVolumeBadInput(int, char*[])
          },
          "Unsupported scalar type") &&
     ok;
-  ok = Expect("composite blend (not yet provided)",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "composite blend (not yet provided)",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
            mapper->SetBlendModeToComposite();
          },
          "not supported") &&
     ok;
-  ok = Expect("nine clipping planes",
-         [](vtkAccelVolumeSliceMapper* mapper) {
+  ok = Expect(
+         "nine clipping planes",
+         [](vtkAccelVolumeSliceMapper* mapper)
+         {
            mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
            for (int i = 0; i < 9; ++i)
            {

@@ -19,7 +19,8 @@ struct Result
 Result Render(int blend, int slices, bool rerender, bool wantReference)
 {
   using namespace accelvolume_test;
-  auto image = MakePhantom(blend == vtkVolumeMapper::ADDITIVE_BLEND ? "blobs" : "shells", 48, 48, 48);
+  auto image =
+    MakePhantom(blend == vtkVolumeMapper::ADDITIVE_BLEND ? "blobs" : "shells", 48, 48, 48);
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
   mapper->SetBlendMode(blend);
@@ -72,7 +73,8 @@ int TestAccelVolumeBoundaryRerendering(int, char*[])
     // 12 slices through ~80 voxels of depth: far too few, so the cut faces alias.
     const Result without = Render(blend, 12, false, true);
     const Result with = Render(blend, 12, true, false);
-    const ImageDifference errorWithout = CompareImages(without.Image, without.Reference, 4.0 / 255.0);
+    const ImageDifference errorWithout =
+      CompareImages(without.Image, without.Reference, 4.0 / 255.0);
     const ImageDifference errorWith = CompareImages(with.Image, without.Reference, 4.0 / 255.0);
     std::cout << name << " with 12 slices: mean error without re-rendering " << errorWithout.mean
               << ", with " << errorWith.mean << "\n";

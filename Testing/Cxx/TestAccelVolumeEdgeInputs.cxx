@@ -37,7 +37,8 @@ double RenderCentre(vtkImageData* image, int blend = vtkVolumeMapper::MAXIMUM_IN
   volume->SetMapper(mapper);
   double range[2];
   image->GetPointData()->GetScalars()->GetFiniteRange(range, 0);
-  accelvolume_test::SetRampProperty(volume->GetProperty(), range[0], range[1] > range[0] ? range[1] : range[0] + 1);
+  accelvolume_test::SetRampProperty(
+    volume->GetProperty(), range[0], range[1] > range[0] ? range[1] : range[0] + 1);
   vtkNew<vtkRenderer> renderer;
   renderer->AddVolume(volume);
   renderer->GetActiveCamera()->Elevation(30);
@@ -64,10 +65,13 @@ vtkSmartPointer<vtkImageData> Ramp(int type, int nx, int ny, int nz)
   for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
   {
     // A bright centre so MIP shows something whatever the type's range.
-    int ijk[3] = { static_cast<int>(i % nx), static_cast<int>((i / nx) % ny), static_cast<int>(i / (nx * ny)) };
-    const bool centre = std::abs(ijk[0] - nx / 2) <= nx / 4 && std::abs(ijk[1] - ny / 2) <= ny / 4 &&
-      std::abs(ijk[2] - nz / 2) <= nz / 4;
-    scalars->SetTuple1(i, centre ? 100.0 : (type == VTK_CHAR || type == VTK_SIGNED_CHAR || type == VTK_SHORT ? -50.0 : 0.0));
+    int ijk[3] = { static_cast<int>(i % nx), static_cast<int>((i / nx) % ny),
+      static_cast<int>(i / (nx * ny)) };
+    const bool centre = std::abs(ijk[0] - nx / 2) <= nx / 4 &&
+      std::abs(ijk[1] - ny / 2) <= ny / 4 && std::abs(ijk[2] - nz / 2) <= nz / 4;
+    scalars->SetTuple1(i,
+      centre ? 100.0
+             : (type == VTK_CHAR || type == VTK_SIGNED_CHAR || type == VTK_SHORT ? -50.0 : 0.0));
   }
   return image;
 }
@@ -84,7 +88,8 @@ int TestAccelVolumeEdgeInputs(int, char*[])
     // The bright block maps to white at full opacity: every type must show it the same way.
     ok = centre > 0.9 && ok;
   }
-  for (const int* dims : { (const int[3]){ 1, 12, 10 }, (const int[3]){ 12, 1, 10 }, (const int[3]){ 12, 10, 1 } })
+  for (const int* dims :
+    { (const int[3]){ 1, 12, 10 }, (const int[3]){ 12, 1, 10 }, (const int[3]){ 12, 10, 1 } })
   {
     auto slab = Ramp(VTK_FLOAT, dims[0], dims[1], dims[2]);
     const double centre = RenderCentre(slab);
@@ -102,6 +107,8 @@ int TestAccelVolumeEdgeInputs(int, char*[])
   // The bright centre block stays visible: NaN/Inf neither stretch the range nor break the sum.
   ok = nanCentre > 0.1 && ok;
   const double outside[6] = { 100, 200, 100, 200, 100, 200 };
-  ok = RenderCentre(Ramp(VTK_UNSIGNED_CHAR, 8, 8, 8), vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, outside) == 0.0 && ok;
+  ok = RenderCentre(Ramp(VTK_UNSIGNED_CHAR, 8, 8, 8), vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
+         outside) == 0.0 &&
+    ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

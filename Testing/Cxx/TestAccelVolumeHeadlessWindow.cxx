@@ -39,9 +39,9 @@ bool RenderSphere(vtkRenderWindow* window, int width, int height)
   const bool ok = centre[0] > 200 && centre[2] < 50 && corner[2] > 200 && corner[0] < 50;
   if (!ok)
   {
-    std::cerr << "unexpected pixels " << width << "x" << height << ": centre "
-              << int(centre[0]) << "," << int(centre[1]) << "," << int(centre[2]) << " corner "
-              << int(corner[0]) << "," << int(corner[1]) << "," << int(corner[2]) << "\n";
+    std::cerr << "unexpected pixels " << width << "x" << height << ": centre " << int(centre[0])
+              << "," << int(centre[1]) << "," << int(centre[2]) << " corner " << int(corner[0])
+              << "," << int(corner[1]) << "," << int(corner[2]) << "\n";
   }
   window->RemoveRenderer(renderer);
   return ok;

@@ -4,7 +4,8 @@
 int TestAccelVolumeMinIP(int argc, char* argv[])
 {
   accelvolume_test::Scene scene("shells", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND);
-  // Opaque everywhere so the minimum along each ray shows; the cropped box keeps rays inside the shells.
+  // Opaque everywhere so the minimum along each ray shows; the cropped box keeps rays inside the
+  // shells.
   vtkNew<vtkPiecewiseFunction> opacity;
   opacity->AddPoint(0.0, 1.0);
   opacity->AddPoint(1000.0, 1.0);

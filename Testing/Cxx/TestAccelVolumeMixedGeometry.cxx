@@ -43,7 +43,8 @@ int TestAccelVolumeMixedGeometry(int argc, char* argv[])
     for (int i = 0; i < size; ++i)
     {
       const accelvolume::Ray ray = accelvolume::PixelRay(camera, size, size, i, j);
-      const accelvolume::Vec3 toCentre = ray.origin - accelvolume::Vec3{ centre[0], centre[1], centre[2] };
+      const accelvolume::Vec3 toCentre =
+        ray.origin - accelvolume::Vec3{ centre[0], centre[1], centre[2] };
       const double b = accelvolume::Dot(toCentre, ray.direction);
       const double c = accelvolume::Dot(toCentre, toCentre) - radius * radius;
       if (b * b - c >= 0)
@@ -56,8 +57,8 @@ int TestAccelVolumeMixedGeometry(int argc, char* argv[])
   ReferenceSettings settings;
   settings.stepWorld = 0.05;
   std::vector<float> alpha;
-  std::vector<float> expected =
-    RenderReferenceImage(scene.Image, scene.Volume, scene.Renderer, size, size, settings, &raysEnd, &alpha);
+  std::vector<float> expected = RenderReferenceImage(
+    scene.Image, scene.Volume, scene.Renderer, size, size, settings, &raysEnd, &alpha);
   const double background[3] = { 0.1, 0.1, 0.2 };
   for (size_t p = 0; p < alpha.size(); ++p)
   {
@@ -69,8 +70,8 @@ int TestAccelVolumeMixedGeometry(int argc, char* argv[])
   }
   // The tessellated sphere's silhouette differs from the analytic one by a pixel: allow a thin
   // fraction of outliers.
-  const bool matches = Report("MIP ended by opaque geometry",
-    CompareImages(ours, expected, 12.0 / 255.0), 3.0 / 255.0, 0.02);
+  const bool matches = Report(
+    "MIP ended by opaque geometry", CompareImages(ours, expected, 12.0 / 255.0), 3.0 / 255.0, 0.02);
   const int result = scene.Regress(argc, argv);
   return matches ? result : EXIT_FAILURE;
 }

@@ -59,7 +59,8 @@ std::vector<float> Render(int blend, bool perspective, int slabSamples)
 int TestAccelVolumeSlabSamples(int, char*[])
 {
   bool ok = true;
-  for (int blend : { vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, vtkVolumeMapper::MINIMUM_INTENSITY_BLEND })
+  for (int blend :
+    { vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, vtkVolumeMapper::MINIMUM_INTENSITY_BLEND })
   {
     for (bool perspective : { false, true })
     {
@@ -67,8 +68,10 @@ int TestAccelVolumeSlabSamples(int, char*[])
       for (int samples : { 4, 7 })
       {
         const std::vector<float> slabs = Render(blend, perspective, samples);
-        const std::string name = std::string(blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ? "MIP" : "MinIP") +
-          (perspective ? " perspective" : " parallel") + ", " + std::to_string(samples) + " samples per slab";
+        const std::string name =
+          std::string(blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ? "MIP" : "MinIP") +
+          (perspective ? " perspective" : " parallel") + ", " + std::to_string(samples) +
+          " samples per slab";
         // Same samples; only rasterisation of the polygon edges and float rounding differ.
         ok = accelvolume_test::Report(name.c_str(),
                accelvolume_test::CompareImages(slabs, plain, 3.0 / 255.0), 0.3 / 255.0, 0.003) &&

@@ -87,7 +87,8 @@ bool RunCase(const Case& c)
   SetupObliqueView(window, renderer, Size, 35, 25, c.Perspective);
   window->Render();
   const std::vector<float> ours = ReadPixels(window);
-  const std::vector<float> reference = RenderReferenceImage(image, volume, renderer, Size, Size, settings);
+  const std::vector<float> reference =
+    RenderReferenceImage(image, volume, renderer, Size, Size, settings);
   // Slices at 1/4 voxel vs. a 1/20 voxel reference: differences stay within a few grey levels
   // except on a thin set of pixels at silhouettes and crop edges.
   double brightness = 0;
@@ -99,7 +100,8 @@ bool RunCase(const Case& c)
   std::cout << c.Name << ": reference mean brightness " << brightness << "\n";
   // An all-black pair would compare equal: demand content.
   const bool hasContent = brightness > 0.005;
-  return Report(c.Name, CompareImages(ours, reference, 8.0 / 255.0), 2.0 / 255.0, 0.02) && hasContent;
+  return Report(c.Name, CompareImages(ours, reference, 8.0 / 255.0), 2.0 / 255.0, 0.02) &&
+    hasContent;
 }
 }
 

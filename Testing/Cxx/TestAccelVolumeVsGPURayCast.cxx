@@ -47,13 +47,20 @@ int TestAccelVolumeVsGPURayCast(int, char*[])
     bool Crop;
   };
   const Case cases[] = {
-    { "MIP vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, "vessels", true, true },
-    { "MIP parallel vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, "vessels", false, false },
-    { "MinIP vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "vessels", false, false },
-    { "MinIP persp vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "vessels", true, false },
-    { "raysum vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::ADDITIVE_BLEND, "blobs", false, false },
-    { "raysum persp vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::ADDITIVE_BLEND, "blobs", true, false },
-    { "average vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "blobs", true, true },
+    { "MIP vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, "vessels", true,
+      true },
+    { "MIP parallel vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
+      "vessels", false, false },
+    { "MinIP vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, "vessels",
+      false, false },
+    { "MinIP persp vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND,
+      "vessels", true, false },
+    { "raysum vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::ADDITIVE_BLEND, "blobs", false,
+      false },
+    { "raysum persp vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::ADDITIVE_BLEND, "blobs", true,
+      false },
+    { "average vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "blobs",
+      true, true },
   };
   bool ok = true;
   for (const Case& c : cases)
@@ -71,7 +78,8 @@ int TestAccelVolumeVsGPURayCast(int, char*[])
       ours->SetAutoAdjustSampleDistances(0);
       ours->SetSampleDistance(0.5);
     }
-    const std::vector<float> reference = RenderWith(vtkMapper, image, c.Blend, c.Perspective, c.Crop);
+    const std::vector<float> reference =
+      RenderWith(vtkMapper, image, c.Blend, c.Perspective, c.Crop);
     const std::vector<float> image2 = RenderWith(ours, image, c.Blend, c.Perspective, c.Crop);
     accelvolume_test::DumpImage(std::string(c.Name).substr(0, 11) + "_vtk", reference, 200, 200);
     accelvolume_test::DumpImage(std::string(c.Name).substr(0, 11) + "_ours", image2, 200, 200);

@@ -40,7 +40,9 @@ int TestAccelVolumeXWindow(int, char*[])
   window->Render();
   const std::vector<float> ours = ReadPixels(window);
   ReferenceSettings settings;
-  const std::vector<float> reference = RenderReferenceImage(image, volume, renderer, Size, Size, settings);
-  const bool ok = Report("MIP in the X window", CompareImages(ours, reference, 8.0 / 255.0), 2.0 / 255.0, 0.02);
+  const std::vector<float> reference =
+    RenderReferenceImage(image, volume, renderer, Size, Size, settings);
+  const bool ok =
+    Report("MIP in the X window", CompareImages(ours, reference, 8.0 / 255.0), 2.0 / 255.0, 0.02);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -32,7 +32,8 @@ inline accelvolume::Box RandomBox(std::mt19937& random)
     Uniform(random, -5, 5) };
   return { lower,
     lower +
-      accelvolume::Vec3{ Uniform(random, 0.2, 4), Uniform(random, 0.2, 4), Uniform(random, 0.2, 4) } };
+      accelvolume::Vec3{
+        Uniform(random, 0.2, 4), Uniform(random, 0.2, 4), Uniform(random, 0.2, 4) } };
 }
 }
 

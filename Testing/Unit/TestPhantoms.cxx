@@ -63,8 +63,8 @@ TEST(Phantoms, EverySizeAndRangeIsRight)
     EXPECT_GE(*range.first, 0.0f) << name;
     EXPECT_LE(*range.second, 1000.0f) << name;
     EXPECT_LT(*range.first, *range.second) << name << " should not be constant";
-    EXPECT_TRUE(std::all_of(volume.values.begin(), volume.values.end(),
-                            [](float v) { return std::isfinite(v); }))
+    EXPECT_TRUE(std::all_of(
+      volume.values.begin(), volume.values.end(), [](float v) { return std::isfinite(v); }))
       << name;
   }
 }

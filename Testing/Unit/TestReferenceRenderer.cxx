@@ -280,10 +280,7 @@ TEST(ReferenceRenderer, ThreadCountDoesNotChangeResults)
 
 TEST(ReferenceRenderer, Sampling)
 {
-  auto linear = [](double x, double y, double z)
-  {
-    return 0.1 + 0.03 * x + 0.02 * y + 0.01 * z;
-  };
+  auto linear = [](double x, double y, double z) { return 0.1 + 0.03 * x + 0.02 * y + 0.01 * z; };
   const ScalarVolume volume =
     MakeVolume(8, 6, 5, [&](int i, int j, int k) { return static_cast<float>(linear(i, j, k)); });
   std::mt19937 random(2);

@@ -94,7 +94,7 @@ protected:
   {
     gzFile file = gzopen(this->Path(name).c_str(), "wb");
     EXPECT_EQ(gzwrite(file, bytes.data(), static_cast<unsigned>(bytes.size())),
-              static_cast<int>(bytes.size()));
+      static_cast<int>(bytes.size()));
     gzclose(file);
     return this->Path(name);
   }
@@ -130,11 +130,9 @@ protected:
 
 TEST(ScalarKinds, NamesRoundTrip)
 {
-  const std::vector<std::pair<std::string, int>> expected = {
-    { "uint8", VTK_UNSIGNED_CHAR }, { "int8", VTK_SIGNED_CHAR }, { "uint16", VTK_UNSIGNED_SHORT },
-    { "int16", VTK_SHORT },         { "int32", VTK_INT },        { "float32", VTK_FLOAT },
-    { "float64", VTK_DOUBLE }
-  };
+  const std::vector<std::pair<std::string, int>> expected = { { "uint8", VTK_UNSIGNED_CHAR },
+    { "int8", VTK_SIGNED_CHAR }, { "uint16", VTK_UNSIGNED_SHORT }, { "int16", VTK_SHORT },
+    { "int32", VTK_INT }, { "float32", VTK_FLOAT }, { "float64", VTK_DOUBLE } };
   for (const auto& entry : expected)
   {
     const ScalarKind kind = ParseScalarKind(entry.first);
@@ -215,21 +213,19 @@ TEST_F(VolumeIO, NrrdRoundTrips)
                              "endian: little\nencoding: raw\n";
   this->WriteFile("data.raw", Bytes(image));
   std::string error;
-  ExpectSameVoxels(
-    image,
+  ExpectSameVoxels(image,
     Load(this->WriteFile("volume.nhdr", "NRRD0004\n" + header + "data file: data.raw\n"), error));
   EXPECT_EQ(error, "");
-  ExpectSameVoxels(
-    image,
+  ExpectSameVoxels(image,
     Load(this->WriteFile("volume.nrrd", "NRRD0004\n# comment\n" + header + "\n" + Bytes(image)),
-         error));
+      error));
   EXPECT_EQ(error, "");
 }
 
 TEST_F(VolumeIO, RawAndGzipRoundTripWithDimsAndTypeFromName)
 {
   for (int type : { VTK_UNSIGNED_CHAR, VTK_SIGNED_CHAR, VTK_UNSIGNED_SHORT, VTK_SHORT, VTK_INT,
-                    VTK_FLOAT, VTK_DOUBLE })
+         VTK_FLOAT, VTK_DOUBLE })
   {
     auto image = MakeImage(6, 5, 3, type);
     image->SetSpacing(1, 1, 1);
@@ -270,8 +266,7 @@ TEST_F(VolumeIO, DatasetsJsonGivesSpacingUnlessFlagged)
 {
   auto image = MakeImage(3, 3, 3, VTK_UNSIGNED_CHAR);
   this->WriteGzip("ct_3x3x3_uint8.raw.gz", Bytes(image));
-  this->WriteFile(
-    "datasets.json",
+  this->WriteFile("datasets.json",
     R"({"description": "x", "datasets": [ {"file": "other_1x1x1_uint8.raw", "spacing": [9, 9, 9]},
        {"name": "ct", "file": "ct_3x3x3_uint8.raw.gz", "gz": true, "spacing": [0.5, 1.0, 2.0],
         "min": -1.5e2, "ok": null, "note": "quote \" and \u00e9"}]})");
@@ -299,11 +294,11 @@ TEST_F(VolumeIO, FileErrorsAreReported)
   ExpectError(this->Path("missing_4x4x4_uint8.raw"), { "cannot open", "missing_4x4x4_uint8.raw" });
   ExpectError(this->WriteFile("volume.xyz", "abc"), { "unknown file extension", ".raw.gz" });
   ExpectError(this->WriteFile("short_4x4x4_uint8.raw", std::string(60, 'a')),
-              { "size mismatch", "60", "64" });
+    { "size mismatch", "60", "64" });
   ExpectError(this->WriteGzip("small_4x4x4_uint8.raw.gz", std::string(60, 'a')),
-              { "size mismatch", "60", "64" });
+    { "size mismatch", "60", "64" });
   ExpectError(this->WriteGzip("big_4x4x4_uint8.raw.gz", std::string(65, 'a')),
-              { "size mismatch", "more than 64" });
+    { "size mismatch", "more than 64" });
   ExpectError(this->WriteFile("plain_4x4x4_uint8.raw.gz", std::string(64, 'a')), { "not gzip" });
   ExpectError(this->WriteFile("zero_0x4x4_uint8.raw", ""), { "at least 1" });
 
@@ -346,9 +341,9 @@ TEST_F(VolumeIO, AbsurdSizesAreRefusedWithoutAllocating)
   request.kind = ScalarKind::UInt8;
   ExpectError(request, { "2^31" });
   ExpectError(this->WriteFile("huge.mhd",
-                              "NDims = 3\nDimSize = 100000 100000 100000\nElementType = MET_UCHAR\n"
-                              "ElementDataFile = LOCAL\n"),
-              { "2^31" });
+                "NDims = 3\nDimSize = 100000 100000 100000\nElementType = MET_UCHAR\n"
+                "ElementDataFile = LOCAL\n"),
+    { "2^31" });
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
 }
 
@@ -362,54 +357,45 @@ TEST_F(VolumeIO, MalformedHeadersGiveErrors)
   ExpectError(this->WriteFile("garbage.mhd", garbage), { "malformed MetaImage header" });
   ExpectError(this->WriteFile("words.mhd", "hello world\n"), { "malformed MetaImage header" });
   ExpectError(this->WriteFile("nodata.mhd", "NDims = 3\nDimSize = 2 2 2\n"), { "ElementDataFile" });
-  ExpectError(
-    this->WriteFile("dims.mhd",
-                    "NDims = 3\nDimSize = 2 2\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n"),
+  ExpectError(this->WriteFile("dims.mhd",
+                "NDims = 3\nDimSize = 2 2\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n"),
     { "one size per axis" });
-  ExpectError(
-    this->WriteFile(
-      "type.mhd", "NDims = 3\nDimSize = 2 2 2\nElementType = MET_ULONG\nElementDataFile = a.raw\n"),
+  ExpectError(this->WriteFile("type.mhd",
+                "NDims = 3\nDimSize = 2 2 2\nElementType = MET_ULONG\nElementDataFile = a.raw\n"),
     { "unsupported scalar type", "MET_ULONG" });
   ExpectError(
-    this->WriteFile(
-      "lost.mhd",
+    this->WriteFile("lost.mhd",
       "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = lost.raw\n"),
     { "lost.raw", "does not exist" });
-  ExpectError(this->WriteFile(
-                "short.mha",
+  ExpectError(this->WriteFile("short.mha",
                 "NDims = 3\nDimSize = 2 2 2\nElementType = MET_SHORT\nElementDataFile = LOCAL\nab"),
-              { "size mismatch", "2 data bytes", "16 bytes" });
+    { "size mismatch", "2 data bytes", "16 bytes" });
   ExpectError(this->WriteFile("rgb.mhd",
-                              "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
-                              "ElementNumberOfChannels = 3\nElementDataFile = LOCAL\n"),
-              { "only single-component volumes are supported for now" });
+                "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
+                "ElementNumberOfChannels = 3\nElementDataFile = LOCAL\n"),
+    { "only single-component volumes are supported for now" });
   ExpectError(this->WriteFile("garbage.nrrd", garbage), { "NRRD magic" });
-  ExpectError(
-    this->WriteFile("detached.nhdr",
-                    "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\nencoding: raw\n"),
+  ExpectError(this->WriteFile("detached.nhdr",
+                "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\nencoding: raw\n"),
     { "data file" });
-  ExpectError(
-    this->WriteFile("hex.nrrd",
-                    "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\nencoding: hex\n\n00"),
+  ExpectError(this->WriteFile("hex.nrrd",
+                "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\nencoding: hex\n\n00"),
     { "unsupported NRRD encoding 'hex'" });
-  ExpectError(
-    this->WriteFile("short.nrrd",
-                    "NRRD0004\ntype: float\ndimension: 3\nsizes: 10 2 2\nencoding: raw\n\n1234"),
+  ExpectError(this->WriteFile("short.nrrd",
+                "NRRD0004\ntype: float\ndimension: 3\nsizes: 10 2 2\nencoding: raw\n\n1234"),
     { "size mismatch", "4 data bytes", "160 bytes" });
-  ExpectError(
-    this->WriteFile("narrow.nrrd",
-                    "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 20 20\nencoding: raw\n\n"),
+  ExpectError(this->WriteFile("narrow.nrrd",
+                "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 20 20\nencoding: raw\n\n"),
     { "single-component", "9 or fewer" });
-  ExpectError(
-    this->WriteFile("order.nrrd",
-                    "NRRD0004\ntype: uchar\nsizes: 20 20 20\ndimension: 3\nencoding: raw\n\n"),
+  ExpectError(this->WriteFile("order.nrrd",
+                "NRRD0004\ntype: uchar\nsizes: 20 20 20\ndimension: 3\nencoding: raw\n\n"),
     { "'sizes' before 'dimension'" });
   ExpectError(this->WriteFile("skip.nrrd",
-                              "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\n"
-                              "encoding: raw\nbyte skip: 4\n\n"),
-              { "byte skip" });
-  ExpectError(this->WriteFile("broken.vti", "<VTKFile type=\"ImageData\"><ImageData"),
-              { "broken.vti" });
+                "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 20 2 2\n"
+                "encoding: raw\nbyte skip: 4\n\n"),
+    { "byte skip" });
+  ExpectError(
+    this->WriteFile("broken.vti", "<VTKFile type=\"ImageData\"><ImageData"), { "broken.vti" });
 }
 
 TEST_F(VolumeIO, UnsupportedVTIContentIsRefused)

@@ -47,7 +47,7 @@ int ParseInteger(const std::string& flag, const std::string& text)
   errno = 0;
   const long value = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || value > 1 << 30 ||
-      value < -(1 << 30))
+    value < -(1 << 30))
   {
     throw Usage(flag + " expects an integer, got '" + text + "'");
   }
@@ -55,8 +55,8 @@ int ParseInteger(const std::string& flag, const std::string& text)
 }
 
 template <typename Enum>
-Enum ParseChoice(const std::string& flag, const std::string& text,
-                 const std::map<std::string, Enum>& choices)
+Enum ParseChoice(
+  const std::string& flag, const std::string& text, const std::map<std::string, Enum>& choices)
 {
   const auto found = choices.find(text);
   if (found == choices.end())
@@ -89,11 +89,11 @@ public:
     {
       const bool missing = this->Done() ||
         (this->Arguments[this->Position].compare(0, 2, "--") == 0 &&
-         this->Arguments[this->Position].size() > 2);
+          this->Arguments[this->Position].size() > 2);
       if (missing)
       {
-        throw Usage(flag + " expects " + std::to_string(count) + " value" +
-                    (count == 1 ? "" : "s"));
+        throw Usage(
+          flag + " expects " + std::to_string(count) + " value" + (count == 1 ? "" : "s"));
       }
       values.push_back(this->Next());
     }
@@ -153,7 +153,7 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         if (volume.kind == ScalarKind::Unknown)
         {
           throw Usage("invalid value '" + name +
-                      "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
+            "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
         }
       } },
     { "--spacing",
@@ -191,7 +191,7 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         if (!(window[0] < window[1]))
         {
           throw Usage("--window needs LO < HI, got " + FormatNumber(window[0]) + " " +
-                      FormatNumber(window[1]));
+            FormatNumber(window[1]));
         }
         options.window[0] = window[0];
         options.window[1] = window[1];
@@ -216,7 +216,7 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
           if (size[axis] <= 0 || size[axis] > 16384)
           {
             throw Usage("--size values must be between 1 and 16384, got " +
-                        std::to_string(size[0]) + " " + std::to_string(size[1]));
+              std::to_string(size[0]) + " " + std::to_string(size[1]));
           }
           options.size[axis] = size[axis];
         }
@@ -300,7 +300,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
       [&](const std::string& f)
       {
         options.gl = reader.Value(f);
-        options.glBackend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.gl.c_str());
+        options.glBackend =
+          vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.gl.c_str());
         if (options.glBackend < 0)
         {
           throw Usage("invalid value '" + options.gl + "' for --gl (expected osmesa|egl|x)");
@@ -332,8 +333,9 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
     const auto handler = handlers.find(flag);
     if (handler == handlers.end())
     {
-      throw Usage(flag.compare(0, 1, "-") == 0 ? "unknown flag '" + flag + "' (see accelvolume render --help)"
-                                               : "unexpected argument '" + flag + "'");
+      throw Usage(flag.compare(0, 1, "-") == 0
+          ? "unknown flag '" + flag + "' (see accelvolume render --help)"
+          : "unexpected argument '" + flag + "'");
     }
     handler->second(flag);
   }
@@ -346,8 +348,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
   {
     throw Usage("--sample-distance and --slices are mutually exclusive");
   }
-  if (options.volume.inputPath.empty() && (options.volume.haveDims ||
-                                          options.volume.kind != ScalarKind::Unknown))
+  if (options.volume.inputPath.empty() &&
+    (options.volume.haveDims || options.volume.kind != ScalarKind::Unknown))
   {
     throw Usage("--dims and --type need --input (a raw file)");
   }
@@ -406,7 +408,7 @@ Options ParseOptions(const std::vector<std::string>& arguments)
   if (command != "render")
   {
     throw Usage((command.compare(0, 1, "-") == 0 ? "unknown flag '" : "unknown command '") +
-                command + "' (expected 'render'; try accelvolume --help)");
+      command + "' (expected 'render'; try accelvolume --help)");
   }
   ArgumentReader reader(arguments, 2);
   ParseRenderFlags(reader, options);
@@ -433,49 +435,51 @@ std::string RenderHelp()
   return "usage: accelvolume render [flags]\n"
          "\n"
          "Input (a phantom unless --input is given):\n"
-         "  --phantom NAME             " + phantoms + " (default vessels)\n"
-         "  --phantom-dims X Y Z       phantom size in voxels (default 128 128 128)\n"
-         "  --time T                   phantom animation time, period 1 (default 0)\n"
-         "  --input FILE               .mhd/.mha, .vti, .nrrd/.nhdr, .raw or .raw.gz\n"
-         "  --dims X Y Z               raw input dimensions (NAME_XxYxZ_type.raw[.gz] names\n"
-         "                             and a datasets.json beside the file supply them too)\n"
-         "  --type T                   raw scalar type: uint8|int8|uint16|int16|int32|float32|float64\n"
-         "  --spacing SX SY SZ         voxel spacing (overrides the file's)\n"
-         "\n"
-         "Rendering:\n"
-         "  --mapper M                 slice (AccelVolume, default) | vtk-gpu\n"
-         "                             (vtkGPUVolumeRayCastMapper) | vtk-fixed\n"
-         "                             (vtkFixedPointVolumeRayCastMapper); all use the same camera,\n"
-         "                             transfer functions and world sample distance\n"
-         "  --blend B                  mip (default) | minip | additive | average\n"
-         "  --window LO HI             data values mapped to black..white, opacity 0..1\n"
-         "                             (default: the full scalar range; minip: opacity 1)\n"
-         "  --raysum-unit D            world length counted as one raysum unit (slice mapper,\n"
-         "                             additive; default: largest world extent of the volume / 4)\n"
-         "  --sample-distance D        world distance between samples/slices\n"
-         "                             (default: the smallest voxel spacing)\n"
-         "  --slices N                 slice count through the volume depth instead (slice mapper;\n"
-         "                             VTK mappers get the volume diagonal / N)\n"
-         "  --crop X0 X1 Y0 Y1 Z0 Z1   keep this index-space sub-volume (cropping, SubVolume)\n"
-         "  --boundary-rerender on|off re-render the cut faces (slice mapper; default on)\n"
-         "  --slab-samples N           MIP/MinIP slice depths sampled per proxy fragment (slice\n"
-         "                             mapper; 1 = classic slicing, the default)\n"
-         "\n"
-         "View and output:\n"
-         "  --size W H                 image size, 1..16384 (default 512 512)\n"
-         "  --azimuth A --elevation E --roll R --zoom Z\n"
-         "                             camera moves in degrees/factor after the front view\n"
-         "                             (looking along +z at the volume centre, view-up +y)\n"
-         "  --parallel | --perspective projection (default perspective)\n"
-         "  --background R G B         background colour in 0..1 (default 0 0 0)\n"
-         "  --frames N                 timed frames after one warm-up frame, each turned 2 degrees\n"
-         "                             further in azimuth (default 1)\n"
-         "  --out FILE.png             write the last frame\n"
-         "  --stats FILE.json          write timings and settings as JSON ('-' = stdout)\n"
-         "  --gl osmesa|egl|x          OpenGL backend (default: $ACCELVOLUME_GL, else X when\n"
-         "                             DISPLAY is set, else EGL, then OSMesa)\n"
-         "  --quiet                    no summary\n"
-         "  --help                     this text\n";
+         "  --phantom NAME             " +
+    phantoms +
+    " (default vessels)\n"
+    "  --phantom-dims X Y Z       phantom size in voxels (default 128 128 128)\n"
+    "  --time T                   phantom animation time, period 1 (default 0)\n"
+    "  --input FILE               .mhd/.mha, .vti, .nrrd/.nhdr, .raw or .raw.gz\n"
+    "  --dims X Y Z               raw input dimensions (NAME_XxYxZ_type.raw[.gz] names\n"
+    "                             and a datasets.json beside the file supply them too)\n"
+    "  --type T                   raw scalar type: uint8|int8|uint16|int16|int32|float32|float64\n"
+    "  --spacing SX SY SZ         voxel spacing (overrides the file's)\n"
+    "\n"
+    "Rendering:\n"
+    "  --mapper M                 slice (AccelVolume, default) | vtk-gpu\n"
+    "                             (vtkGPUVolumeRayCastMapper) | vtk-fixed\n"
+    "                             (vtkFixedPointVolumeRayCastMapper); all use the same camera,\n"
+    "                             transfer functions and world sample distance\n"
+    "  --blend B                  mip (default) | minip | additive | average\n"
+    "  --window LO HI             data values mapped to black..white, opacity 0..1\n"
+    "                             (default: the full scalar range; minip: opacity 1)\n"
+    "  --raysum-unit D            world length counted as one raysum unit (slice mapper,\n"
+    "                             additive; default: largest world extent of the volume / 4)\n"
+    "  --sample-distance D        world distance between samples/slices\n"
+    "                             (default: the smallest voxel spacing)\n"
+    "  --slices N                 slice count through the volume depth instead (slice mapper;\n"
+    "                             VTK mappers get the volume diagonal / N)\n"
+    "  --crop X0 X1 Y0 Y1 Z0 Z1   keep this index-space sub-volume (cropping, SubVolume)\n"
+    "  --boundary-rerender on|off re-render the cut faces (slice mapper; default on)\n"
+    "  --slab-samples N           MIP/MinIP slice depths sampled per proxy fragment (slice\n"
+    "                             mapper; 1 = classic slicing, the default)\n"
+    "\n"
+    "View and output:\n"
+    "  --size W H                 image size, 1..16384 (default 512 512)\n"
+    "  --azimuth A --elevation E --roll R --zoom Z\n"
+    "                             camera moves in degrees/factor after the front view\n"
+    "                             (looking along +z at the volume centre, view-up +y)\n"
+    "  --parallel | --perspective projection (default perspective)\n"
+    "  --background R G B         background colour in 0..1 (default 0 0 0)\n"
+    "  --frames N                 timed frames after one warm-up frame, each turned 2 degrees\n"
+    "                             further in azimuth (default 1)\n"
+    "  --out FILE.png             write the last frame\n"
+    "  --stats FILE.json          write timings and settings as JSON ('-' = stdout)\n"
+    "  --gl osmesa|egl|x          OpenGL backend (default: $ACCELVOLUME_GL, else X when\n"
+    "                             DISPLAY is set, else EGL, then OSMesa)\n"
+    "  --quiet                    no summary\n"
+    "  --help                     this text\n";
 }
 
 } // namespace accelvolume::cli

@@ -111,8 +111,8 @@ VTKMessages::VTKMessages()
 {
   TheOutputWindow = vtkSmartPointer<CaptureOutputWindow>::New();
   TheOutputWindow->Sink = this->Data;
-  vtkLogger::AddCallback("accelvolume-capture", &LoggerCallback, this->Data,
-                         vtkLogger::VERBOSITY_WARNING);
+  vtkLogger::AddCallback(
+    "accelvolume-capture", &LoggerCallback, this->Data, vtkLogger::VERBOSITY_WARNING);
   this->Install();
 }
 
@@ -212,7 +212,8 @@ void CheckCrop(const Options& options, vtkImageData* image)
     if (!(low < high) || low < 0 || high > dims[axis] - 1)
     {
       std::ostringstream message;
-      message << "--crop " << "XYZ"[axis] << " range " << low << " " << high
+      message << "--crop "
+              << "XYZ"[axis] << " range " << low << " " << high
               << (low < high ? " lies outside the volume" : " is inverted or empty")
               << " (valid: 0 <= lo < hi <= " << dims[axis] - 1 << ")";
       throw CliError(ExitUsage, message.str());
@@ -231,8 +232,8 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
   else
   {
     result.window[0] = result.scalarRange[0];
-    result.window[1] =
-      result.scalarRange[1] > result.scalarRange[0] ? result.scalarRange[1] : result.scalarRange[0] + 1;
+    result.window[1] = result.scalarRange[1] > result.scalarRange[0] ? result.scalarRange[1]
+                                                                     : result.scalarRange[0] + 1;
   }
   const double low = result.window[0], high = result.window[1];
 
@@ -346,7 +347,7 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
   // Front view: looking along +z at the centre, view-up +y; then the requested moves.
   vtkCamera* camera = renderer->GetActiveCamera();
   const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
-                             (bounds[4] + bounds[5]) / 2 };
+    (bounds[4] + bounds[5]) / 2 };
   camera->SetFocalPoint(centre);
   camera->SetPosition(centre[0], centre[1], centre[2] - 1);
   camera->SetViewUp(0, 1, 0);
@@ -395,7 +396,8 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
   auto* headless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
   if (headless)
   {
-    result.glBackend = vtkAccelVolumeHeadlessRenderWindow::GetBackendName(headless->GetActiveBackend());
+    result.glBackend =
+      vtkAccelVolumeHeadlessRenderWindow::GetBackendName(headless->GetActiveBackend());
   }
   else
   {
@@ -414,7 +416,8 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
   {
     rendererName = headless->GetOpenGLRendererString();
   }
-  result.glRenderer = rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);
+  result.glRenderer =
+    rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);
   messages.Clear(); // a failed capability query is not a render failure
 
   if (!options.outPath.empty())

@@ -43,13 +43,13 @@ struct RenderResult
   std::vector<double> frameMs; // the timed frames, in order
   std::string glRenderer = "unknown";
   std::string glBackend = "unknown";
-  double window[2] = { 0, 1 };  // transfer-function window actually used
+  double window[2] = { 0, 1 }; // transfer-function window actually used
   double scalarRange[2] = { 0, 0 };
-  double raysumUnit = 0;        // slice mapper's AdditiveUnitDistance
-  double sampleDistance = 0;    // world distance between samples / slices actually used
+  double raysumUnit = 0;            // slice mapper's AdditiveUnitDistance
+  double sampleDistance = 0;        // world distance between samples / slices actually used
   std::string sampleDistanceSource; // "min-spacing", "flag" or "slices"
-  int slices = -1;              // slice mapper's last slice count; -1 for other mappers
-  int slabSamples = -1;         // slice mapper's samples per proxy fragment; -1 for others
+  int slices = -1;                  // slice mapper's last slice count; -1 for other mappers
+  int slabSamples = -1;             // slice mapper's samples per proxy fragment; -1 for others
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
 };
 

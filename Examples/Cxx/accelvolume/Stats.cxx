@@ -114,7 +114,7 @@ std::string JsonString(const std::string& text)
 }
 
 void WriteStats(std::ostream& stream, const Options& options, vtkImageData* image,
-                const RenderResult& result, int warnings)
+  const RenderResult& result, int warnings)
 {
   const FrameStatistics frames = Statistics(result.frameMs);
   int dims[3];
@@ -166,8 +166,8 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"crop_planes\": " << (options.haveCrop ? Array(result.cropPlanes, 6) : "null")
          << ",\n"
          << "  \"camera\": {\"azimuth\": " << Number(options.azimuth)
-         << ", \"elevation\": " << Number(options.elevation) << ", \"roll\": "
-         << Number(options.roll) << ", \"zoom\": " << Number(options.zoom)
+         << ", \"elevation\": " << Number(options.elevation)
+         << ", \"roll\": " << Number(options.roll) << ", \"zoom\": " << Number(options.zoom)
          << ", \"parallel\": " << (options.parallel ? "true" : "false")
          << ", \"final_azimuth\": " << Number(options.azimuth + 2.0 * (options.frames - 1))
          << "},\n"
@@ -183,8 +183,8 @@ std::string Summary(const Options& options, vtkImageData* image, const RenderRes
   const FrameStatistics frames = Statistics(result.frameMs);
   std::ostringstream text;
   text.precision(4);
-  text << MapperName(options.mapper) << " " << BlendName(options.blend) << " "
-       << options.size[0] << "x" << options.size[1] << ", "
+  text << MapperName(options.mapper) << " " << BlendName(options.blend) << " " << options.size[0]
+       << "x" << options.size[1] << ", "
        << (options.volume.inputPath.empty() ? "phantom " + options.volume.phantom
                                             : options.volume.inputPath)
        << " " << DescribeVolume(image) << ": " << frames.median << " ms/frame (median of "

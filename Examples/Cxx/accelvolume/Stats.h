@@ -18,7 +18,7 @@ std::string JsonString(const std::string& text);
 
 // Writes one JSON object (see the keys in the code; README of the CLI in --help).
 void WriteStats(std::ostream& stream, const Options& options, vtkImageData* image,
-                const RenderResult& result, int warnings);
+  const RenderResult& result, int warnings);
 
 // "slice mip 512x512 vessels 128x128x128 float32: 12.3 ms/frame (median of 1), ..."
 std::string Summary(const Options& options, vtkImageData* image, const RenderResult& result);

@@ -94,7 +94,7 @@ namespace
 // Reads "key = value" (MetaImage) or "key: value" (NRRD) lines from the start of a header.
 // Returns false for text that is not a header; dataOffset is where the header ends.
 bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::string>& fields,
-                std::int64_t& dataOffset, std::string& error)
+  std::int64_t& dataOffset, std::string& error)
 {
   std::ifstream stream(path, std::ios::binary);
   std::string buffer(1 << 16, '\0');
@@ -123,9 +123,8 @@ bool ReadHeader(const std::string& path, bool nrrd, std::map<std::string, std::s
       continue;
     }
     const auto separator = line.find(nrrd ? ":" : "=");
-    const bool printable =
-      std::all_of(line.begin(), line.end(),
-                  [](char c) { return std::isprint(static_cast<unsigned char>(c)) || c == '\t'; });
+    const bool printable = std::all_of(line.begin(), line.end(),
+      [](char c) { return std::isprint(static_cast<unsigned char>(c)) || c == '\t'; });
     if (separator == std::string::npos || !printable)
     {
       error = "malformed " + kind + " header in '" + path + "' at line " +
@@ -160,29 +159,17 @@ ScalarKind HeaderKind(std::string type)
 {
   type = Lower(type);
   type = EndsWith(type, "_t") ? type.substr(0, type.size() - 2) : type;
-  static const std::map<std::string, ScalarKind> kinds = {
-    { "met_uchar", ScalarKind::UInt8 },
-    { "met_char", ScalarKind::Int8 },
-    { "met_ushort", ScalarKind::UInt16 },
-    { "met_short", ScalarKind::Int16 },
-    { "met_int", ScalarKind::Int32 },
-    { "met_float", ScalarKind::Float32 },
-    { "met_double", ScalarKind::Float64 },
-    { "uchar", ScalarKind::UInt8 },
-    { "unsigned char", ScalarKind::UInt8 },
-    { "signed char", ScalarKind::Int8 },
-    { "short", ScalarKind::Int16 },
-    { "short int", ScalarKind::Int16 },
-    { "signed short", ScalarKind::Int16 },
-    { "signed short int", ScalarKind::Int16 },
-    { "ushort", ScalarKind::UInt16 },
-    { "unsigned short", ScalarKind::UInt16 },
-    { "unsigned short int", ScalarKind::UInt16 },
-    { "int", ScalarKind::Int32 },
-    { "signed int", ScalarKind::Int32 },
-    { "float", ScalarKind::Float32 },
-    { "double", ScalarKind::Float64 }
-  };
+  static const std::map<std::string, ScalarKind> kinds = { { "met_uchar", ScalarKind::UInt8 },
+    { "met_char", ScalarKind::Int8 }, { "met_ushort", ScalarKind::UInt16 },
+    { "met_short", ScalarKind::Int16 }, { "met_int", ScalarKind::Int32 },
+    { "met_float", ScalarKind::Float32 }, { "met_double", ScalarKind::Float64 },
+    { "uchar", ScalarKind::UInt8 }, { "unsigned char", ScalarKind::UInt8 },
+    { "signed char", ScalarKind::Int8 }, { "short", ScalarKind::Int16 },
+    { "short int", ScalarKind::Int16 }, { "signed short", ScalarKind::Int16 },
+    { "signed short int", ScalarKind::Int16 }, { "ushort", ScalarKind::UInt16 },
+    { "unsigned short", ScalarKind::UInt16 }, { "unsigned short int", ScalarKind::UInt16 },
+    { "int", ScalarKind::Int32 }, { "signed int", ScalarKind::Int32 },
+    { "float", ScalarKind::Float32 }, { "double", ScalarKind::Float64 } };
   const auto found = kinds.find(type);
   return found != kinds.end()    ? found->second
     : type.compare(0, 4, "met_") ? ParseScalarKind(type)
@@ -207,8 +194,8 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
   for (std::string token; sizeStream >> token;)
   {
     sizes.push_back(token.find_first_not_of("0123456789") == std::string::npos && token.size() < 13
-                      ? std::stoll(token)
-                      : -1);
+        ? std::stoll(token)
+        : -1);
   }
   // vtkNrrdReader reads a 4th axis, or a first axis of at most 9 samples, as vector components.
   const bool nrrdComponents = nrrd && !sizes.empty() && (dimension > 3 || sizes[0] <= 9);
@@ -246,7 +233,7 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     field(nrrd ? (fields.count("datafile") ? "datafile" : "data file") : "elementdatafile");
   bool raw = !nrrd || encoding == "raw";
   if (nrrd && !raw && encoding != "ascii" && encoding != "text" && encoding != "txt" &&
-      encoding != "gzip" && encoding != "gz")
+    encoding != "gzip" && encoding != "gz")
   {
     error = "unsupported NRRD encoding '" + encoding + "' in '" + path + "'";
     return false;
@@ -256,7 +243,7 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     raw = false; // Compressed or listed data can only be checked by MetaIO itself.
   }
   if (dataFile.find('%') != std::string::npos || dataFile.find(' ') != std::string::npos ||
-      (nrrd && dataFile == "LIST"))
+    (nrrd && dataFile == "LIST"))
   {
     error = "multi-file data in '" + path + "' is not supported";
     return false;
@@ -279,8 +266,8 @@ bool CheckHeader(const std::string& path, bool nrrd, std::string& error)
     return false;
   }
   if (nrrd &&
-      (std::atoll(field("byte skip").c_str()) || std::atoll(field("line skip").c_str()) ||
-       std::atoll(field("byteskip").c_str()) || std::atoll(field("lineskip").c_str())))
+    (std::atoll(field("byte skip").c_str()) || std::atoll(field("line skip").c_str()) ||
+      std::atoll(field("byteskip").c_str()) || std::atoll(field("lineskip").c_str())))
   {
     error = "NRRD byte skip and line skip are not supported ('" + path + "')";
     return false;

@@ -24,12 +24,11 @@ struct KindInfo
 };
 
 inline constexpr KindInfo Kinds[] = { { ScalarKind::UInt8, "uint8", VTK_UNSIGNED_CHAR, 1 },
-                           { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
-                           { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
-                           { ScalarKind::Int16, "int16", VTK_SHORT, 2 },
-                           { ScalarKind::Int32, "int32", VTK_INT, 4 },
-                           { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
-                           { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
+  { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
+  { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
+  { ScalarKind::Int16, "int16", VTK_SHORT, 2 }, { ScalarKind::Int32, "int32", VTK_INT, 4 },
+  { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
+  { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
 
 // The Kinds entry of kind; nullptr for ScalarKind::Unknown.
 const KindInfo* FindKind(ScalarKind kind);
@@ -39,7 +38,8 @@ bool EndsWith(const std::string& text, const std::string& suffix);
 // "256x256x113".
 std::string DimensionsText(const Dimensions dims);
 // Refuses absurd sizes from the header alone, before any allocation; bytes = voxels * type size.
-bool CheckSize(const Dimensions dims, const KindInfo& kind, std::int64_t& bytes, std::string& error);
+bool CheckSize(
+  const Dimensions dims, const KindInfo& kind, std::int64_t& bytes, std::string& error);
 // -1 when the size cannot be read.
 std::int64_t FileSize(const std::filesystem::path& path);
 

@@ -107,16 +107,15 @@ struct RawLayout
 void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
 {
   std::ifstream stream(rawPath.parent_path() / "datasets.json", std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(stream)),
-                         std::istreambuf_iterator<char>());
+  const std::string text(
+    (std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
   static const std::regex fileEntry(R"re("file"\s*:\s*"([^"]*)")re");
-    for (std::sregex_iterator match(text.begin(), text.end(), fileEntry), end; match != end;
-         ++match)
+  for (std::sregex_iterator match(text.begin(), text.end(), fileEntry), end; match != end; ++match)
   {
     const auto first = text.rfind('{', match->position());
     const auto last = text.find('}', match->position());
     if ((*match)[1] != rawPath.filename().string() || first == std::string::npos ||
-        last == std::string::npos)
+      last == std::string::npos)
     {
       continue;
     }
@@ -137,8 +136,8 @@ void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
     };
     const std::vector<double> spacing = numbers("spacing"), dims = numbers("dims");
     layout.haveSpacing = spacing.size() == 3 &&
-      std::all_of(spacing.begin(), spacing.end(),
-                  [](double v) { return std::isfinite(v) && v > 0; });
+      std::all_of(
+        spacing.begin(), spacing.end(), [](double v) { return std::isfinite(v) && v > 0; });
     std::copy(spacing.begin(), spacing.begin() + (layout.haveSpacing ? 3 : 0), layout.spacing);
     layout.haveDims = dims.size() == 3;
     for (std::size_t axis = 0; axis < dims.size() && layout.haveDims; ++axis)
@@ -232,7 +231,7 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   {
     error = "raw volume '" + request.inputPath + "' needs " +
       (layout.haveDims ? ""
-         : kind        ? "--dims"
+          : kind       ? "--dims"
                        : "--dims and ") +
       (kind ? "" : "--type") + " (or a name like NAME_256x256x113_uint16.raw)";
     return nullptr;
@@ -254,14 +253,14 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   std::ifstream stream(path, std::ios::binary);
   unsigned char magic[2] = { 0, 0 };
   if (compressed &&
-      (!stream.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b))
+    (!stream.read(reinterpret_cast<char*>(magic), 2) || magic[0] != 0x1f || magic[1] != 0x8b))
   {
     error = "'" + request.inputPath + "' is not gzip data (bad magic bytes)";
     return nullptr;
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(static_cast<int>(layout.dims[0]), static_cast<int>(layout.dims[1]),
-                       static_cast<int>(layout.dims[2]));
+    static_cast<int>(layout.dims[2]));
   image->AllocateScalars(kind->vtkType, 1);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (!scalars || scalars->GetNumberOfValues() != bytes / kind->size)
@@ -338,7 +337,7 @@ bool ValidateImage(vtkImageData* image, const std::string& path, std::string& er
   }
   const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
   if (std::none_of(std::begin(Kinds), std::end(Kinds),
-                   [type](const KindInfo& info) { return info.vtkType == type; }))
+        [type](const KindInfo& info) { return info.vtkType == type; }))
   {
     error = std::string("unsupported scalar type '") + scalars->GetDataTypeAsString() + "' in '" +
       path + "' (supported: uint8 int8 uint16 int16 int32 float32 float64)";
@@ -416,8 +415,8 @@ vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::stri
 {
   error.clear();
   if (request.haveSpacing &&
-      !std::all_of(request.spacing, request.spacing + 3,
-                   [](double value) { return std::isfinite(value) && value > 0; }))
+    !std::all_of(request.spacing, request.spacing + 3,
+      [](double value) { return std::isfinite(value) && value > 0; }))
   {
     error = "spacing must be three positive numbers";
     return nullptr;
@@ -428,8 +427,8 @@ vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::stri
     if (request.inputPath.empty())
     {
       accelvolume::PhantomVolume phantom;
-      if (accelvolume::GeneratePhantom(request.phantom, request.phantomDims, request.phantomTime,
-                                       phantom, error))
+      if (accelvolume::GeneratePhantom(
+            request.phantom, request.phantomDims, request.phantomTime, phantom, error))
       {
         image = PhantomToImage(phantom);
       }
@@ -487,7 +486,7 @@ std::string DescribeVolume(vtkImageData* image)
   }
   const int type = scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType();
   const auto* info = std::find_if(std::begin(Kinds), std::end(Kinds),
-                                  [type](const KindInfo& kind) { return kind.vtkType == type; });
+    [type](const KindInfo& kind) { return kind.vtkType == type; });
   text += " ";
   text += info != std::end(Kinds) ? info->name : scalars->GetDataTypeAsString();
   const int components = scalars->GetNumberOfComponents();

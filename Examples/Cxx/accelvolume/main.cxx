@@ -77,10 +77,11 @@ std::string ChooseBackend(const Options& options)
     return "X display '" + std::string(display) + "' unavailable, rendered headless";
   }
   if (backend != Window::BACKEND_X && backend != Window::BACKEND_AUTOMATIC &&
-      !Window::IsBackendAvailable(backend))
+    !Window::IsBackendAvailable(backend))
   {
-    throw CliError(ExitRuntime, std::string("the ") + Window::GetBackendName(backend) +
-                     " OpenGL backend is not available on this machine");
+    throw CliError(ExitRuntime,
+      std::string("the ") + Window::GetBackendName(backend) +
+        " OpenGL backend is not available on this machine");
   }
   if (options.glBackend >= 0)
   {
@@ -101,13 +102,14 @@ void CheckOutputPath(const std::string& path, const char* flag)
   std::error_code code;
   if (!parent.empty() && !fs::is_directory(parent, code))
   {
-    throw CliError(ExitRuntime, std::string("cannot write ") + flag + " '" + path +
-                     "': directory '" + parent.string() + "' does not exist");
+    throw CliError(ExitRuntime,
+      std::string("cannot write ") + flag + " '" + path + "': directory '" + parent.string() +
+        "' does not exist");
   }
   if (fs::is_directory(path, code))
   {
-    throw CliError(ExitRuntime, std::string("cannot write ") + flag + " '" + path +
-                     "': it is a directory");
+    throw CliError(
+      ExitRuntime, std::string("cannot write ") + flag + " '" + path + "': it is a directory");
   }
 }
 
@@ -126,8 +128,8 @@ void CheckPhantom(const Options& options)
   }
   if (!known)
   {
-    throw CliError(ExitUsage, "invalid value '" + options.volume.phantom +
-                     "' for --phantom (expected " + names + ")");
+    throw CliError(ExitUsage,
+      "invalid value '" + options.volume.phantom + "' for --phantom (expected " + names + ")");
   }
   for (const int size : options.volume.phantomDims)
   {

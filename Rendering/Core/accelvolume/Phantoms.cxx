@@ -109,7 +109,7 @@ void FillVessels(const int dims[3], double time, std::vector<float>& values)
     { 1, { 0.50, 0.30 }, { 0.15, 0.06 }, 0.5, 0.8, 0.03, 850 },
   };
   std::vector<double> coordinates[3] = { AxisCoordinates(dims[0]), AxisCoordinates(dims[1]),
-                                         AxisCoordinates(dims[2]) };
+    AxisCoordinates(dims[2]) };
   // Tube centers depend on one coordinate only, so precompute them per position along the axis.
   struct TubeTable
   {
@@ -123,8 +123,8 @@ void FillVessels(const int dims[3], double time, std::vector<float>& values)
     const double angle = TwoPi * (tube.phase + time);
     for (double s : coordinates[tube.axis])
     {
-      table.first.push_back(tube.center[0] +
-                            tube.amplitude[0] * std::sin(TwoPi * tube.frequency * s + angle));
+      table.first.push_back(
+        tube.center[0] + tube.amplitude[0] * std::sin(TwoPi * tube.frequency * s + angle));
       table.second.push_back(
         tube.center[1] + tube.amplitude[1] * std::cos(TwoPi * 0.7 * tube.frequency * s + angle));
     }
@@ -142,7 +142,7 @@ void FillVessels(const int dims[3], double time, std::vector<float>& values)
       double value = 40 +
         60 *
           (0.65 * ValueNoise(position[0] * 8, position[1] * 8, position[2] * 8, 17) +
-           0.35 * ValueNoise(position[0] * 24, position[1] * 24, position[2] * 24, 91));
+            0.35 * ValueNoise(position[0] * 24, position[1] * 24, position[2] * 24, 91));
       for (std::size_t t = 0; t < tables.size(); ++t)
       {
         const int axis = tubes[t].axis;
@@ -164,7 +164,7 @@ void FillShells(const int dims[3], double time, std::vector<float>& values)
   };
   static const Shell shells[] = { { 0.42, 0.02, 400 }, { 0.30, 0.02, 700 }, { 0.16, 0.025, 1000 } };
   std::vector<double> coordinates[3] = { AxisCoordinates(dims[0]), AxisCoordinates(dims[1]),
-                                         AxisCoordinates(dims[2]) };
+    AxisCoordinates(dims[2]) };
   double radii[3];
   for (int s = 0; s < 3; ++s)
   {
@@ -195,12 +195,15 @@ void FillBlobs(const int dims[3], double time, std::vector<float>& values)
     double center[3], sigma, peak, orbit, phase;
   };
   static const Blob blobs[] = {
-    { { 0.30, 0.30, 0.30 }, 0.08, 1000, 0.05, 0.0 }, { { 0.70, 0.35, 0.40 }, 0.12, 600, 0.04, 0.2 },
-    { { 0.45, 0.70, 0.60 }, 0.05, 900, 0.06, 0.4 },  { { 0.70, 0.70, 0.75 }, 0.09, 450, 0.03, 0.6 },
-    { { 0.25, 0.60, 0.80 }, 0.04, 800, 0.05, 0.8 },  { { 0.55, 0.45, 0.20 }, 0.15, 300, 0.02, 0.1 },
+    { { 0.30, 0.30, 0.30 }, 0.08, 1000, 0.05, 0.0 },
+    { { 0.70, 0.35, 0.40 }, 0.12, 600, 0.04, 0.2 },
+    { { 0.45, 0.70, 0.60 }, 0.05, 900, 0.06, 0.4 },
+    { { 0.70, 0.70, 0.75 }, 0.09, 450, 0.03, 0.6 },
+    { { 0.25, 0.60, 0.80 }, 0.04, 800, 0.05, 0.8 },
+    { { 0.55, 0.45, 0.20 }, 0.15, 300, 0.02, 0.1 },
   };
   std::vector<double> coordinates[3] = { AxisCoordinates(dims[0]), AxisCoordinates(dims[1]),
-                                         AxisCoordinates(dims[2]) };
+    AxisCoordinates(dims[2]) };
   double centers[6][3];
   for (int b = 0; b < 6; ++b)
   {
@@ -268,8 +271,11 @@ struct PhantomEntry
 };
 
 const PhantomEntry Entries[] = {
-  { "vessels", FillVessels }, { "shells", FillShells }, { "blobs", FillBlobs },
-  { "ramp", FillRamp },       { "box", FillBox },
+  { "vessels", FillVessels },
+  { "shells", FillShells },
+  { "blobs", FillBlobs },
+  { "ramp", FillRamp },
+  { "box", FillBox },
 };
 
 } // namespace
@@ -284,8 +290,8 @@ std::vector<std::string> PhantomNames()
   return names;
 }
 
-bool GeneratePhantom(const std::string& name, const int dims[3], double time, PhantomVolume& out,
-                     std::string& error)
+bool GeneratePhantom(
+  const std::string& name, const int dims[3], double time, PhantomVolume& out, std::string& error)
 {
   PhantomFunction function = nullptr;
   for (const PhantomEntry& entry : Entries)

@@ -30,8 +30,8 @@ std::vector<std::string> PhantomNames();
 // or pulse smoothly, and at time 0 ramp and box have exactly the analytic values above.
 // Returns false and sets error for an unknown name, dims < 1, more than 2^31 voxels or a
 // non-finite time; out is left untouched then.
-bool GeneratePhantom(const std::string& name, const int dims[3], double time, PhantomVolume& out,
-                     std::string& error);
+bool GeneratePhantom(
+  const std::string& name, const int dims[3], double time, PhantomVolume& out, std::string& error);
 
 } // namespace accelvolume
 

@@ -99,10 +99,7 @@ float ScalarVolume::SampleTrilinear(const Vec3& indexPoint) const
     upper[axis] = std::min(lower[axis] + 1, dims[axis] - 1);
     fraction[axis] = p[axis] - lower[axis];
   }
-  auto lerp = [](double a, double b, double t)
-  {
-    return a + (b - a) * t;
-  };
+  auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
   const double x00 =
     lerp(Value(lower[0], lower[1], lower[2]), Value(upper[0], lower[1], lower[2]), fraction[0]);
   const double x10 =
@@ -118,9 +115,7 @@ float ScalarVolume::SampleTrilinear(const Vec3& indexPoint) const
 float ScalarVolume::SampleNearest(const Vec3& indexPoint) const
 {
   auto nearest = [](double coordinate, int count)
-  {
-    return static_cast<int>(std::floor(ClampIndex(coordinate, count) + 0.5));
-  };
+  { return static_cast<int>(std::floor(ClampIndex(coordinate, count) + 0.5)); };
   return Value(std::min(nearest(indexPoint.x, dims[0]), dims[0] - 1),
     std::min(nearest(indexPoint.y, dims[1]), dims[1] - 1),
     std::min(nearest(indexPoint.z, dims[2]), dims[2] - 1));

@@ -37,8 +37,8 @@ int main()
   std::cout << "ACCELVOLUME_GL=" << (gl ? gl : "(unset)") << "\n";
   if (backend == "osmesa" || backend == "egl")
   {
-    vtkSmartPointer<vtkRenderWindow> window = vtkSmartPointer<vtkRenderWindow>::Take(
-      vtkRenderWindow::New());
+    vtkSmartPointer<vtkRenderWindow> window =
+      vtkSmartPointer<vtkRenderWindow>::Take(vtkRenderWindow::New());
     std::cout << "vtkRenderWindow::New() gives " << window->GetClassName() << "\n";
     auto* asHeadless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
     if (!asHeadless)
