@@ -12,6 +12,9 @@
 // frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
 // printed description of the masks).
+// Options: BenchmarkCroppingOptions.{h,cxx}; table and JSON: BenchmarkCroppingReport.{h,cxx}.
+#include "BenchmarkCroppingOptions.h"
+#include "BenchmarkCroppingReport.h"
 #include "BenchmarkImageMetrics.h"
 #include "VolumeIO.h"
 
@@ -35,59 +38,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#ifndef ACCELVOLUME_BENCHMARK_DATA_DIR
-#define ACCELVOLUME_BENCHMARK_DATA_DIR "../shared/data"
-#endif
 
 namespace fs = std::filesystem;
 using namespace accelvolume::benchmark;
 
 namespace
 {
-// ------------------------------------------------------------------------------------------
-// Settings
-
-struct Options
-{
-  std::string DataDir = ACCELVOLUME_BENCHMARK_DATA_DIR;
-  std::vector<std::string> Datasets = { "cthead", "cta_avm" };
-  int Width = 512;
-  int Height = 512;
-  int Frames = 10;
-  int ReferenceFrames = 3;
-  std::string GL = "egl";
-  std::string Json = "benchmark_cropping.json";
-  std::string Images;
-  double CropLow = 0.2;
-  double CropHigh = 0.8;
-  double BandRadius = 2.5;     // pixels either side of the projected crop-box outline
-  double AboveThreshold = 2.0; // grey levels: "visibly different" pixel
-  double Zoom = 1.0;           // after fitting the camera to the crop box
-  bool HaveWindow = false;     // --window overrides the per-dataset transfer-function window
-  double Window[2] = { 0, 1 };
-};
-
-struct View
-{
-  const char* Name;
-  double Azimuth;
-  double Elevation;
-};
-const View Views[] = { { "view1_az30_el25", 30.0, 25.0 }, { "view2_az-55_el40", -55.0, 40.0 } };
-
 struct DatasetWindow
 {
   double Low;
@@ -110,17 +73,6 @@ bool KnownWindow(const std::string& name, DatasetWindow& window)
   return false;
 }
 
-struct Config
-{
-  std::string Id;
-  std::string Label;
-  bool Gpu = false;
-  bool Rerender = false;
-  bool AutoAdjust = false;
-  double SliceFactor = 1.0; // slices per smallest voxel spacing
-  bool Reference = false;
-};
-
 std::vector<Config> MakeConfigs()
 {
   return {
@@ -131,178 +83,6 @@ std::vector<Config> MakeConfigs()
     { "e", "vtkGPUVolumeRayCastMapper 1x", true, false, false, 1.0, false },
     { "ref", "slice 8x + re-render (reference)", false, true, false, 8.0, true },
   };
-}
-
-struct ConfigResult
-{
-  Config Cfg;
-  std::vector<double> FrameMs;  // Render() + 1x1 read-back
-  std::vector<double> MapperMs; // slice mapper's own GetLastRenderTime (it waits for the GPU)
-  int Slices = 0;
-  int Faces = 0;
-  double SliceSpacing = 0;
-  std::vector<std::vector<std::uint8_t>> Images; // per view, RGB, bottom row first
-  std::vector<ErrorStats> Footprint;             // per view
-  std::vector<ErrorStats> Band;                  // per view
-  std::vector<ErrorStats> Face;                  // per view
-  ErrorStats FootprintAll;
-  ErrorStats BandAll;
-  ErrorStats FaceAll;
-  double MedianMs() const { return Median(this->FrameMs); }
-  double MinMs() const
-  {
-    return this->FrameMs.empty() ? 0.0
-                                 : *std::min_element(this->FrameMs.begin(), this->FrameMs.end());
-  }
-  // Median over the interleaved rounds of (this frame / the other's frame of the same round):
-  // robust to load changes on a shared machine.
-  double PairedRatio(const ConfigResult& other) const
-  {
-    std::vector<double> ratios;
-    for (size_t f = 0; f < this->FrameMs.size() && f < other.FrameMs.size(); ++f)
-    {
-      ratios.push_back(this->FrameMs[f] / other.FrameMs[f]);
-    }
-    return ratios.empty() ? std::nan("") : Median(ratios);
-  }
-  double MedianMapperMs() const { return Median(this->MapperMs); }
-};
-
-struct DatasetResult
-{
-  std::string Name;
-  std::string File;
-  std::string Description;
-  double Spacing[3] = { 1, 1, 1 };
-  double MinSpacing = 1;
-  double Window[2] = { 0, 1 };
-  double CropPlanes[6] = { 0, 0, 0, 0, 0, 0 };
-  double LoadSeconds = 0;
-  double TotalSeconds = 0;
-  std::vector<long long> FootprintPixels; // per view
-  std::vector<long long> BandPixels;      // per view
-  std::vector<long long> FacePixels;      // per view
-  std::vector<ConfigResult> Results;
-};
-
-void Usage()
-{
-  std::cout
-    << "Usage: accelvolume_benchmark_cropping [options]\n"
-       "  --data DIR          folder of the volumes and datasets.json (default "
-    << ACCELVOLUME_BENCHMARK_DATA_DIR
-    << ")\n"
-       "  --datasets A,B      dataset names (default cthead,cta_avm); a name maps to the file\n"
-       "                      NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder\n"
-       "  --size W H          image size (default 512 512)\n"
-       "  --frames N          timed frames per configuration (default 10)\n"
-       "  --reference-frames N timed frames of the 8x reference (default 3)\n"
-       "  --gl egl|osmesa|auto headless OpenGL backend (default egl)\n"
-       "  --json FILE         machine-readable results (default benchmark_cropping.json)\n"
-       "  --images DIR        save PNGs (and x8 difference images) of the first dataset\n"
-       "  --crop LOW HIGH     crop box as fractions of every axis (default 0.2 0.8)\n"
-       "  --band R            half-width in pixels of the outline band (default 2.5)\n"
-       "  --zoom Z            camera zoom after fitting the crop box (default 1.0)\n"
-       "  --window LOW HIGH   transfer-function window for every dataset (default: per dataset)\n";
-}
-
-bool ParseArguments(int argc, char* argv[], Options& options)
-{
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    auto need = [&](int count)
-    {
-      if (i + count >= argc)
-      {
-        std::cerr << "missing value after " << arg << "\n";
-        return false;
-      }
-      return true;
-    };
-    if (arg == "--help" || arg == "-h")
-    {
-      Usage();
-      std::exit(0);
-    }
-    else if (arg == "--data" && need(1))
-    {
-      options.DataDir = argv[++i];
-    }
-    else if (arg == "--datasets" && need(1))
-    {
-      options.Datasets.clear();
-      std::stringstream stream(argv[++i]);
-      std::string name;
-      while (std::getline(stream, name, ','))
-      {
-        if (!name.empty())
-        {
-          options.Datasets.push_back(name);
-        }
-      }
-    }
-    else if (arg == "--size" && need(2))
-    {
-      options.Width = std::atoi(argv[++i]);
-      options.Height = std::atoi(argv[++i]);
-    }
-    else if (arg == "--frames" && need(1))
-    {
-      options.Frames = std::atoi(argv[++i]);
-    }
-    else if (arg == "--reference-frames" && need(1))
-    {
-      options.ReferenceFrames = std::atoi(argv[++i]);
-    }
-    else if (arg == "--gl" && need(1))
-    {
-      options.GL = argv[++i];
-    }
-    else if (arg == "--json" && need(1))
-    {
-      options.Json = argv[++i];
-    }
-    else if (arg == "--images" && need(1))
-    {
-      options.Images = argv[++i];
-    }
-    else if (arg == "--crop" && need(2))
-    {
-      options.CropLow = std::atof(argv[++i]);
-      options.CropHigh = std::atof(argv[++i]);
-    }
-    else if (arg == "--zoom" && need(1))
-    {
-      options.Zoom = std::atof(argv[++i]);
-    }
-    else if (arg == "--window" && need(2))
-    {
-      options.HaveWindow = true;
-      options.Window[0] = std::atof(argv[++i]);
-      options.Window[1] = std::atof(argv[++i]);
-    }
-    else if (arg == "--band" && need(1))
-    {
-      options.BandRadius = std::atof(argv[++i]);
-    }
-    else
-    {
-      std::cerr << "unknown or incomplete option: " << arg << "\n";
-      Usage();
-      return false;
-    }
-  }
-  if (options.Width < 16 || options.Height < 16 || options.Frames < 1 ||
-    options.ReferenceFrames < 1 || options.Datasets.empty() ||
-    !(options.CropLow >= 0 && options.CropLow < options.CropHigh && options.CropHigh <= 1) ||
-    options.BandRadius <= 0 || options.Zoom <= 0 ||
-    (options.HaveWindow && !(options.Window[0] < options.Window[1])))
-  {
-    std::cerr << "invalid option values\n";
-    return false;
-  }
-  return true;
 }
 
 // NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder.
@@ -348,48 +128,6 @@ bool WritePng(const std::string& path, const std::vector<std::uint8_t>& rgb, int
   writer->Write();
   return writer->GetErrorCode() == 0;
 }
-
-std::string JsonEscape(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-      out += c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-      out += buffer;
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return out;
-}
-
-std::string Num(double value, int precision = 4)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream << std::setprecision(precision) << std::fixed << value;
-  return stream.str();
-}
-
-double SafeRatio(double a, double b)
-{
-  return b > 0 ? a / b : std::nan("");
-}
-
-// ------------------------------------------------------------------------------------------
 
 bool RunDataset(const Options& options, const std::string& name, bool saveImages,
   vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result)
@@ -711,190 +449,6 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
   return true;
 }
 
-void PrintTable(const DatasetResult& d)
-{
-  const ConfigResult* oneAndHalf = nullptr;
-  const ConfigResult* base = nullptr;
-  const ConfigResult* rerender = nullptr;
-  const ConfigResult* doubled = nullptr;
-  for (const ConfigResult& r : d.Results)
-  {
-    base = r.Cfg.Id == "a" ? &r : base;
-    rerender = r.Cfg.Id == "b" ? &r : rerender;
-    doubled = r.Cfg.Id == "d" ? &r : doubled;
-    oneAndHalf = r.Cfg.Id == "c" ? &r : oneAndHalf;
-  }
-  std::cout << "\n"
-            << d.Name << " (" << d.Description << "), MIP, errors in grey levels (0..255) vs ref,"
-            << " pooled over 2 views; pixels: footprint " << d.FootprintPixels[0] << "+"
-            << d.FootprintPixels[1] << ", band " << d.BandPixels[0] << "+" << d.BandPixels[1]
-            << ", cut-face " << d.FacePixels[0] << "+" << d.FacePixels[1] << "\n";
-  std::cout << std::left << std::setw(5) << "cfg" << std::setw(35) << "configuration" << std::right
-            << std::setw(7) << "slices" << std::setw(10) << "ms/frame" << std::setw(7) << "fps"
-            << std::setw(8) << "min ms" << std::setw(7) << "time x" << std::setw(7) << "RMS"
-            << std::setw(5) << "max" << std::setw(7) << "err x" << std::setw(8) << ">2lv%"
-            << std::setw(8) << "bandRMS" << std::setw(6) << "bmax" << std::setw(7) << "band x"
-            << std::setw(8) << "faceRMS" << std::setw(7) << "face x"
-            << "\n";
-  for (const ConfigResult& r : d.Results)
-  {
-    const double ms = r.MedianMs();
-    std::cout << std::left << std::setw(5) << r.Cfg.Id << std::setw(35) << r.Cfg.Label << std::right
-              << std::setw(7) << (r.Cfg.Gpu ? std::string("-") : std::to_string(r.Slices))
-              << std::setw(10) << Num(ms, 1) << std::setw(7) << Num(1000.0 / ms, 2) << std::setw(8)
-              << Num(r.MinMs(), 1) << std::setw(7) << Num(r.PairedRatio(*base), 2) << std::setw(7)
-              << Num(r.FootprintAll.Rms(), 2) << std::setw(5) << Num(r.FootprintAll.Max, 0)
-              << std::setw(7) << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 2)
-              << std::setw(8) << Num(100.0 * r.FootprintAll.AboveFraction(), 2) << std::setw(8)
-              << Num(r.BandAll.Rms(), 2) << std::setw(6) << Num(r.BandAll.Max, 0) << std::setw(7)
-              << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 2) << std::setw(8)
-              << Num(r.FaceAll.Rms(), 2) << std::setw(7)
-              << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 2) << "\n";
-  }
-  const double overhead = 100.0 * (rerender->PairedRatio(*base) - 1.0);
-  std::cout << "  re-rendering overhead: " << Num(overhead, 1)
-            << "% of frame time (median of per-round b/a; from medians "
-            << Num(100.0 * (rerender->MedianMs() / base->MedianMs() - 1.0), 1) << "%, from minima "
-            << Num(100.0 * (rerender->MinMs() / base->MinMs() - 1.0), 1)
-            << "%); paper: " << Num(100.0 * (150.81 / 149.83 - 1.0), 1) << "%\n";
-  std::cout << "  1.5x slices: " << Num(100.0 * (oneAndHalf->PairedRatio(*base) - 1.0), 1)
-            << "% more time, 2x slices: " << Num(100.0 * (doubled->PairedRatio(*base) - 1.0), 1)
-            << "% more (paper: 400 vs 256 slices +" << Num(100.0 * (150.81 / 97.24 - 1.0), 1)
-            << "%, 512 vs 256 +" << Num(100.0 * (150.81 / 73.85 - 1.0), 1) << "%)\n";
-  auto verdict = [&](const char* what, const ErrorStats& b, const ErrorStats& dd)
-  {
-    std::cout << (b.Rms() < dd.Rms() ? "holds" : "DOES NOT hold") << " " << what << " (b "
-              << Num(b.Rms(), 2) << " vs d " << Num(dd.Rms(), 2) << ")";
-  };
-  std::cout << "  \"re-rendering leaves less boundary error than doubling the slices\": ";
-  verdict("in the outline band", rerender->BandAll, doubled->BandAll);
-  std::cout << "; ";
-  verdict("on the cut-face pixels", rerender->FaceAll, doubled->FaceAll);
-  std::cout << "; ";
-  verdict("over the whole footprint", rerender->FootprintAll, doubled->FootprintAll);
-  std::cout << "\n";
-}
-
-void WriteJson(const Options& options, const std::string& renderer, const std::string& backend,
-  const std::vector<DatasetResult>& datasets)
-{
-  std::ofstream out(options.Json);
-  if (!out)
-  {
-    std::cerr << "cannot write " << options.Json << "\n";
-    return;
-  }
-  out << "{\n  \"benchmark\": \"cropping (paper 004 Table 2)\",\n";
-  out << "  \"gl_backend\": \"" << JsonEscape(backend) << "\",\n";
-  out << "  \"gl_renderer\": \"" << JsonEscape(renderer) << "\",\n";
-  out << "  \"size\": [" << options.Width << ", " << options.Height << "],\n";
-  out << "  \"frames\": " << options.Frames
-      << ",\n  \"reference_frames\": " << options.ReferenceFrames << ",\n";
-  out << "  \"crop_fraction\": [" << options.CropLow << ", " << options.CropHigh << "],\n";
-  out << "  \"band_radius_px\": " << options.BandRadius << ",\n";
-  out << "  \"above_threshold_grey_levels\": " << options.AboveThreshold << ",\n";
-  out << "  \"views\": [";
-  for (size_t v = 0; v < std::size(Views); ++v)
-  {
-    out << (v ? ", " : "") << "{\"name\": \"" << Views[v].Name
-        << "\", \"azimuth\": " << Views[v].Azimuth << ", \"elevation\": " << Views[v].Elevation
-        << "}";
-  }
-  out << "],\n";
-  out << "  \"error_units\": \"grey levels 0..255 (mean of R,G,B) vs the 8x re-rendered slice "
-         "reference\",\n";
-  out << "  \"paper_table2_fps\": {\"rerender_256\": 149.83, \"plain_256\": 150.81, "
-         "\"plain_400\": 97.24, \"plain_512\": 73.85},\n";
-  out << "  \"datasets\": [\n";
-  for (size_t i = 0; i < datasets.size(); ++i)
-  {
-    const DatasetResult& d = datasets[i];
-    const ConfigResult* base = nullptr;
-    const ConfigResult* rerender = nullptr;
-    const ConfigResult* doubled = nullptr;
-    for (const ConfigResult& r : d.Results)
-    {
-      base = r.Cfg.Id == "a" ? &r : base;
-      rerender = r.Cfg.Id == "b" ? &r : rerender;
-      doubled = r.Cfg.Id == "d" ? &r : doubled;
-    }
-    out << "    {\n      \"name\": \"" << JsonEscape(d.Name) << "\",\n      \"file\": \""
-        << JsonEscape(d.File) << "\",\n      \"volume\": \"" << JsonEscape(d.Description)
-        << "\",\n      \"spacing\": [" << d.Spacing[0] << ", " << d.Spacing[1] << ", "
-        << d.Spacing[2] << "],\n      \"tf_window\": [" << d.Window[0] << ", " << d.Window[1]
-        << "],\n      \"crop_planes\": [";
-    for (int k = 0; k < 6; ++k)
-    {
-      out << (k ? ", " : "") << Num(d.CropPlanes[k], 4);
-    }
-    out << "],\n      \"cut_face_pixels\": [" << d.FacePixels[0] << ", " << d.FacePixels[1]
-        << "],\n      \"footprint_pixels\": [" << d.FootprintPixels[0] << ", "
-        << d.FootprintPixels[1] << "],\n      \"band_pixels\": [" << d.BandPixels[0] << ", "
-        << d.BandPixels[1] << "],\n      \"seconds\": " << Num(d.TotalSeconds, 2)
-        << ",\n      \"rerender_overhead_percent\": "
-        << Num(100.0 * (rerender->PairedRatio(*base) - 1.0), 2)
-        << ",\n      \"rerender_beats_2x_in_band\": "
-        << (rerender->BandAll.Rms() < doubled->BandAll.Rms() ? "true" : "false")
-        << ",\n      \"rerender_beats_2x_on_cut_faces\": "
-        << (rerender->FaceAll.Rms() < doubled->FaceAll.Rms() ? "true" : "false")
-        << ",\n      \"rerender_beats_2x_in_footprint\": "
-        << (rerender->FootprintAll.Rms() < doubled->FootprintAll.Rms() ? "true" : "false")
-        << ",\n      \"configs\": [\n";
-    for (size_t k = 0; k < d.Results.size(); ++k)
-    {
-      const ConfigResult& r = d.Results[k];
-      out << "        {\"id\": \"" << r.Cfg.Id << "\", \"label\": \"" << JsonEscape(r.Cfg.Label)
-          << "\", \"mapper\": \""
-          << (r.Cfg.Gpu ? "vtkGPUVolumeRayCastMapper" : "vtkAccelVolumeSliceMapper")
-          << "\", \"boundary_rerendering\": " << (r.Cfg.Rerender ? "true" : "false")
-          << ", \"slice_factor\": " << r.Cfg.SliceFactor
-          << ", \"auto_adjust\": " << (r.Cfg.AutoAdjust ? "true" : "false");
-      if (!r.Cfg.Gpu)
-      {
-        out << ", \"slices\": " << r.Slices << ", \"boundary_faces\": " << r.Faces
-            << ", \"slice_spacing\": " << Num(r.SliceSpacing, 5);
-      }
-      out << ",\n         \"median_ms\": " << Num(r.MedianMs(), 3)
-          << ", \"fps\": " << Num(1000.0 / r.MedianMs(), 3) << ", \"min_ms\": " << Num(r.MinMs(), 3)
-          << ", \"time_ratio_vs_a\": " << Num(r.PairedRatio(*base), 4)
-          << ", \"median_ratio_vs_a\": " << Num(r.MedianMs() / base->MedianMs(), 4);
-      if (!r.Cfg.Gpu)
-      {
-        out << ", \"median_mapper_ms\": " << Num(r.MedianMapperMs(), 3);
-      }
-      out << ", \"frame_ms\": [";
-      for (size_t f = 0; f < r.FrameMs.size(); ++f)
-      {
-        out << (f ? ", " : "") << Num(r.FrameMs[f], 2);
-      }
-      out << "],\n         \"rms_error\": " << Num(r.FootprintAll.Rms(), 4)
-          << ", \"max_error\": " << Num(r.FootprintAll.Max, 2) << ", \"error_ratio_vs_a\": "
-          << Num(SafeRatio(r.FootprintAll.Rms(), base->FootprintAll.Rms()), 4)
-          << ", \"above_threshold_fraction\": " << Num(r.FootprintAll.AboveFraction(), 5)
-          << ", \"band_rms_error\": " << Num(r.BandAll.Rms(), 4)
-          << ", \"band_max_error\": " << Num(r.BandAll.Max, 2) << ", \"band_error_ratio_vs_a\": "
-          << Num(SafeRatio(r.BandAll.Rms(), base->BandAll.Rms()), 4)
-          << ", \"cut_face_rms_error\": " << Num(r.FaceAll.Rms(), 4)
-          << ", \"cut_face_max_error\": " << Num(r.FaceAll.Max, 2)
-          << ", \"cut_face_error_ratio_vs_a\": "
-          << Num(SafeRatio(r.FaceAll.Rms(), base->FaceAll.Rms()), 4)
-          << ",\n         \"per_view\": [";
-      for (size_t v = 0; v < r.Footprint.size(); ++v)
-      {
-        out << (v ? ", " : "") << "{\"view\": \"" << Views[v].Name
-            << "\", \"rms_error\": " << Num(r.Footprint[v].Rms(), 4)
-            << ", \"max_error\": " << Num(r.Footprint[v].Max, 2)
-            << ", \"above_threshold_fraction\": " << Num(r.Footprint[v].AboveFraction(), 5)
-            << ", \"band_rms_error\": " << Num(r.Band[v].Rms(), 4)
-            << ", \"band_max_error\": " << Num(r.Band[v].Max, 2)
-            << ", \"cut_face_rms_error\": " << Num(r.Face[v].Rms(), 4) << "}";
-      }
-      out << "]}" << (k + 1 < d.Results.size() ? "," : "") << "\n";
-    }
-    out << "      ]\n    }" << (i + 1 < datasets.size() ? "," : "") << "\n";
-  }
-  out << "  ]\n}\n";
-}
 } // namespace
 
 int main(int argc, char* argv[])
