@@ -3,11 +3,12 @@
 //
 // For each dataset: MIP of a cropped sub-volume (20%..80% of every axis by default) seen
 // obliquely, rendered headless, with
-//   (a) vtkAccelVolumeSliceMapper, 1 slice per smallest voxel spacing (AutoAdjust on), re-rendering
-//   off (b) the same with boundary re-rendering on (the paper's method) (c) 1.5x slices,
-//   re-rendering off       (d) 2x slices, re-rendering off (e) vtkGPUVolumeRayCastMapper, same
-//   cropping, sample distance = smallest spacing (ref) 8x slices with re-rendering on: the "truth"
-//   the aliasing error is measured against.
+//   (a) vtkAccelVolumeSliceMapper, 1 slice per smallest voxel spacing, re-rendering off;
+//   (b) the same with boundary re-rendering on (the paper's method);
+//   (c) 1.5x slices, re-rendering off;
+//   (d) 2x slices, re-rendering off;
+//   (e) vtkGPUVolumeRayCastMapper, same cropping, sample distance = smallest spacing;
+//   (ref) 8x slices with re-rendering on: the "truth" the aliasing error is measured against.
 // Timing: a warm-up frame, then N frames each turning the camera 1 degree in azimuth; each
 // frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
