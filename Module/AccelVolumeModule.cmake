@@ -5,11 +5,14 @@ get_filename_component(_av_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 # Public VTK-style classes (headers installed, wrappable).
 set(_av_classes
   OpenGL/vtkAccelVolumeHeadlessRenderWindow
+  OpenGL/vtkAccelVolumeMinMaxOctree
   OpenGL/vtkAccelVolumeSliceMapper)
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.
 set(_av_core_sources
   Core/accelvolume/Geometry
+  Core/accelvolume/MinMaxOctree
+  Core/accelvolume/MinMaxOctreeQueries
   Core/accelvolume/Phantoms
   Core/accelvolume/ReferenceRenderer
   Core/accelvolume/SlabProxy)
@@ -17,6 +20,7 @@ set(_av_core_sources
 # Thin OpenGL helpers, excluded from wrapping and installation.
 set(_av_private_sources
   OpenGL/vtkAccelVolumeObjectFactory
+  OpenGL/vtkAccelVolumeOctreeGPUBuilder
   OpenGL/vtkAccelVolumeSlicePasses
   OpenGL/vtkAccelVolumeSliceResources)
 
@@ -24,7 +28,9 @@ set(_av_shaders
   AccelVolumeSliceVS
   AccelVolumeSliceFS
   AccelVolumeResolveVS
-  AccelVolumeResolveFS)
+  AccelVolumeResolveFS
+  AccelVolumeOctreeLeafCS
+  AccelVolumeOctreeReduceCS)
 
 set(_av_class_files)
 set(_av_headers)
@@ -36,8 +42,13 @@ set(_av_sources)
 set(_av_private_headers)
 foreach (_av_source IN LISTS _av_core_sources _av_private_sources)
   list(APPEND _av_sources "${_av_root}/Rendering/${_av_source}.cxx")
-  list(APPEND _av_private_headers "${_av_root}/Rendering/${_av_source}.h")
+  if (EXISTS "${_av_root}/Rendering/${_av_source}.h") # some sources extend another's header
+    list(APPEND _av_private_headers "${_av_root}/Rendering/${_av_source}.h")
+  endif ()
 endforeach ()
+list(APPEND _av_private_headers
+  "${_av_root}/Rendering/OpenGL/vtkAccelVolumeMinMaxOctreeInternals.h"
+  "${_av_root}/Rendering/OpenGL/vtkAccelVolumeSlicePasses.h")
 
 if (NOT COMMAND vtk_encode_string)
   include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)

@@ -408,7 +408,7 @@ Options ParseOptions(const std::vector<std::string>& arguments)
   if (command != "render")
   {
     throw Usage((command.compare(0, 1, "-") == 0 ? "unknown flag '" : "unknown command '") +
-      command + "' (expected 'render'; try accelvolume --help)");
+      command + "' (expected 'render' or 'octree'; try accelvolume --help)");
   }
   ArgumentReader reader(arguments, 2);
   ParseRenderFlags(reader, options);
@@ -418,6 +418,7 @@ Options ParseOptions(const std::vector<std::string>& arguments)
 std::string MainHelp()
 {
   return "usage: accelvolume render [flags]      render a volume (see accelvolume render --help)\n"
+         "       accelvolume octree [flags]      time min-max octree builds (octree --help)\n"
          "       accelvolume --help | --version\n"
          "\n"
          "Renders a volume file or a built-in phantom with AccelVolume's slice mapper or one of\n"

@@ -1,5 +1,6 @@
 // accelvolume: renders a volume file or phantom with AccelVolume's or VTK's volume mappers,
-// headless, and reports timings. See `accelvolume render --help`.
+// headless, and reports timings. See `accelvolume render --help` (and `octree --help`).
+#include "OctreeCommand.h"
 #include "Options.h"
 #include "Phantoms.h"
 #include "Render.h"
@@ -142,6 +143,10 @@ void CheckPhantom(const Options& options)
 
 int Run(int argc, char* argv[])
 {
+  if (argc > 1 && std::string(argv[1]) == "octree")
+  {
+    return RunOctreeCommand(std::vector<std::string>(argv, argv + argc));
+  }
   const Options options = ParseOptions(std::vector<std::string>(argv, argv + argc));
   switch (options.action)
   {

@@ -1,0 +1,989 @@
+// TestMinMaxOctree: min-max octree builders, classification and empty-space queries vs brute force.
+#include "RandomGeometry.h"
+#include "accelvolume/MinMaxOctree.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <thread>
+#include <vector>
+
+namespace
+{
+using namespace accelvolume;
+
+using accelvolume_test::RandomUnit;
+using accelvolume_test::Uniform;
+
+constexpr float Infinity = std::numeric_limits<float>::infinity();
+constexpr int LeafSizes[] = { 4, 8, 16 };
+// Odd shapes: flat and thin volumes, sizes one past / short of leaf multiples.
+constexpr int OddDimensions[][3] = { { 1, 7, 300 }, { 255, 97, 61 }, { 1, 1, 1 }, { 2, 3, 5 },
+  { 17, 33, 9 } };
+// Allowed error of the ray-query answers relative to the exact oracle (index units of t).
+constexpr double QueryTolerance = 1e-7;
+// Fine sampling of the transfer function over a node's value range.
+constexpr int TransferSamples = 400;
+constexpr int TimingRepeats = 5;
+constexpr int ClassifyRepeats = 100;
+
+template <typename T>
+struct Scalar;
+template <>
+struct Scalar<std::int8_t>
+{
+  static constexpr ScalarType Type = ScalarType::Int8;
+};
+template <>
+struct Scalar<std::uint8_t>
+{
+  static constexpr ScalarType Type = ScalarType::UInt8;
+};
+template <>
+struct Scalar<std::int16_t>
+{
+  static constexpr ScalarType Type = ScalarType::Int16;
+};
+template <>
+struct Scalar<std::uint16_t>
+{
+  static constexpr ScalarType Type = ScalarType::UInt16;
+};
+template <>
+struct Scalar<std::int32_t>
+{
+  static constexpr ScalarType Type = ScalarType::Int32;
+};
+template <>
+struct Scalar<float>
+{
+  static constexpr ScalarType Type = ScalarType::Float32;
+};
+template <>
+struct Scalar<double>
+{
+  static constexpr ScalarType Type = ScalarType::Float64;
+};
+
+std::size_t VoxelCount(const int dims[3])
+{
+  return static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+}
+
+// Full-range integers; floats spread widely, and for double some values beyond float's range
+// (so the outward rounding to float is exercised).
+template <typename T>
+std::vector<T> RandomVolume(std::mt19937& random, const int dims[3])
+{
+  std::vector<T> volume(VoxelCount(dims));
+  if (std::is_integral<T>::value)
+  {
+    std::uniform_int_distribution<long long> values(
+      std::numeric_limits<T>::lowest(), std::numeric_limits<T>::max());
+    for (T& v : volume)
+    {
+      v = static_cast<T>(values(random));
+    }
+  }
+  else
+  {
+    for (T& v : volume)
+    {
+      v = static_cast<T>(Uniform(random, -1e6, 1e6));
+    }
+    if (std::is_same<T, double>::value && volume.size() > 2)
+    {
+      volume[random() % volume.size()] = static_cast<T>(1e300);
+      volume[random() % volume.size()] = static_cast<T>(-1e40);
+    }
+  }
+  return volume;
+}
+
+template <typename T>
+VolumeView View(const std::vector<T>& volume, const int dims[3])
+{
+  VolumeView view;
+  view.data = volume.data();
+  view.type = Scalar<T>::Type;
+  std::copy(dims, dims + 3, view.dims);
+  return view;
+}
+
+// Checks that low is the largest float <= exact (and symmetric for high), defined directly
+// rather than by the builder's rounding code.
+void ExpectLowerBound(float low, double exact)
+{
+  if (std::isinf(exact))
+  {
+    EXPECT_EQ(static_cast<double>(low), exact);
+    return;
+  }
+  EXPECT_LE(static_cast<double>(low), exact);
+  EXPECT_GT(static_cast<double>(std::nextafter(low, Infinity)), exact);
+}
+
+void ExpectUpperBound(float high, double exact)
+{
+  ExpectLowerBound(-high, -exact);
+}
+
+// Every node against the min/max over its voxel range, computed here by plain loops.
+template <typename T>
+void ExpectMatchesBruteForce(
+  const MinMaxOctree& octree, const std::vector<T>& volume, const int dims[3])
+{
+  const int leafSize = octree.GetLeafSize();
+  for (int level = 0; level <= octree.GetDepth(); ++level)
+  {
+    const OctreeLevel& nodes = octree.GetLevel(level);
+    ASSERT_EQ(nodes.minimum.size(), nodes.maximum.size());
+    const long long span = static_cast<long long>(leafSize) << level;
+    for (std::uint64_t index = 0; index < nodes.minimum.size(); ++index)
+    {
+      std::uint32_t c[3];
+      MortonDecode(index, c[0], c[1], c[2]);
+      long long first[3], last[3];
+      bool padding = false;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        first[axis] = c[axis] * span;
+        last[axis] = std::min<long long>(first[axis] + span, dims[axis] - 1);
+        padding =
+          padding || first[axis] > dims[axis] - 1 || c[axis] >= unsigned(nodes.gridSize[axis]);
+      }
+      ASSERT_EQ(padding, octree.IsPadding(level, index));
+      double low = std::numeric_limits<double>::infinity();
+      double high = -low;
+      if (!padding)
+      {
+        for (long long z = first[2]; z <= last[2]; ++z)
+        {
+          for (long long y = first[1]; y <= last[1]; ++y)
+          {
+            for (long long x = first[0]; x <= last[0]; ++x)
+            {
+              const double v = volume[(z * dims[1] + y) * dims[0] + x];
+              if (!std::isnan(v))
+              {
+                low = std::min(low, v);
+                high = std::max(high, v);
+              }
+            }
+          }
+        }
+      }
+      SCOPED_TRACE("level " + std::to_string(level) + " index " + std::to_string(index));
+      ExpectLowerBound(nodes.minimum[index], low);
+      ExpectUpperBound(nodes.maximum[index], high);
+      if (::testing::Test::HasFailure())
+      {
+        return;
+      }
+    }
+  }
+}
+
+// Bit-identical levels.
+void ExpectIdentical(const MinMaxOctree& a, const MinMaxOctree& b)
+{
+  ASSERT_EQ(a.GetDepth(), b.GetDepth());
+  for (int level = 0; level <= a.GetDepth(); ++level)
+  {
+    const OctreeLevel& x = a.GetLevel(level);
+    const OctreeLevel& y = b.GetLevel(level);
+    ASSERT_EQ(x.minimum.size(), y.minimum.size());
+    EXPECT_EQ(0, std::memcmp(x.minimum.data(), y.minimum.data(), x.minimum.size() * sizeof(float)));
+    EXPECT_EQ(0, std::memcmp(x.maximum.data(), y.maximum.data(), x.maximum.size() * sizeof(float)));
+  }
+}
+
+// Splits into chunks of 1..3 items run in shuffled order.
+ParallelFor ShuffledFor(unsigned seed)
+{
+  return [seed](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    std::mt19937 random(seed);
+    std::vector<std::pair<std::size_t, std::size_t>> chunks;
+    for (std::size_t begin = 0; begin < count;)
+    {
+      const std::size_t end = std::min(count, begin + 1 + random() % 3);
+      chunks.emplace_back(begin, end);
+      begin = end;
+    }
+    std::shuffle(chunks.begin(), chunks.end(), random);
+    for (const auto& chunk : chunks)
+    {
+      body(chunk.first, chunk.second);
+    }
+  };
+}
+
+// Runs chunks on `threads` std::threads pulling from a shared counter.
+ParallelFor ThreadedFor(unsigned threads)
+{
+  return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    const std::size_t grain = std::max<std::size_t>(1, count / (8 * threads));
+    std::atomic<std::size_t> next{ 0 };
+    auto worker = [&]()
+    {
+      for (;;)
+      {
+        const std::size_t begin = next.fetch_add(grain);
+        if (begin >= count)
+        {
+          return;
+        }
+        body(begin, std::min(count, begin + grain));
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t)
+    {
+      pool.emplace_back(worker);
+    }
+    worker();
+    for (std::thread& thread : pool)
+    {
+      thread.join();
+    }
+  };
+}
+
+template <typename T>
+class MinMaxOctreeBuild : public ::testing::Test
+{
+};
+using ScalarTypes = ::testing::Types<std::uint8_t, std::int16_t, std::uint16_t, float, std::int8_t,
+  std::int32_t, double>;
+TYPED_TEST_SUITE(MinMaxOctreeBuild, ScalarTypes);
+
+TYPED_TEST(MinMaxOctreeBuild, BothBuildersMatchBruteForce)
+{
+  std::mt19937 random(7);
+  for (const auto& dims : OddDimensions)
+  {
+    const std::vector<TypeParam> volume = RandomVolume<TypeParam>(random, dims);
+    for (int leafSize : LeafSizes)
+    {
+      SCOPED_TRACE(std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+        std::to_string(dims[2]) + " L=" + std::to_string(leafSize));
+      std::string error;
+      MinMaxOctree reference, parallel;
+      ASSERT_TRUE(reference.Configure(dims, leafSize, error)) << error;
+      ASSERT_TRUE(parallel.Configure(dims, leafSize, error)) << error;
+      ASSERT_TRUE(reference.BuildReference(View(volume, dims), error)) << error;
+      ASSERT_TRUE(parallel.BuildParallel(View(volume, dims), SerialFor, error)) << error;
+      ExpectMatchesBruteForce(reference, volume, dims);
+      ExpectMatchesBruteForce(parallel, volume, dims);
+      ExpectIdentical(reference, parallel);
+    }
+  }
+}
+
+TYPED_TEST(MinMaxOctreeBuild, ParallelIsDeterministic)
+{
+  std::mt19937 random(11);
+  const int dims[3] = { 67, 45, 129 };
+  const std::vector<TypeParam> volume = RandomVolume<TypeParam>(random, dims);
+  std::string error;
+  MinMaxOctree serial, shuffled, threaded;
+  for (MinMaxOctree* octree : { &serial, &shuffled, &threaded })
+  {
+    ASSERT_TRUE(octree->Configure(dims, 4, error)) << error;
+  }
+  ASSERT_TRUE(serial.BuildParallel(View(volume, dims), SerialFor, error));
+  ASSERT_TRUE(shuffled.BuildParallel(View(volume, dims), ShuffledFor(3), error));
+  ASSERT_TRUE(threaded.BuildParallel(View(volume, dims), ThreadedFor(4), error));
+  ExpectIdentical(serial, shuffled);
+  ExpectIdentical(serial, threaded);
+  // Upper levels alone (the GPU path): overwrite them, rebuild from the leaves.
+  for (int level = 1; level <= threaded.GetDepth(); ++level)
+  {
+    std::fill(
+      threaded.GetLevel(level).minimum.begin(), threaded.GetLevel(level).minimum.end(), 0.f);
+    std::fill(
+      threaded.GetLevel(level).maximum.begin(), threaded.GetLevel(level).maximum.end(), 0.f);
+  }
+  threaded.BuildUpperLevels(ThreadedFor(3));
+  ExpectIdentical(serial, threaded);
+}
+
+template <typename T>
+class MinMaxOctreeNaN : public ::testing::Test
+{
+};
+using FloatingTypes = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(MinMaxOctreeNaN, FloatingTypes);
+
+TYPED_TEST(MinMaxOctreeNaN, NaNIsIgnored)
+{
+  std::mt19937 random(5);
+  const int dims[3] = { 21, 19, 18 };
+  std::vector<TypeParam> volume = RandomVolume<TypeParam>(random, dims);
+  for (TypeParam& v : volume)
+  {
+    if (random() % 3 == 0)
+    {
+      v = std::numeric_limits<TypeParam>::quiet_NaN();
+    }
+  }
+  // A whole leaf of NaN (leaf (1, 1, 1) with L = 4 covers voxels 4..8) becomes empty.
+  for (int z = 4; z <= 8; ++z)
+  {
+    for (int y = 4; y <= 8; ++y)
+    {
+      for (int x = 4; x <= 8; ++x)
+      {
+        volume[(z * dims[1] + y) * dims[0] + x] = std::numeric_limits<TypeParam>::quiet_NaN();
+      }
+    }
+  }
+  std::string error;
+  MinMaxOctree reference, parallel;
+  ASSERT_TRUE(reference.Configure(dims, 4, error));
+  ASSERT_TRUE(parallel.Configure(dims, 4, error));
+  ASSERT_TRUE(reference.BuildReference(View(volume, dims), error));
+  ASSERT_TRUE(parallel.BuildParallel(View(volume, dims), ShuffledFor(1), error));
+  ExpectMatchesBruteForce(reference, volume, dims);
+  ExpectMatchesBruteForce(parallel, volume, dims);
+  ExpectIdentical(reference, parallel);
+  const std::uint64_t leaf = MortonEncode(1, 1, 1);
+  EXPECT_EQ(parallel.GetLevel(0).minimum[leaf], Infinity);
+  EXPECT_EQ(parallel.GetLevel(0).maximum[leaf], -Infinity);
+}
+
+TEST(MinMaxOctree, MortonRoundTrip)
+{
+  std::mt19937 random(1);
+  const std::uint32_t axisMask = (1u << 21) - 1;
+  for (int n = 0; n < 10000; ++n)
+  {
+    const std::uint32_t x = n == 0 ? axisMask : random() & axisMask;
+    const std::uint32_t y = n == 0 ? axisMask : random() & axisMask;
+    const std::uint32_t z = n == 0 ? axisMask : random() & axisMask;
+    std::uint64_t expected = 0;
+    for (int bit = 0; bit < 21; ++bit)
+    {
+      expected |= std::uint64_t((x >> bit) & 1) << (3 * bit);
+      expected |= std::uint64_t((y >> bit) & 1) << (3 * bit + 1);
+      expected |= std::uint64_t((z >> bit) & 1) << (3 * bit + 2);
+    }
+    const std::uint64_t code = MortonEncode(x, y, z);
+    ASSERT_EQ(code, expected);
+    std::uint32_t u, v, w;
+    MortonDecode(code, u, v, w);
+    ASSERT_EQ(u, x);
+    ASSERT_EQ(v, y);
+    ASSERT_EQ(w, z);
+  }
+}
+
+TEST(MinMaxOctree, ConfigureLayout)
+{
+  std::string error;
+  MinMaxOctree octree;
+  const int dims[3] = { 255, 97, 61 };
+  ASSERT_TRUE(octree.Configure(dims, 8, error)) << error;
+  // Leaf grid ceil(254/8), ceil(96/8), ceil(60/8) = 32, 12, 8, so Depth 5.
+  EXPECT_EQ(octree.GetDepth(), 5);
+  const OctreeLevel& leaves = octree.GetLevel(0);
+  EXPECT_EQ(leaves.gridSize[0], 32);
+  EXPECT_EQ(leaves.gridSize[1], 12);
+  EXPECT_EQ(leaves.gridSize[2], 8);
+  EXPECT_EQ(leaves.minimum.size(), MortonEncode(31, 11, 7) + 1);
+  std::size_t total = 0;
+  for (int level = 0; level <= octree.GetDepth(); ++level)
+  {
+    const OctreeLevel& nodes = octree.GetLevel(level);
+    const int expected[3] = { (32 + (1 << level) - 1) >> level, (12 + (1 << level) - 1) >> level,
+      (8 + (1 << level) - 1) >> level };
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      EXPECT_EQ(nodes.gridSize[axis], expected[axis]);
+    }
+    total += nodes.minimum.size();
+  }
+  EXPECT_EQ(octree.GetLevel(5).minimum.size(), 1u);
+  EXPECT_EQ(octree.GetNumberOfNodes(), total);
+  // Boxes: a node spans L * 2^l voxels plus the overlap, clamped; padding boxes are empty.
+  const Box root = octree.NodeBox(5, 0);
+  EXPECT_EQ(root.upper.x, 254);
+  EXPECT_EQ(root.upper.y, 96);
+  EXPECT_EQ(root.upper.z, 60);
+  const Box leaf = octree.NodeBox(0, MortonEncode(2, 11, 0));
+  EXPECT_EQ(leaf.lower.x, 16);
+  EXPECT_EQ(leaf.upper.x, 24);
+  EXPECT_EQ(leaf.lower.y, 88);
+  EXPECT_EQ(leaf.upper.y, 96);
+  EXPECT_TRUE(octree.IsPadding(0, MortonEncode(0, 12, 0)));
+  EXPECT_TRUE(octree.NodeBox(0, MortonEncode(0, 12, 0)).IsEmpty());
+  // One voxel (and an exact leaf multiple plus one) give a single leaf, Depth 0.
+  const int one[3] = { 1, 1, 1 };
+  ASSERT_TRUE(octree.Configure(one, 64, error));
+  EXPECT_EQ(octree.GetDepth(), 0);
+  EXPECT_EQ(octree.GetNumberOfNodes(), 1u);
+  const int nine[3] = { 9, 9, 9 };
+  ASSERT_TRUE(octree.Configure(nine, 8, error));
+  EXPECT_EQ(octree.GetDepth(), 0);
+}
+
+TEST(MinMaxOctree, ConfigureRejectsBadInput)
+{
+  std::string error;
+  MinMaxOctree octree;
+  const int dims[3] = { 10, 10, 10 };
+  for (int leafSize : { 0, 1, 3, 12, 128 })
+  {
+    EXPECT_FALSE(octree.Configure(dims, leafSize, error)) << leafSize;
+    EXPECT_FALSE(error.empty());
+  }
+  const int zero[3] = { 10, 0, 10 };
+  EXPECT_FALSE(octree.Configure(zero, 8, error));
+  const int huge[3] = { 1 << 30, 1 << 30, 1 << 30 };
+  EXPECT_FALSE(octree.Configure(huge, 2, error));
+  const int large[3] = { 2048 * 8, 2048 * 8, 2048 * 8 + 2 }; // needs 2049^3 leaves in Morton
+  EXPECT_FALSE(octree.Configure(large, 8, error));
+  // Building without (successful) configuration or with other dims fails.
+  std::vector<std::uint8_t> volume(1000);
+  EXPECT_FALSE(octree.BuildParallel(View(volume, dims), SerialFor, error));
+  ASSERT_TRUE(octree.Configure(dims, 8, error));
+  const int other[3] = { 10, 10, 9 };
+  EXPECT_FALSE(octree.BuildReference(View(volume, other), error));
+}
+
+// --- Classification ---
+
+// Opacity at table position p (clamped), linearly interpolated.
+double Interpolate(const std::vector<float>& table, double p)
+{
+  const double last = static_cast<double>(table.size() - 1);
+  p = std::min(std::max(p, 0.0), last);
+  const std::size_t i = std::min(static_cast<std::size_t>(p), table.size() - 2);
+  const double f = p - static_cast<double>(i);
+  return (1 - f) * table[i] + f * table[i + 1];
+}
+
+double Position(double v, const std::vector<float>& table, double rangeMin, double rangeMax)
+{
+  // Same arithmetic as Classify, so the rule check below is exact at table entries.
+  return (v - rangeMin) * (static_cast<double>(table.size() - 1) / (rangeMax - rangeMin));
+}
+
+std::vector<float> RandomTable(std::mt19937& random)
+{
+  const std::size_t sizes[] = { 2, 3, 17, 256 };
+  std::vector<float> table(sizes[random() % 4]);
+  for (float& opacity : table)
+  {
+    // Mostly zero, so that many nodes are transparent.
+    opacity = random() % 3 == 0 ? static_cast<float>(Uniform(random, 0, 1)) : 0.f;
+  }
+  return table;
+}
+
+TEST(MinMaxOctree, ClassifyMatchesBruteForce)
+{
+  std::mt19937 random(3);
+  const int dims[3] = { 37, 29, 23 };
+  std::vector<std::int16_t> volume(VoxelCount(dims));
+  // Smooth-ish data (a few hundred values) so nodes have narrow and wide ranges.
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        volume[(z * dims[1] + y) * dims[0] + x] = static_cast<std::int16_t>(
+          200 * std::sin(0.2 * x) * std::cos(0.15 * y) + 3 * z + random() % 7);
+      }
+    }
+  }
+  std::string error;
+  MinMaxOctree octree;
+  ASSERT_TRUE(octree.Configure(dims, 4, error));
+  ASSERT_TRUE(octree.BuildParallel(View(volume, dims), SerialFor, error));
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const std::vector<float> table = RandomTable(random);
+    double rangeMin = Uniform(random, -300, 100);
+    double rangeMax = Uniform(random, 0, 300);
+    if (trial % 5 == 0)
+    {
+      std::swap(rangeMin, rangeMax); // decreasing map
+    }
+    const float threshold = trial % 2 ? 0.f : 0.25f;
+    octree.Classify(table, rangeMin, rangeMax, threshold);
+    ASSERT_TRUE(octree.IsClassified());
+    for (int level = 0; level <= octree.GetDepth(); ++level)
+    {
+      const OctreeLevel& nodes = octree.GetLevel(level);
+      for (std::uint64_t n = 0; n < nodes.minimum.size(); ++n)
+      {
+        const bool transparent = octree.IsTransparent(level, n);
+        if (octree.IsPadding(level, n))
+        {
+          ASSERT_TRUE(transparent);
+          continue;
+        }
+        const double low = nodes.minimum[n];
+        const double high = nodes.maximum[n];
+        // Fine sampling of the interpolated function over [low, high]: visible => kept.
+        double sampled = 0;
+        for (int s = 0; s <= TransferSamples; ++s)
+        {
+          const double v = low + (high - low) * s / TransferSamples;
+          sampled = std::max(sampled, Interpolate(table, Position(v, table, rangeMin, rangeMax)));
+        }
+        if (sampled > threshold)
+        {
+          ASSERT_FALSE(transparent) << "visible node skipped, level " << level;
+        }
+        // Exact maximum: the end points and the table entries strictly between them.
+        double a = Position(low, table, rangeMin, rangeMax);
+        double b = Position(high, table, rangeMin, rangeMax);
+        const double last = static_cast<double>(table.size() - 1);
+        a = std::min(std::max(a, 0.0), last);
+        b = std::min(std::max(b, 0.0), last);
+        if (a > b)
+        {
+          std::swap(a, b);
+        }
+        double exact = std::max(Interpolate(table, a), Interpolate(table, b));
+        bool ruleVisible = false;
+        for (std::size_t m = 0; m < table.size(); ++m)
+        {
+          if (m > a && m < b)
+          {
+            exact = std::max(exact, static_cast<double>(table[m]));
+          }
+          if (m >= std::floor(a) && m <= std::ceil(b) && table[m] > threshold)
+          {
+            ruleVisible = true;
+          }
+        }
+        ASSERT_EQ(!transparent, ruleVisible);
+        if (threshold == 0.f)
+        {
+          // Exact for threshold 0 with non-negative opacities.
+          ASSERT_EQ(!transparent, exact > 0);
+        }
+      }
+    }
+    // Each node judged on its own range: transparency passes down to the children.
+    for (int level = 1; level <= octree.GetDepth(); ++level)
+    {
+      for (std::uint64_t p = 0; p < octree.GetLevel(level).minimum.size(); ++p)
+      {
+        for (std::uint64_t c = 8 * p; c < 8 * p + 8 && octree.IsTransparent(level, p); ++c)
+        {
+          ASSERT_TRUE(octree.IsTransparent(level - 1, c));
+        }
+      }
+    }
+  }
+}
+
+TEST(MinMaxOctree, ClassifyDegenerateRange)
+{
+  const int dims[3] = { 9, 9, 9 };
+  std::vector<float> volume(VoxelCount(dims), 5.f);
+  volume[0] = 1.f; // leaf (0,0,0) spans [1, 5]; the others are exactly 5
+  std::string error;
+  MinMaxOctree octree;
+  ASSERT_TRUE(octree.Configure(dims, 4, error));
+  ASSERT_TRUE(octree.BuildParallel(View(volume, dims), SerialFor, error));
+  const std::uint64_t first = 0, other = MortonEncode(1, 1, 1);
+  // Step at 5: below gives entry 0, above the last entry, 5 itself the whole table.
+  octree.Classify({ 0.f, 0.f, 1.f }, 5.0, 5.0);
+  EXPECT_FALSE(octree.IsTransparent(0, first));
+  EXPECT_FALSE(octree.IsTransparent(0, other));
+  octree.Classify({ 0.f, 0.f, 1.f }, 7.0, 7.0); // all values below the step
+  EXPECT_TRUE(octree.IsTransparent(0, first));
+  octree.Classify({ 0.f, 0.f, 1.f }, 0.5, 0.5); // all values above the step
+  EXPECT_FALSE(octree.IsTransparent(0, first));
+  octree.Classify({ 0.3f }, 0.0, 1.0); // one entry: constant
+  EXPECT_FALSE(octree.IsTransparent(0, other));
+  octree.Classify({}, 0.0, 1.0); // no table: nothing visible
+  EXPECT_TRUE(octree.IsTransparent(0, other));
+  // Rebuilding drops the classification.
+  ASSERT_TRUE(octree.BuildParallel(View(volume, dims), SerialFor, error));
+  EXPECT_FALSE(octree.IsClassified());
+}
+
+// --- Queries ---
+
+// A mostly zero uint8 volume with a few random blobs; classified with opacity 0 at value 0 and
+// positive above, so a leaf is non-transparent exactly when it covers a nonzero voxel.
+struct SparseScene
+{
+  int dims[3];
+  std::vector<std::uint8_t> volume;
+  MinMaxOctree octree;
+  std::vector<bool> visibleLeaf; // by Morton index, from the voxels directly
+  // visibleBelow[l][n]: some leaf of node n at level l is visible (the leaves of a node are a
+  // contiguous Morton range, so this is an OR over children)
+  std::vector<std::vector<bool>> visibleBelow;
+};
+
+void MakeSparseScene(
+  std::mt19937& random, const int dims[3], int leafSize, int blobs, SparseScene& scene)
+{
+  std::copy(dims, dims + 3, scene.dims);
+  scene.volume.assign(VoxelCount(dims), 0);
+  for (int b = 0; b < blobs; ++b)
+  {
+    int lower[3], upper[3];
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      lower[axis] = static_cast<int>(random() % dims[axis]);
+      upper[axis] = std::min(dims[axis] - 1, lower[axis] + static_cast<int>(random() % 6));
+    }
+    for (int z = lower[2]; z <= upper[2]; ++z)
+    {
+      for (int y = lower[1]; y <= upper[1]; ++y)
+      {
+        for (int x = lower[0]; x <= upper[0]; ++x)
+        {
+          scene.volume[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x] =
+            static_cast<std::uint8_t>(1 + random() % 255);
+        }
+      }
+    }
+  }
+  std::string error;
+  ASSERT_TRUE(scene.octree.Configure(dims, leafSize, error)) << error;
+  ASSERT_TRUE(scene.octree.BuildParallel(View(scene.volume, dims), ThreadedFor(2), error));
+  scene.octree.Classify({ 0.f, 1.f }, 0.0, 255.0);
+  const OctreeLevel& leaves = scene.octree.GetLevel(0);
+  scene.visibleLeaf.assign(leaves.minimum.size(), false);
+  for (std::uint64_t n = 0; n < leaves.minimum.size(); ++n)
+  {
+    if (scene.octree.IsPadding(0, n))
+    {
+      continue;
+    }
+    std::uint32_t c[3];
+    MortonDecode(n, c[0], c[1], c[2]);
+    bool visible = false;
+    for (int z = c[2] * leafSize; z <= std::min<int>((c[2] + 1) * leafSize, dims[2] - 1); ++z)
+    {
+      for (int y = c[1] * leafSize; y <= std::min<int>((c[1] + 1) * leafSize, dims[1] - 1); ++y)
+      {
+        for (int x = c[0] * leafSize; x <= std::min<int>((c[0] + 1) * leafSize, dims[0] - 1); ++x)
+        {
+          visible =
+            visible || scene.volume[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x];
+        }
+      }
+    }
+    scene.visibleLeaf[n] = visible;
+    ASSERT_EQ(visible, !scene.octree.IsTransparent(0, n));
+  }
+  scene.visibleBelow = { scene.visibleLeaf };
+  for (int level = 1; level <= scene.octree.GetDepth(); ++level)
+  {
+    const std::vector<bool>& children = scene.visibleBelow.back();
+    std::vector<bool> parents(scene.octree.GetLevel(level).minimum.size(), false);
+    for (std::size_t c = 0; c < children.size(); ++c)
+    {
+      parents[c / 8] = parents[c / 8] || children[c];
+    }
+    scene.visibleBelow.push_back(parents);
+  }
+}
+
+bool Contains(const Box& box, const Vec3& p)
+{
+  return p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y && p.y <= box.upper.y &&
+    p.z >= box.lower.z && p.z <= box.upper.z;
+}
+
+bool ContainsBox(const Box& outer, const Box& inner)
+{
+  return Contains(outer, inner.lower) && Contains(outer, inner.upper);
+}
+
+// Closed-box ray interval; false when the ray misses.
+bool RayBox(const Vec3& o, const Vec3& d, const Box& box, double& ta, double& tb)
+{
+  ta = -std::numeric_limits<double>::infinity();
+  tb = std::numeric_limits<double>::infinity();
+  const double origin[3] = { o.x, o.y, o.z }, direction[3] = { d.x, d.y, d.z };
+  const double lower[3] = { box.lower.x, box.lower.y, box.lower.z };
+  const double upper[3] = { box.upper.x, box.upper.y, box.upper.z };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (direction[axis] == 0)
+    {
+      if (origin[axis] < lower[axis] || origin[axis] > upper[axis])
+      {
+        return false;
+      }
+      continue;
+    }
+    double a = (lower[axis] - origin[axis]) / direction[axis];
+    double b = (upper[axis] - origin[axis]) / direction[axis];
+    if (a > b)
+    {
+      std::swap(a, b);
+    }
+    ta = std::max(ta, a);
+    tb = std::min(tb, b);
+  }
+  return ta <= tb;
+}
+
+const int QueryDimensions[][3] = { { 61, 47, 33 }, { 255, 97, 61 }, { 1, 7, 300 }, { 2, 3, 5 },
+  { 40, 40, 40 } };
+
+TEST(MinMaxOctree, LargestEmptyNodeAtMatchesBruteForce)
+{
+  std::mt19937 random(21);
+  for (const auto& dims : QueryDimensions)
+  {
+    for (int leafSize : { 2, 4, 8 })
+    {
+      SparseScene scene;
+      MakeSparseScene(random, dims, leafSize, 6, scene);
+      const MinMaxOctree& octree = scene.octree;
+      const Box volumeBox{ { 0, 0, 0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 } };
+      for (int n = 0; n < 3000; ++n)
+      {
+        Vec3 p = accelvolume_test::RandomPoint(random, volumeBox);
+        if (n % 3 == 0)
+        {
+          // On leaf faces.
+          p.x = std::min(dims[0] - 1.0, leafSize * std::floor(p.x / leafSize));
+          p.z = std::min(dims[2] - 1.0, leafSize * std::floor(p.z / leafSize));
+        }
+        int level = -1;
+        std::uint64_t index = 0;
+        const int leaf[3] = { std::min<int>(static_cast<int>(p.x / leafSize),
+                                octree.GetLevel(0).gridSize[0] - 1),
+          std::min<int>(static_cast<int>(p.y / leafSize), octree.GetLevel(0).gridSize[1] - 1),
+          std::min<int>(static_cast<int>(p.z / leafSize), octree.GetLevel(0).gridSize[2] - 1) };
+        const std::uint64_t leafIndex = MortonEncode(leaf[0], leaf[1], leaf[2]);
+        const bool found = octree.LargestEmptyNodeAt(p, level, index);
+        ASSERT_EQ(found, !scene.visibleLeaf[leafIndex]);
+        if (!found)
+        {
+          continue;
+        }
+        ASSERT_TRUE(Contains(octree.NodeBox(level, index), p));
+        ASSERT_EQ(index, leafIndex >> (3 * level)) << "not an ancestor of the point's leaf";
+        // Brute force: every leaf below is invisible, and some leaf below the parent is visible.
+        ASSERT_FALSE(scene.visibleBelow[level][index]);
+        if (level < octree.GetDepth())
+        {
+          ASSERT_TRUE(scene.visibleBelow[level + 1][index / 8]) << "a larger empty node exists";
+        }
+      }
+      int level;
+      std::uint64_t index;
+      EXPECT_FALSE(octree.LargestEmptyNodeAt({ -0.5, 0, 0 }, level, index));
+      EXPECT_FALSE(octree.LargestEmptyNodeAt({ 0, dims[1] - 0.5, 0 }, level, index));
+    }
+  }
+}
+
+TEST(MinMaxOctree, NextNonEmptyNeverSkipsVisibleLeaves)
+{
+  std::mt19937 random(8);
+  for (const auto& dims : QueryDimensions)
+  {
+    for (int leafSize : { 2, 4, 8 })
+    {
+      SparseScene scene;
+      MakeSparseScene(random, dims, leafSize, 4, scene);
+      const MinMaxOctree& octree = scene.octree;
+      std::vector<Box> visibleBoxes;
+      for (std::uint64_t n = 0; n < scene.visibleLeaf.size(); ++n)
+      {
+        if (scene.visibleLeaf[n])
+        {
+          visibleBoxes.push_back(octree.NodeBox(0, n));
+        }
+      }
+      const Box around{ { -10, -10, -10 }, { dims[0] + 10.0, dims[1] + 10.0, dims[2] + 10.0 } };
+      for (int n = 0; n < 400; ++n)
+      {
+        const Vec3 origin = accelvolume_test::RandomPoint(random, around);
+        Vec3 direction = RandomUnit(random) * Uniform(random, 0.1, 10);
+        if (n % 10 == 0)
+        {
+          direction.y = 0; // parallel to faces
+        }
+        if (n % 20 == 0)
+        {
+          direction.x = 0;
+        }
+        const double t0 = Uniform(random, -50, 50);
+        const double t1 = n % 4 == 0 ? t0 : t0 + Uniform(random, 0, 400);
+        const double result = octree.NextNonEmpty(origin, direction, t0, t1);
+        // Exact oracle: first entry into a visible leaf box within [t0, t1].
+        double expected = t1;
+        for (const Box& box : visibleBoxes)
+        {
+          double ta, tb;
+          if (RayBox(origin, direction, box, ta, tb) && std::max(ta, t0) <= std::min(tb, t1))
+          {
+            expected = std::min(expected, std::max(ta, t0));
+          }
+        }
+        const double tolerance = QueryTolerance * (1 + std::abs(expected));
+        ASSERT_NEAR(result, expected, tolerance) << "ray " << n;
+        // Stepping oracle: no sample before the answer lies in a visible leaf.
+        const int steps = 2000;
+        for (int s = 0; s <= steps && t1 > t0; ++s)
+        {
+          const double t = t0 + (t1 - t0) * s / steps;
+          if (t >= result)
+          {
+            break;
+          }
+          const Vec3 p = origin + t * direction;
+          for (const Box& box : visibleBoxes)
+          {
+            ASSERT_FALSE(Contains(box, p)) << "skipped a visible leaf at t " << t;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MinMaxOctree, NonEmptyBoxesCoverVisibleLeavesExactly)
+{
+  std::mt19937 random(4);
+  for (const auto& dims : QueryDimensions)
+  {
+    for (int leafSize : { 2, 4, 8 })
+    {
+      for (int blobs : { 0, 3, 40, 400 })
+      {
+        SparseScene scene;
+        MakeSparseScene(random, dims, leafSize, blobs, scene);
+        const MinMaxOctree& octree = scene.octree;
+        const std::vector<Box> boxes = octree.NonEmptyBoxes();
+        std::size_t leavesCovered = 0;
+        for (const Box& box : boxes)
+        {
+          // Each box is a node box made only of visible leaves (the union is then exact): find
+          // the node from the box's lower corner, the smallest level whose box matches.
+          int level = 0;
+          std::uint64_t node = 0;
+          for (; level <= octree.GetDepth(); ++level)
+          {
+            const double span = static_cast<double>(leafSize << level);
+            node = MortonEncode(static_cast<std::uint32_t>(box.lower.x / span),
+              static_cast<std::uint32_t>(box.lower.y / span),
+              static_cast<std::uint32_t>(box.lower.z / span));
+            const Box candidate = octree.NodeBox(level, node);
+            if (!octree.IsPadding(level, node) && candidate.lower.x == box.lower.x &&
+              candidate.lower.y == box.lower.y && candidate.lower.z == box.lower.z &&
+              candidate.upper.x == box.upper.x && candidate.upper.y == box.upper.y &&
+              candidate.upper.z == box.upper.z)
+            {
+              break;
+            }
+          }
+          ASSERT_LE(level, octree.GetDepth()) << "not a node box";
+          // The node's leaves are the contiguous Morton range node * 8^level ...
+          const std::uint64_t span = std::uint64_t(1) << (3 * level);
+          for (std::uint64_t n = node * span; n < (node + 1) * span && n < scene.visibleLeaf.size();
+               ++n)
+          {
+            if (!octree.IsPadding(0, n))
+            {
+              ASSERT_TRUE(ContainsBox(box, octree.NodeBox(0, n)));
+              ASSERT_TRUE(scene.visibleLeaf[n]) << "box covers an empty leaf";
+              ++leavesCovered;
+            }
+          }
+        }
+        std::size_t visible = 0;
+        for (std::uint64_t n = 0; n < scene.visibleLeaf.size(); ++n)
+        {
+          visible += scene.visibleLeaf[n];
+        }
+        // Boxes are disjoint node boxes, so covered leaves are counted once each.
+        EXPECT_EQ(leavesCovered, visible);
+        if (blobs == 0)
+        {
+          EXPECT_TRUE(boxes.empty());
+        }
+      }
+    }
+  }
+  // Unclassified: everything is non-empty, the root box.
+  MinMaxOctree octree;
+  std::string error;
+  const int dims[3] = { 30, 20, 10 };
+  ASSERT_TRUE(octree.Configure(dims, 4, error));
+  const std::vector<Box> boxes = octree.NonEmptyBoxes();
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].upper.x, 29);
+}
+
+// Timing sanity print for a 256^3 uint8 volume (not an assertion: machines differ).
+TEST(MinMaxOctree, TimingPrint)
+{
+  using Clock = std::chrono::steady_clock;
+  const int dims[3] = { 256, 256, 256 };
+  std::vector<std::uint8_t> volume(VoxelCount(dims));
+  std::mt19937 random(2);
+  for (std::size_t i = 0; i < volume.size(); ++i)
+  {
+    volume[i] = static_cast<std::uint8_t>((i * 2654435761u >> 13) & 0xff);
+  }
+  std::string error;
+  MinMaxOctree octree;
+  ASSERT_TRUE(octree.Configure(dims, 8, error));
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  auto milliseconds = [](Clock::time_point a, Clock::time_point b)
+  { return std::chrono::duration<double, std::milli>(b - a).count(); };
+  auto best = [&](const ParallelFor& parallel)
+  {
+    double fastest = std::numeric_limits<double>::infinity();
+    for (int r = 0; r < TimingRepeats; ++r)
+    {
+      const auto start = Clock::now();
+      EXPECT_TRUE(octree.BuildParallel(View(volume, dims), parallel, error));
+      fastest = std::min(fastest, milliseconds(start, Clock::now()));
+    }
+    return fastest;
+  };
+  const double serial = best(SerialFor);
+  const double threaded = best(ThreadedFor(threads));
+  const auto referenceStart = Clock::now();
+  MinMaxOctree reference;
+  ASSERT_TRUE(reference.Configure(dims, 8, error));
+  ASSERT_TRUE(reference.BuildReference(View(volume, dims), error));
+  const double referenceTime = milliseconds(referenceStart, Clock::now());
+  ExpectIdentical(reference, octree);
+  std::vector<float> table(256, 0.f);
+  for (std::size_t i = 200; i < table.size(); ++i)
+  {
+    table[i] = 0.5f;
+  }
+  const auto classifyStart = Clock::now();
+  for (int r = 0; r < ClassifyRepeats; ++r)
+  {
+    octree.Classify(table, 0.0, 255.0);
+  }
+  const double classify = milliseconds(classifyStart, Clock::now()) / ClassifyRepeats;
+  std::cout << "[ timing ] 256^3 uint8, L=8, " << octree.GetNumberOfNodes() << " nodes: "
+            << "BuildParallel serial " << serial << " ms, " << threads << " threads " << threaded
+            << " ms; BuildReference " << referenceTime << " ms; Classify " << classify << " ms\n";
+}
+}
