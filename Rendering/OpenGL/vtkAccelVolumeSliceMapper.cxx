@@ -37,7 +37,8 @@ bool IsSupportedBlend(int blendMode)
   return blendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     blendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
     blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
-    blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
+    blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::COMPOSITE_BLEND;
 }
 
 accelvolume::Vec3 MakeVec3(double x, double y, double z)
@@ -173,8 +174,8 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
   if (!IsSupportedBlend(this->BlendMode))
   {
     vtkErrorMacro("Blend mode " << this->BlendMode
-                                << " is not supported by the slice mapper yet (use maximum, "
-                                   "minimum, additive or average intensity)");
+                                << " is not supported by the slice mapper (use composite, "
+                                   "maximum, minimum, additive or average intensity)");
     return false;
   }
   if (!volume->GetProperty())
@@ -396,42 +397,80 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   int sliceCount = 0;
   int proxyCount = 0;
   int faceCount = 0;
-  for (const accelvolume::Box& region : regions)
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  if (composite)
   {
-    vtkAccelVolumeSliceFrame::Cell draw;
-    draw.Lower = { static_cast<float>(region.lower.x), static_cast<float>(region.lower.y),
-      static_cast<float>(region.lower.z) };
-    draw.Upper = { static_cast<float>(region.upper.x), static_cast<float>(region.upper.y),
-      static_cast<float>(region.upper.z) };
-    draw.SliceFirst = static_cast<int>(vertices.size() / 3);
-    const std::vector<accelvolume::Polygon> polygons = slabSamples > 1
-      ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples)
-          .polygons
-      : accelvolume::ComputeViewAlignedSlices(region, clip, depthGradient, depthOffset, spacing,
-          phase, accelvolume::SliceOrder::BackToFront)
-          .polygons;
-    for (const accelvolume::Polygon& polygon : polygons)
+    // Front to back across all cells: at one depth the cells' polygons are disjoint, so
+    // drawing depth-major keeps every ray's samples in compositing order. No cut faces: a
+    // composite sample stands for a slab of thickness, so extra face samples would count twice.
+    std::vector<std::pair<double, accelvolume::Polygon>> ordered;
+    for (const accelvolume::Box& region : regions)
     {
-      accelvolume::AppendTriangleFan(polygon, vertices);
-    }
-    proxyCount += static_cast<int>(polygons.size());
-    sliceCount += static_cast<int>(polygons.size()) * slabSamples;
-    draw.SliceCount = static_cast<int>(vertices.size() / 3) - draw.SliceFirst;
-    draw.FaceFirst = static_cast<int>(vertices.size() / 3);
-    if (this->BoundaryRerendering)
-    {
-      const std::vector<accelvolume::Polygon> faces =
-        accelvolume::ComputeRegionBoundaryFaces(region, clip);
-      for (const accelvolume::Polygon& face : faces)
+      accelvolume::SliceStack stack = accelvolume::ComputeViewAlignedSlices(region, clip,
+        depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::FrontToBack);
+      for (size_t k = 0; k < stack.polygons.size(); ++k)
       {
-        accelvolume::AppendTriangleFan(face, vertices);
+        ordered.emplace_back(stack.depths[k], std::move(stack.polygons[k]));
       }
-      faceCount += static_cast<int>(faces.size());
     }
-    draw.FaceCount = static_cast<int>(vertices.size() / 3) - draw.FaceFirst;
-    if (draw.SliceCount + draw.FaceCount > 0)
+    std::stable_sort(ordered.begin(), ordered.end(),
+      [](const auto& a, const auto& b) { return a.first < b.first; });
+    vtkAccelVolumeSliceFrame::Cell draw;
+    draw.Lower = { static_cast<float>(volumeBox.lower.x), static_cast<float>(volumeBox.lower.y),
+      static_cast<float>(volumeBox.lower.z) };
+    draw.Upper = { static_cast<float>(volumeBox.upper.x), static_cast<float>(volumeBox.upper.y),
+      static_cast<float>(volumeBox.upper.z) };
+    for (const auto& slice : ordered)
+    {
+      accelvolume::AppendTriangleFan(slice.second, vertices);
+    }
+    draw.SliceCount = static_cast<int>(vertices.size() / 3);
+    draw.FaceFirst = draw.SliceCount;
+    sliceCount = proxyCount = static_cast<int>(ordered.size());
+    if (draw.SliceCount > 0)
     {
       cells.push_back(draw);
+    }
+  }
+  else
+  {
+    for (const accelvolume::Box& region : regions)
+    {
+      vtkAccelVolumeSliceFrame::Cell draw;
+      draw.Lower = { static_cast<float>(region.lower.x), static_cast<float>(region.lower.y),
+        static_cast<float>(region.lower.z) };
+      draw.Upper = { static_cast<float>(region.upper.x), static_cast<float>(region.upper.y),
+        static_cast<float>(region.upper.z) };
+      draw.SliceFirst = static_cast<int>(vertices.size() / 3);
+      const std::vector<accelvolume::Polygon> polygons = slabSamples > 1
+        ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples)
+            .polygons
+        : accelvolume::ComputeViewAlignedSlices(region, clip, depthGradient, depthOffset, spacing,
+            phase, accelvolume::SliceOrder::BackToFront)
+            .polygons;
+      for (const accelvolume::Polygon& polygon : polygons)
+      {
+        accelvolume::AppendTriangleFan(polygon, vertices);
+      }
+      proxyCount += static_cast<int>(polygons.size());
+      sliceCount += static_cast<int>(polygons.size()) * slabSamples;
+      draw.SliceCount = static_cast<int>(vertices.size() / 3) - draw.SliceFirst;
+      draw.FaceFirst = static_cast<int>(vertices.size() / 3);
+      if (this->BoundaryRerendering)
+      {
+        const std::vector<accelvolume::Polygon> faces =
+          accelvolume::ComputeRegionBoundaryFaces(region, clip);
+        for (const accelvolume::Polygon& face : faces)
+        {
+          accelvolume::AppendTriangleFan(face, vertices);
+        }
+        faceCount += static_cast<int>(faces.size());
+      }
+      draw.FaceCount = static_cast<int>(vertices.size() / 3) - draw.FaceFirst;
+      if (draw.SliceCount + draw.FaceCount > 0)
+      {
+        cells.push_back(draw);
+      }
     }
   }
   this->LastSliceSpacing = spacing;
@@ -459,7 +498,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
   frame.SliceSpacing = static_cast<float>(spacing);
   frame.SlicePhase = static_cast<float>(phase);
-  frame.BoundaryRerendering = this->BoundaryRerendering != 0;
+  frame.BoundaryRerendering = this->BoundaryRerendering != 0 && !composite;
+  frame.OpacityUnitDistance =
+    static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
   frame.Parallel = camera->GetParallelProjection() != 0;
   const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
   frame.AdditiveScale = static_cast<float>(1.0 / unit);

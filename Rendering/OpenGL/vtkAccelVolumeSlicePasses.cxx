@@ -43,6 +43,8 @@ std::string BlendName(int blendMode)
       return "MINIMUM";
     case vtkVolumeMapper::ADDITIVE_BLEND:
       return "ADDITIVE";
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      return "COMPOSITE";
     default:
       return "AVERAGE";
   }
@@ -84,6 +86,7 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniformi("boundaryRerendering", frame.BoundaryRerendering ? 1 : 0);
   program->SetUniformi("parallelProjection", frame.Parallel ? 1 : 0);
   program->SetUniformf("additiveScale", frame.AdditiveScale);
+  program->SetUniformf("opacityUnitDistance", frame.OpacityUnitDistance);
   program->SetUniform2f("averageRange", frame.AverageRange);
 }
 
@@ -138,6 +141,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   const bool maximum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
   const bool minimum = frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
   // Cleared to values no sample reaches, so the resolve pass can tell uncovered pixels.
   if (maximum)
   {
@@ -154,7 +158,15 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendEquation(maximum ? GL_MAX : (minimum ? GL_MIN : GL_FUNC_ADD));
-  state->vtkglBlendFunc(GL_ONE, GL_ONE);
+  if (composite)
+  {
+    // Front to back "under": the new premultiplied sample goes behind what is there.
+    state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  }
+  else
+  {
+    state->vtkglBlendFunc(GL_ONE, GL_ONE);
+  }
 
   resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
   resources.VolumeTexture->Activate();
@@ -217,10 +229,13 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   vtkOpenGLState* state = window->GetState();
   state->Push();
   state->PushFramebufferBindings();
-  // Extremes need one float channel (less blending traffic); sums also need their weight.
+  // Extremes need one float channel (less blending traffic); sums also need their weight;
+  // compositing needs premultiplied colour and alpha.
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
-  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, extremum ? 1 : 2);
+  const int channels =
+    frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
+  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels);
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.

@@ -46,6 +46,7 @@ struct vtkAccelVolumeSliceFrame
   bool BoundaryRerendering = true;
   bool Parallel = false;
   float AdditiveScale = 1;
+  float OpacityUnitDistance = 1; // composite: length the table opacities hold for
   float AverageRange[2] = { 0, 1 };
   std::vector<Cell> Cells;
   const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles

@@ -16,7 +16,8 @@ vec4 lookup(float value)
 
 void main()
 {
-  vec2 sums = texelFetch(accumulation, ivec2(gl_FragCoord.xy - viewportOrigin), 0).rg;
+  vec4 accumulated = texelFetch(accumulation, ivec2(gl_FragCoord.xy - viewportOrigin), 0);
+  vec2 sums = accumulated.rg;
   // MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
 #if defined(ACCELVOLUME_BLEND_MAXIMUM)
   if (sums.x < -0.5)
@@ -32,6 +33,13 @@ void main()
   }
   vec4 colour = lookup(sums.x);
   gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
+#elif defined(ACCELVOLUME_BLEND_COMPOSITE)
+  // Already premultiplied front-to-back colour and alpha.
+  if (accumulated.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = accumulated;
 #elif defined(ACCELVOLUME_BLEND_ADDITIVE)
   if (sums.y <= 0.0)
   {

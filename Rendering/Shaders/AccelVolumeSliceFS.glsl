@@ -30,6 +30,7 @@ uniform int boundaryRerendering;
 uniform int parallelProjection;
 uniform float additiveScale;       // 1 / unit distance
 uniform vec2 averageRange;         // normalized scalar range counted by the average
+uniform float opacityUnitDistance; // composite: the table opacities hold for this length
 
 float normalizedScalar()
 {
@@ -37,10 +38,15 @@ float normalizedScalar()
   return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
 }
 
-float opacity(float value)
+vec4 classify(float value)
 {
   float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
-  return texture(transferTable, vec2(u, 0.5)).a;
+  return texture(transferTable, vec2(u, 0.5));
+}
+
+float opacity(float value)
+{
+  return classify(value).a;
 }
 
 // Distance along the pixel ray (world units) of the opaque geometry, or a huge value.
@@ -137,6 +143,15 @@ void main()
   }
   gl_FragData[0] = vec4(extreme, 1.0, 0.0, 0.0);
 #endif
+#elif defined(ACCELVOLUME_BLEND_COMPOSITE)
+  // Front-to-back compositing (blended "under" in the target); the opacity is corrected from
+  // the unit distance to this ray's actual slice spacing, so the image does not change with
+  // the slice count.
+  vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
+  float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+  vec4 sample = classify(normalizedScalar());
+  float alpha = 1.0 - pow(max(1.0 - sample.a, 0.0), step / opacityUnitDistance);
+  gl_FragData[0] = vec4(sample.rgb * alpha, alpha);
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);

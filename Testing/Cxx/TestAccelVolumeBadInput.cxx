@@ -99,11 +99,11 @@ int TestAccelVolumeBadInput(int, char*[])
          "Unsupported scalar type") &&
     ok;
   ok = Expect(
-         "composite blend (not yet provided)",
+         "isosurface blend (not provided)",
          [](vtkAccelVolumeSliceMapper* mapper)
          {
            mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
-           mapper->SetBlendModeToComposite();
+           mapper->SetBlendModeToIsoSurface();
          },
          "not supported") &&
     ok;

@@ -61,6 +61,10 @@ int TestAccelVolumeVsGPURayCast(int, char*[])
       false },
     { "average vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "blobs",
       true, true },
+    { "composite vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::COMPOSITE_BLEND, "blobs", true,
+      true },
+    { "composite parallel vs vtkGPUVolumeRayCastMapper", vtkVolumeMapper::COMPOSITE_BLEND,
+      "vessels", false, false },
   };
   bool ok = true;
   for (const Case& c : cases)

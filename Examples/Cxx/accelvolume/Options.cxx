@@ -182,7 +182,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
       {
         options.blend = ParseChoice<BlendKind>(f, reader.Value(f),
           { { "mip", BlendKind::MIP }, { "minip", BlendKind::MinIP },
-            { "additive", BlendKind::Additive }, { "average", BlendKind::Average } });
+            { "additive", BlendKind::Additive }, { "average", BlendKind::Average },
+            { "composite", BlendKind::Composite } });
       } },
     { "--window",
       [&](const std::string& f)
@@ -383,6 +384,8 @@ const char* BlendName(BlendKind blend)
       return "additive";
     case BlendKind::Average:
       return "average";
+    case BlendKind::Composite:
+      return "composite";
   }
   return "unknown";
 }
@@ -452,7 +455,7 @@ std::string RenderHelp()
     "                             (vtkGPUVolumeRayCastMapper) | vtk-fixed\n"
     "                             (vtkFixedPointVolumeRayCastMapper); all use the same camera,\n"
     "                             transfer functions and world sample distance\n"
-    "  --blend B                  mip (default) | minip | additive | average\n"
+    "  --blend B                  mip (default) | minip | additive | average | composite\n"
     "  --window LO HI             data values mapped to black..white, opacity 0..1\n"
     "                             (default: the full scalar range; minip: opacity 1)\n"
     "  --raysum-unit D            world length counted as one raysum unit (slice mapper,\n"

@@ -39,7 +39,8 @@ enum class BlendKind
   MIP,
   MinIP,
   Additive,
-  Average
+  Average,
+  Composite
 };
 
 const char* MapperName(MapperKind mapper);

@@ -327,6 +327,9 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
     case BlendKind::Average:
       mapper->SetBlendModeToAverageIntensity();
       break;
+    case BlendKind::Composite:
+      mapper->SetBlendModeToComposite();
+      break;
   }
   mapper->SetInputData(image);
   if (options.haveCrop)
