@@ -7,6 +7,9 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -39,6 +42,79 @@ bool IsSupportedBlend(int blendMode)
     blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
     blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
     blendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+}
+
+// Composite shading inputs: VTK's lighting coefficients, up to 4 lights as eye-space
+// directions (headlights and camera lights live in camera coordinates already), and the matrix
+// taking an index-space gradient to eye space (the inverse transpose of index -> eye).
+void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
+  vtkVolumeProperty* property, vtkMatrix4x4* indexToEye, vtkMatrix4x4* view)
+{
+  frame.Lighting[0] = static_cast<float>(property->GetAmbient(0));
+  frame.Lighting[1] = static_cast<float>(property->GetDiffuse(0));
+  frame.Lighting[2] = static_cast<float>(property->GetSpecular(0));
+  frame.Lighting[3] = static_cast<float>(property->GetSpecularPower(0));
+  frame.LightCount = 0;
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator iterator;
+  lights->InitTraversal(iterator);
+  while (vtkLight* light = lights->GetNextLight(iterator))
+  {
+    if (!light->GetSwitch() || frame.LightCount >= 4)
+    {
+      continue;
+    }
+    double position[3];
+    double focal[3];
+    light->GetPosition(position);
+    light->GetFocalPoint(focal);
+    double direction[3] = { position[0] - focal[0], position[1] - focal[1], position[2] - focal[2] };
+    if (light->LightTypeIsHeadlight())
+    {
+      direction[0] = direction[1] = 0.0;
+      direction[2] = 1.0;
+    }
+    else if (light->LightTypeIsSceneLight())
+    {
+      double eye[3] = { 0, 0, 0 };
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          eye[r] += view->GetElement(r, c) * direction[c];
+        }
+      }
+      std::copy(eye, eye + 3, direction);
+    }
+    vtkMath::Normalize(direction);
+    double colour[3];
+    light->GetDiffuseColor(colour);
+    for (int c = 0; c < 3; ++c)
+    {
+      frame.LightDirections[frame.LightCount][c] = static_cast<float>(direction[c]);
+      frame.LightColors[frame.LightCount][c] = static_cast<float>(colour[c] * light->GetIntensity());
+    }
+    ++frame.LightCount;
+  }
+  double linear[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear[r][c] = indexToEye->GetElement(r, c);
+    }
+  }
+  double inverse[3][3];
+  vtkMath::Invert3x3(linear, inverse);
+  // normal = inverse^T * gradient; GLSL mat3 is column-major, so column c of inverse^T
+  // (= row c of inverse) goes to elements 3c .. 3c+2.
+  for (int c = 0; c < 3; ++c)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      frame.NormalMatrix[3 * c + r] = static_cast<float>(inverse[c][r]);
+    }
+  }
 }
 
 accelvolume::Vec3 MakeVec3(double x, double y, double z)
@@ -502,6 +578,23 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.OpacityUnitDistance =
     static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
   frame.Parallel = camera->GetParallelProjection() != 0;
+  frame.Shade = composite && property->GetShade(0) != 0;
+  frame.GradientOpacity = composite && property->HasGradientOpacity(0) &&
+    !property->GetDisableGradientOpacity(0);
+  frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
+  if (frame.Shade || frame.GradientOpacity)
+  {
+    FillShading(frame, renderer, property, indexToEye, view);
+  }
+  if (frame.GradientOpacity)
+  {
+    // The table spans the function's own domain, or the steepest plausible gradient.
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    const double maximum = domain[1] > 0 ? domain[1] : frame.ScalarRangeWidth / voxelSpacing;
+    frame.GradientTableMaximum = static_cast<float>(maximum);
+    internals.Resources.UpdateGradientOpacityTable(window, property, maximum);
+  }
   const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
   frame.AdditiveScale = static_cast<float>(1.0 / unit);
   const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;

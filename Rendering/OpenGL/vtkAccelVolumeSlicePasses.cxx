@@ -51,12 +51,17 @@ std::string BlendName(int blendMode)
 }
 
 // Inserts the variant's #defines before the output declarations (after #version).
-std::string ShaderVariant(const char* source, int blendMode, int slabSamples, bool boundaryFace)
+std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& frame,
+  int slabSamples, bool boundaryFace)
 {
   std::string text = source;
-  const std::string prelude = "#define ACCELVOLUME_BLEND_" + BlendName(blendMode) +
+  const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+  const std::string prelude = "#define ACCELVOLUME_BLEND_" + BlendName(frame.BlendMode) +
     "\n#define ACCELVOLUME_SLAB_SAMPLES " + std::to_string(slabSamples) +
-    "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") + "\n";
+    "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") +
+    "\n#define ACCELVOLUME_SHADE " + (composite && frame.Shade ? "1" : "0") +
+    "\n#define ACCELVOLUME_GRADIENT_OPACITY " + (composite && frame.GradientOpacity ? "1" : "0") +
+    "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -87,6 +92,17 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniformi("parallelProjection", frame.Parallel ? 1 : 0);
   program->SetUniformf("additiveScale", frame.AdditiveScale);
   program->SetUniformf("opacityUnitDistance", frame.OpacityUnitDistance);
+  if (frame.Shade || frame.GradientOpacity)
+  {
+    program->SetUniformMatrix3x3("normalMatrix", const_cast<float*>(frame.NormalMatrix));
+    program->SetUniformf("scalarRangeWidth", frame.ScalarRangeWidth);
+    program->SetUniformi("gradientOpacityTable", resources.GradientOpacityTable->GetTextureUnit());
+    program->SetUniformf("gradientTableMaximum", frame.GradientTableMaximum);
+    program->SetUniformi("lightCount", frame.LightCount);
+    program->SetUniform3fv("lightDirections", 4, frame.LightDirections);
+    program->SetUniform3fv("lightColors", 4, frame.LightColors);
+    program->SetUniform4f("lighting", frame.Lighting);
+  }
   program->SetUniform2f("averageRange", frame.AverageRange);
 }
 
@@ -95,7 +111,7 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
   const vtkAccelVolumeSliceFrame& frame, bool faces)
 {
   const std::string fragment =
-    ShaderVariant(AccelVolumeSliceFS, frame.BlendMode, faces ? 1 : frame.SlabSamples, faces);
+    ShaderVariant(AccelVolumeSliceFS, frame, faces ? 1 : frame.SlabSamples, faces);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(AccelVolumeSliceVS, fragment.c_str(), "");
   if (!program)
@@ -172,6 +188,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   resources.VolumeTexture->Activate();
   resources.TransferTable->Activate();
   resources.SceneDepth->Activate();
+  if (frame.GradientOpacity)
+  {
+    resources.GradientOpacityTable->Activate();
+  }
   // Slices then faces: every blend here is order-independent.
   bool ok = DrawCells(window, resources, frame, false);
   if (ok && frame.BoundaryRerendering)
@@ -181,6 +201,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   resources.VolumeTexture->Deactivate();
   resources.TransferTable->Deactivate();
   resources.SceneDepth->Deactivate();
+  if (frame.GradientOpacity)
+  {
+    resources.GradientOpacityTable->Deactivate();
+  }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;
 }
@@ -195,7 +219,7 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglBlendEquation(GL_FUNC_ADD);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  const std::string fragment = ShaderVariant(AccelVolumeResolveFS, frame.BlendMode, 1, false);
+  const std::string fragment = ShaderVariant(AccelVolumeResolveFS, frame, 1, false);
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, fragment.c_str(), "");
   if (!program)

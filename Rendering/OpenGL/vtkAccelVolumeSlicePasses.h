@@ -47,6 +47,16 @@ struct vtkAccelVolumeSliceFrame
   bool Parallel = false;
   float AdditiveScale = 1;
   float OpacityUnitDistance = 1; // composite: length the table opacities hold for
+  // Composite shading / gradient opacity.
+  bool Shade = false;
+  bool GradientOpacity = false;
+  float NormalMatrix[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // row-major, index gradient -> eye
+  float ScalarRangeWidth = 1;
+  float GradientTableMaximum = 1;
+  int LightCount = 0;
+  float LightDirections[4][3] = {};
+  float LightColors[4][3] = {};
+  float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
   std::vector<Cell> Cells;
   const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles

@@ -215,6 +215,28 @@ void vtkAccelVolumeSliceResources::UpdateTransferTable(
   this->TableBuildTime.Modified();
 }
 
+void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
+  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum)
+{
+  vtkPiecewiseFunction* gradientOpacity = property->GetGradientOpacity(0);
+  if (this->GradientOpacityTable->GetHandle() && maximum == this->GradientTableMaximum &&
+    gradientOpacity->GetMTime() <= this->GradientTableBuildTime)
+  {
+    return;
+  }
+  constexpr int Size = 1024;
+  std::vector<float> table(Size);
+  gradientOpacity->GetTable(0.0, maximum, Size, table.data());
+  this->GradientOpacityTable->SetContext(window);
+  this->GradientOpacityTable->Create2DFromRaw(Size, 1, 1, VTK_FLOAT, table.data());
+  this->GradientOpacityTable->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->GradientOpacityTable->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->GradientOpacityTable->SetMinificationFilter(vtkTextureObject::Linear);
+  this->GradientOpacityTable->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->GradientTableMaximum = maximum;
+  this->GradientTableBuildTime.Modified();
+}
+
 bool vtkAccelVolumeSliceResources::PrepareTargets(
   vtkOpenGLRenderWindow* window, int width, int height, int channels)
 {
@@ -253,6 +275,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->VolumeTexture->ReleaseGraphicsResources(window);
   this->TransferTable->ReleaseGraphicsResources(window);
+  this->GradientOpacityTable->ReleaseGraphicsResources(window);
+  this->GradientTableMaximum = -1.0;
   this->Accumulation->ReleaseGraphicsResources(window);
   this->SceneDepth->ReleaseGraphicsResources(window);
   this->Framebuffer->ReleaseGraphicsResources(window);

@@ -42,6 +42,13 @@ public:
     vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
 
   /**
+   * Rebuilds the gradient-opacity table (1024 entries of the property's gradient opacity over
+   * [0, maximum] gradient magnitude) when the function or maximum changed.
+   */
+  void UpdateGradientOpacityTable(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum);
+
+  /**
    * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
    * integrating modes) and the scene depth copy to the viewport.
    */
@@ -51,6 +58,7 @@ public:
 
   vtkNew<vtkTextureObject> VolumeTexture;
   vtkNew<vtkTextureObject> TransferTable;
+  vtkNew<vtkTextureObject> GradientOpacityTable;
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
@@ -69,6 +77,8 @@ private:
 
   vtkTimeStamp VolumeUploadTime;
   vtkTimeStamp TableBuildTime;
+  vtkTimeStamp GradientTableBuildTime;
+  double GradientTableMaximum = -1.0;
   vtkDataArray* UploadedScalars = nullptr;
   double UploadedRange[2] = { 0.0, 0.0 };
   double TableRange[2] = { 0.0, 0.0 };

@@ -31,6 +31,15 @@ uniform int parallelProjection;
 uniform float additiveScale;       // 1 / unit distance
 uniform vec2 averageRange;         // normalized scalar range counted by the average
 uniform float opacityUnitDistance; // composite: the table opacities hold for this length
+// Composite shading and gradient opacity (ACCELVOLUME_SHADE, ACCELVOLUME_GRADIENT_OPACITY):
+uniform mat3 normalMatrix;          // index-space gradient -> eye-space gradient
+uniform float scalarRangeWidth;     // data units per normalized unit
+uniform sampler2D gradientOpacityTable; // r: opacity over [0, gradientTableMaximum]
+uniform float gradientTableMaximum;
+uniform int lightCount;
+uniform vec3 lightDirections[4];    // eye space, towards the light
+uniform vec3 lightColors[4];        // colour times intensity
+uniform vec4 lighting;              // ambient, diffuse, specular, specular power
 
 float normalizedScalar()
 {
@@ -150,6 +159,49 @@ void main()
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
   vec4 sample = classify(normalizedScalar());
+#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY
+  // Central differences on the fly (one texel apart), in normalized scalar units.
+  vec3 center = (indexPosition + vec3(0.5)) / volumeDimensions;
+  vec3 texel = 1.0 / volumeDimensions;
+  vec3 indexGradient = 0.5 * scalarScale *
+    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
+        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)).r -
+        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
+        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
+  vec3 eyeGradient = normalMatrix * indexGradient;
+#endif
+#if ACCELVOLUME_GRADIENT_OPACITY
+  // Gradient magnitude in data units per world unit, looked up like VTK's gradient opacity.
+  float magnitude = length(eyeGradient) * scalarRangeWidth;
+  float g = (clamp(magnitude / gradientTableMaximum, 0.0, 1.0) * 1023.0 + 0.5) / 1024.0;
+  sample.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
+#endif
+#if ACCELVOLUME_SHADE
+  // Phong with VTK's coefficients and lights (two-sided, lights as directions).
+  float gradientLength = length(eyeGradient);
+  vec3 shaded = lighting.x * sample.rgb;
+  if (gradientLength > 1.0e-8)
+  {
+    vec3 normal = -eyeGradient / gradientLength;
+    vec3 toViewer = -rayDirection;
+    for (int i = 0; i < lightCount; ++i)
+    {
+      float nDotL = dot(normal, lightDirections[i]);
+      vec3 facing = nDotL < 0.0 ? -normal : normal;
+      nDotL = abs(nDotL);
+      shaded += lighting.y * nDotL * sample.rgb * lightColors[i];
+      vec3 reflected = 2.0 * nDotL * facing - lightDirections[i];
+      float rDotV = dot(reflected, toViewer);
+      if (rDotV > 0.0)
+      {
+        shaded += lighting.z * pow(rDotV, lighting.w) * lightColors[i];
+      }
+    }
+  }
+  sample.rgb = min(shaded, vec3(1.0));
+#endif
   float alpha = 1.0 - pow(max(1.0 - sample.a, 0.0), step / opacityUnitDistance);
   gl_FragData[0] = vec4(sample.rgb * alpha, alpha);
 #else
