@@ -29,6 +29,7 @@ set(_av_shaders
   AccelVolumeSliceFS
   AccelVolumeResolveVS
   AccelVolumeResolveFS
+  AccelVolumeTerminationFS
   AccelVolumeOctreeLeafCS
   AccelVolumeOctreeReduceCS)
 

@@ -157,6 +157,10 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
   os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
   os << indent << "SlabSamples: " << this->SlabSamples << "\n";
+  os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
+  os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
+  os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
+  os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
   os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
@@ -496,10 +500,14 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       static_cast<float>(volumeBox.lower.z) };
     draw.Upper = { static_cast<float>(volumeBox.upper.x), static_cast<float>(volumeBox.upper.y),
       static_cast<float>(volumeBox.upper.z) };
+    std::vector<int>& starts = internals.Frame.SliceStarts;
+    starts.clear();
     for (const auto& slice : ordered)
     {
+      starts.push_back(static_cast<int>(vertices.size() / 3));
       accelvolume::AppendTriangleFan(slice.second, vertices);
     }
+    starts.push_back(static_cast<int>(vertices.size() / 3));
     draw.SliceCount = static_cast<int>(vertices.size() / 3);
     draw.FaceFirst = draw.SliceCount;
     sliceCount = proxyCount = static_cast<int>(ordered.size());
@@ -578,6 +586,14 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.OpacityUnitDistance =
     static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
   frame.Parallel = camera->GetParallelProjection() != 0;
+  if (!composite)
+  {
+    frame.SliceStarts.clear();
+  }
+  frame.EarlyTermination = composite && this->EarlyRayTermination;
+  frame.TerminationInterval = this->EarlyRayTerminationInterval;
+  frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
+  frame.TerminationPasses = 0;
   frame.Shade = composite && property->GetShade(0) != 0;
   frame.GradientOpacity = composite && property->HasGradientOpacity(0) &&
     !property->GetDisableGradientOpacity(0);
@@ -609,6 +625,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     internals.Renderer = name ? name : "unknown";
   }
   const bool rendered = vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame);
+  this->LastNumberOfTerminationPasses = frame.TerminationPasses;
 
   // Wait for the GPU so the reported time is the frame's real cost.
   glFinish();

@@ -105,6 +105,25 @@ public:
 
   ///@{
   /**
+   * Composite only: early ray termination (default on). Slices are drawn front to back; every
+   * EarlyRayTerminationInterval slices (default 16, as in the paper) a cheap pass closes the
+   * pixels whose accumulated opacity reached EarlyRayTerminationThreshold (default 0.99), so
+   * later slices generate no shaded fragments there. The image changes by at most the
+   * remaining transparency (1 - threshold) at those pixels.
+   */
+  vtkSetMacro(EarlyRayTermination, vtkTypeBool);
+  vtkGetMacro(EarlyRayTermination, vtkTypeBool);
+  vtkBooleanMacro(EarlyRayTermination, vtkTypeBool);
+  vtkSetClampMacro(EarlyRayTerminationInterval, int, 1, 4096);
+  vtkGetMacro(EarlyRayTerminationInterval, int);
+  vtkSetClampMacro(EarlyRayTerminationThreshold, double, 0.5, 1.0);
+  vtkGetMacro(EarlyRayTerminationThreshold, double);
+  /** Mark passes the last frame ran. */
+  vtkGetMacro(LastNumberOfTerminationPasses, int);
+  ///@}
+
+  ///@{
+  /**
    * Re-render the faces of the cropped / clipped volume after the slices (default on).
    */
   vtkSetMacro(BoundaryRerendering, vtkTypeBool);
@@ -161,6 +180,10 @@ protected:
   int MaximumNumberOfSlices = 4096;
   vtkTypeBool BoundaryRerendering = 1;
   int SlabSamples = 1;
+  vtkTypeBool EarlyRayTermination = 1;
+  int EarlyRayTerminationInterval = 16;
+  double EarlyRayTerminationThreshold = 0.99;
+  int LastNumberOfTerminationPasses = 0;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 

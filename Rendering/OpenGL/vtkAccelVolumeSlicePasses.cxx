@@ -19,7 +19,9 @@
 #include "AccelVolumeResolveVS.h"
 #include "AccelVolumeSliceFS.h"
 #include "AccelVolumeSliceVS.h"
+#include "AccelVolumeTerminationFS.h"
 
+#include <algorithm>
 #include <string>
 
 namespace
@@ -106,6 +108,40 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniform2f("averageRange", frame.AverageRange);
 }
 
+// Marks pixels whose front-to-back alpha reached the threshold: depth 0 there, so the early
+// depth test rejects the remaining slices' fragments before shading.
+bool MarkSaturatedPixels(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    AccelVolumeResolveVS, AccelVolumeTerminationFS, "");
+  if (!program)
+  {
+    return false;
+  }
+  vtkOpenGLState* state = window->GetState();
+  // The accumulation texture is the colour target: make earlier blends visible to the reads.
+  if (glTextureBarrier)
+  {
+    glTextureBarrier();
+  }
+  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthFunc(GL_ALWAYS);
+  resources.Accumulation->Activate();
+  program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
+  program->SetUniformf("threshold", frame.TerminationThreshold);
+  resources.ResolveArray->Bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  resources.ResolveArray->Release();
+  resources.Accumulation->Deactivate();
+  state->vtkglDepthFunc(GL_LESS);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ++frame.TerminationPasses;
+  return true;
+}
+
 // Draws every cell's slices (faces == false) or cut faces (faces == true) with one program.
 bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame, bool faces)
@@ -124,6 +160,25 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
   resources.SliceArray->AddAttributeArray(
     program, resources.VertexBuffer, "vertexIndex", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
   SetFrameUniforms(program, resources, frame);
+  const int sliceCount = static_cast<int>(frame.SliceStarts.size()) - 1;
+  if (!faces && frame.EarlyTermination && sliceCount > frame.TerminationInterval)
+  {
+    // Composite is one depth-major cell: draw it in batches with a mark pass between.
+    for (int first = 0; first < sliceCount; first += frame.TerminationInterval)
+    {
+      const int last = std::min(sliceCount, first + frame.TerminationInterval);
+      window->GetShaderCache()->ReadyShaderProgram(program);
+      resources.SliceArray->Bind();
+      glDrawArrays(GL_TRIANGLES, frame.SliceStarts[first],
+        frame.SliceStarts[last] - frame.SliceStarts[first]);
+      resources.SliceArray->Release();
+      if (last < sliceCount && !MarkSaturatedPixels(window, resources, frame))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
   for (const vtkAccelVolumeSliceFrame::Cell& cell : frame.Cells)
   {
     const int first = faces ? cell.FaceFirst : cell.SliceFirst;

@@ -58,6 +58,15 @@ struct vtkAccelVolumeSliceFrame
   float LightColors[4][3] = {};
   float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
+  // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
+  // reached TerminationThreshold are closed for later slices. SliceStarts holds the first
+  // vertex of each composite slice (and the end), so slices can be drawn in batches.
+  bool EarlyTermination = false;
+  int TerminationInterval = 16;
+  float TerminationThreshold = 0.99f;
+  std::vector<int> SliceStarts;
+  mutable int TerminationPasses = 0; // out: mark passes run
+
   std::vector<Cell> Cells;
   const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles
 };

@@ -26,6 +26,8 @@
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -57,6 +59,23 @@ inline vtkSmartPointer<vtkImageData> MakePhantom(const std::string& name, int nx
   std::copy(phantom.values.begin(), phantom.values.end(), scalars->GetPointer(0));
   image->GetPointData()->SetScalars(scalars);
   return image;
+}
+
+// A gzipped headerless 8-bit raw volume (../shared/data style); nullptr when unreadable.
+inline vtkSmartPointer<vtkImageData> LoadRawGz(const std::string& path, int nx, int ny, int nz)
+{
+  gzFile file = gzopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return nullptr;
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  const size_t bytes = static_cast<size_t>(nx) * ny * nz;
+  const int read = gzread(file, image->GetScalarPointer(), static_cast<unsigned int>(bytes));
+  gzclose(file);
+  return read == static_cast<int>(bytes) ? image : nullptr;
 }
 
 // Grey ramp colour and a linear opacity ramp over [low, high].
