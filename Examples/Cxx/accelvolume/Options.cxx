@@ -1,8 +1,6 @@
 // Options: parsing and help text of the accelvolume command line.
 #include "Options.h"
 
-#include "Phantoms.h"
-
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
 
 #include <cerrno>
@@ -197,6 +195,29 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         options.window[0] = window[0];
         options.window[1] = window[1];
         options.haveWindow = true;
+      } },
+    { "--tf", [&](const std::string& f) { options.transferFunction = reader.Value(f); } },
+    { "--shade",
+      [&](const std::string& f)
+      {
+        options.shade = ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+        options.haveShade = true;
+      } },
+    { "--gradient-opacity",
+      [&](const std::string& f)
+      {
+        const std::vector<double> ramp = reader.Numbers(f, 4);
+        if (!(ramp[0] >= 0 && ramp[0] < ramp[2]))
+        {
+          throw Usage("--gradient-opacity needs 0 <= G0 < G1, got " + FormatNumber(ramp[0]) + " " +
+            FormatNumber(ramp[2]));
+        }
+        if (ramp[1] < 0 || ramp[1] > 1 || ramp[3] < 0 || ramp[3] > 1)
+        {
+          throw Usage("--gradient-opacity opacities A0 A1 must lie in [0, 1]");
+        }
+        std::copy(ramp.begin(), ramp.end(), options.gradientOpacity);
+        options.haveGradientOpacity = true;
       } },
     { "--raysum-unit",
       [&](const std::string& f)
@@ -416,74 +437,6 @@ Options ParseOptions(const std::vector<std::string>& arguments)
   ArgumentReader reader(arguments, 2);
   ParseRenderFlags(reader, options);
   return options;
-}
-
-std::string MainHelp()
-{
-  return "usage: accelvolume render [flags]      render a volume (see accelvolume render --help)\n"
-         "       accelvolume octree [flags]      time min-max octree builds (octree --help)\n"
-         "       accelvolume --help | --version\n"
-         "\n"
-         "Renders a volume file or a built-in phantom with AccelVolume's slice mapper or one of\n"
-         "VTK's volume mappers, headless by default, and writes a PNG and/or JSON timings.\n"
-         "Exit codes: 0 success, 1 runtime failure, 2 usage error.\n";
-}
-
-std::string RenderHelp()
-{
-  std::string phantoms;
-  for (const std::string& name : accelvolume::PhantomNames())
-  {
-    phantoms += (phantoms.empty() ? "" : "|") + name;
-  }
-  return "usage: accelvolume render [flags]\n"
-         "\n"
-         "Input (a phantom unless --input is given):\n"
-         "  --phantom NAME             " +
-    phantoms +
-    " (default vessels)\n"
-    "  --phantom-dims X Y Z       phantom size in voxels (default 128 128 128)\n"
-    "  --time T                   phantom animation time, period 1 (default 0)\n"
-    "  --input FILE               .mhd/.mha, .vti, .nrrd/.nhdr, .raw or .raw.gz\n"
-    "  --dims X Y Z               raw input dimensions (NAME_XxYxZ_type.raw[.gz] names\n"
-    "                             and a datasets.json beside the file supply them too)\n"
-    "  --type T                   raw scalar type: uint8|int8|uint16|int16|int32|float32|float64\n"
-    "  --spacing SX SY SZ         voxel spacing (overrides the file's)\n"
-    "\n"
-    "Rendering:\n"
-    "  --mapper M                 slice (AccelVolume, default) | vtk-gpu\n"
-    "                             (vtkGPUVolumeRayCastMapper) | vtk-fixed\n"
-    "                             (vtkFixedPointVolumeRayCastMapper); all use the same camera,\n"
-    "                             transfer functions and world sample distance\n"
-    "  --blend B                  mip (default) | minip | additive | average | composite\n"
-    "  --window LO HI             data values mapped to black..white, opacity 0..1\n"
-    "                             (default: the full scalar range; minip: opacity 1)\n"
-    "  --raysum-unit D            world length counted as one raysum unit (slice mapper,\n"
-    "                             additive; default: largest world extent of the volume / 4)\n"
-    "  --sample-distance D        world distance between samples/slices\n"
-    "                             (default: the smallest voxel spacing)\n"
-    "  --slices N                 slice count through the volume depth instead (slice mapper;\n"
-    "                             VTK mappers get the volume diagonal / N)\n"
-    "  --crop X0 X1 Y0 Y1 Z0 Z1   keep this index-space sub-volume (cropping, SubVolume)\n"
-    "  --boundary-rerender on|off re-render the cut faces (slice mapper; default on)\n"
-    "  --slab-samples N           MIP/MinIP slice depths sampled per proxy fragment (slice\n"
-    "                             mapper; 1 = classic slicing, the default)\n"
-    "\n"
-    "View and output:\n"
-    "  --size W H                 image size, 1..16384 (default 512 512)\n"
-    "  --azimuth A --elevation E --roll R --zoom Z\n"
-    "                             camera moves in degrees/factor after the front view\n"
-    "                             (looking along +z at the volume centre, view-up +y)\n"
-    "  --parallel | --perspective projection (default perspective)\n"
-    "  --background R G B         background colour in 0..1 (default 0 0 0)\n"
-    "  --frames N                 timed frames after one warm-up frame, each turned 2 degrees\n"
-    "                             further in azimuth (default 1)\n"
-    "  --out FILE.png             write the last frame\n"
-    "  --stats FILE.json          write timings and settings as JSON ('-' = stdout)\n"
-    "  --gl osmesa|egl|x          OpenGL backend (default: $ACCELVOLUME_GL, else X when\n"
-    "                             DISPLAY is set, else EGL, then OSMesa)\n"
-    "  --quiet                    no summary\n"
-    "  --help                     this text\n";
 }
 
 } // namespace accelvolume::cli

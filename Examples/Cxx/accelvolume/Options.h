@@ -62,6 +62,11 @@ struct Options
   BlendKind blend = BlendKind::MIP;
   bool haveWindow = false;
   double window[2] = { 0, 1 };
+  std::string transferFunction; // --tf: "" (default ramp), tf1, tf2 or a JSON file
+  bool haveShade = false;       // --shade given (it overrides the JSON file's "shade")
+  bool shade = false;
+  bool haveGradientOpacity = false;
+  double gradientOpacity[4] = { 0, 0, 0, 0 }; // G0 A0 G1 A1
   bool haveRaysumUnit = false;
   double raysumUnit = 0;
   int size[2] = { 512, 512 };

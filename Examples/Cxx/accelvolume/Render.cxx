@@ -5,7 +5,6 @@
 #include <vtkAccelVolumeSliceMapper.h>
 
 #include <vtkCamera.h>
-#include <vtkColorTransferFunction.h>
 #include <vtkDataArray.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
@@ -15,7 +14,6 @@
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOutputWindow.h>
 #include <vtkPNGWriter.h>
-#include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -221,7 +219,8 @@ void CheckCrop(const Options& options, vtkImageData* image)
   }
 }
 
-RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages& messages)
+RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
+  VTKMessages& messages)
 {
   RenderResult result;
   image->GetPointData()->GetScalars()->GetRange(result.scalarRange, 0);
@@ -235,20 +234,10 @@ RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages&
     result.window[1] = result.scalarRange[1] > result.scalarRange[0] ? result.scalarRange[1]
                                                                      : result.scalarRange[0] + 1;
   }
-  const double low = result.window[0], high = result.window[1];
 
-  // Transfer functions shared by every mapper.
-  vtkNew<vtkColorTransferFunction> colour;
-  colour->AddRGBPoint(low, 0, 0, 0);
-  colour->AddRGBPoint(high, 1, 1, 1);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(low, options.blend == BlendKind::MinIP ? 1.0 : 0.0);
-  opacity->AddPoint(high, 1.0);
+  // Transfer functions and lighting shared by every mapper.
   vtkNew<vtkVolumeProperty> property;
-  property->SetColor(colour);
-  property->SetScalarOpacity(opacity);
-  property->SetInterpolationTypeToLinear();
-  property->ShadeOff();
+  result.transferFunction = ApplyTransferFunction(tf, options, result.window, property);
 
   const double* spacing = image->GetSpacing();
   double bounds[6];

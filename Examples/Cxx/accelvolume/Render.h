@@ -3,6 +3,7 @@
 #define accelvolume_cli_Render_h
 
 #include "Options.h"
+#include "TransferFunctions.h"
 
 #include <vtkImageData.h>
 
@@ -51,14 +52,17 @@ struct RenderResult
   int slices = -1;                  // slice mapper's last slice count; -1 for other mappers
   int slabSamples = -1;             // slice mapper's samples per proxy fragment; -1 for others
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
+  AppliedTransferFunction transferFunction;    // shading and lighting actually set
 };
 
 // Throws CliError(ExitUsage) when the crop box lies outside the volume or is inverted.
 void CheckCrop(const Options& options, vtkImageData* image);
 
-// Renders one warm-up frame and options.frames timed frames, writing options.outPath if set.
-// Throws CliError(ExitRuntime) when VTK reports an error while rendering or writing.
-RenderResult RunRender(const Options& options, vtkImageData* image, VTKMessages& messages);
+// Renders one warm-up frame and options.frames timed frames, writing options.outPath if set, with
+// the transfer function tf (LoadTransferFunction). Throws CliError(ExitRuntime) when VTK reports an
+// error while rendering or writing.
+RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
+  VTKMessages& messages);
 
 } // namespace accelvolume::cli
 

@@ -44,6 +44,21 @@ std::string Array(const double* values, int count)
   return text + "]";
 }
 
+// [[g, a], ...] or null when no gradient opacity was set.
+std::string GradientOpacity(const AppliedTransferFunction& applied)
+{
+  if (applied.gradientOpacity.empty())
+  {
+    return "null";
+  }
+  std::string text = "[";
+  for (const auto& point : applied.gradientOpacity)
+  {
+    text += (text.size() > 1 ? ", " : "") + Array(point.data(), 2);
+  }
+  return text + "]";
+}
+
 struct FrameStatistics
 {
   double median = 0, min = 0, max = 0, mean = 0;
@@ -162,6 +177,15 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << (options.mapper == MapperKind::Slice ? (options.boundaryRerender ? "true" : "false")
                                                  : "null")
          << ",\n"
+         << "  \"tf\": "
+         << (options.transferFunction.empty() ? "null" : JsonString(options.transferFunction))
+         << ",\n"
+         << "  \"shade\": " << (result.transferFunction.shade ? "true" : "false") << ",\n"
+         << "  \"gradient_opacity\": " << GradientOpacity(result.transferFunction) << ",\n"
+         << "  \"lighting\": {\"ambient\": " << Number(result.transferFunction.ambient)
+         << ", \"diffuse\": " << Number(result.transferFunction.diffuse)
+         << ", \"specular\": " << Number(result.transferFunction.specular)
+         << ", \"specular_power\": " << Number(result.transferFunction.specularPower) << "},\n"
          << "  \"crop\": " << (options.haveCrop ? Array(options.crop, 6) : "null") << ",\n"
          << "  \"crop_planes\": " << (options.haveCrop ? Array(result.cropPlanes, 6) : "null")
          << ",\n"

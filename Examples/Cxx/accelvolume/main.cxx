@@ -5,6 +5,7 @@
 #include "Phantoms.h"
 #include "Render.h"
 #include "Stats.h"
+#include "TransferFunctions.h"
 #include "VolumeIO.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
@@ -165,6 +166,8 @@ int Run(int argc, char* argv[])
   CheckPhantom(options);
   CheckOutputPath(options.outPath, "--out");
   CheckOutputPath(options.statsPath, "--stats");
+  // Read before the volume so that a bad --tf file fails in milliseconds, not after a large load.
+  const TransferFunctionSpec transferFunction = LoadTransferFunction(options);
 
   VTKMessages messages;
   const std::string backendNote = ChooseBackend(options);
@@ -178,7 +181,7 @@ int Run(int argc, char* argv[])
   }
   CheckCrop(options, image);
 
-  const RenderResult result = RunRender(options, image, messages);
+  const RenderResult result = RunRender(options, transferFunction, image, messages);
 
   if (!options.statsPath.empty())
   {
