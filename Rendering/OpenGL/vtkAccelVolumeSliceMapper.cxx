@@ -1,6 +1,7 @@
 // Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeMinMaxOctree.h"
 #include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
@@ -16,7 +17,9 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
+#include "vtkOpenGLState.h"
 #include "vtkPointData.h"
+#include "vtkTextureObject.h"
 #include "vtkRenderer.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
@@ -24,6 +27,7 @@
 #include "vtk_glew.h"
 
 #include "accelvolume/Geometry.h"
+#include "accelvolume/MinMaxOctree.h"
 #include "accelvolume/SlabProxy.h"
 
 #include <algorithm>
@@ -133,6 +137,13 @@ class vtkAccelVolumeSliceMapper::vtkInternals
 public:
   vtkAccelVolumeSliceResources Resources;
   vtkAccelVolumeSliceFrame Frame;
+  vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
+  // What the uploaded leaf texture reflects.
+  vtkMTimeType LeavesScalarsTime = 0;
+  vtkMTimeType LeavesFunctionTime = 0;
+  double LeavesRange[2] = { 0, 0 };
+  int LeavesLeafSize = 0;
+  int LeafGrid[3] = { 0, 0, 0 };
   std::string Renderer;
   std::vector<float> Vertices;
   bool ReportedError = false;
@@ -158,6 +169,8 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
   os << indent << "SlabSamples: " << this->SlabSamples << "\n";
   os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
   os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
@@ -167,6 +180,58 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
   os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+}
+
+bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
+  vtkImageData* input, vtkVolumeProperty* property, const double range[2])
+{
+  vtkInternals& internals = *this->Internals;
+  vtkAccelVolumeMinMaxOctree* octree = internals.Octree;
+  octree->SetInputData(input);
+  octree->SetLeafSize(this->OctreeLeafSize);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  if (!octree->Update() || !octree->Classify(opacity, range))
+  {
+    return false;
+  }
+  const vtkMTimeType scalarsTime = std::max(input->GetMTime(),
+    input->GetPointData()->GetScalars() ? input->GetPointData()->GetScalars()->GetMTime() : 0);
+  vtkTextureObject* leaves = internals.Resources.EmptyLeaves;
+  if (!leaves->GetHandle() || scalarsTime != internals.LeavesScalarsTime ||
+    opacity->GetMTime() != internals.LeavesFunctionTime || range[0] != internals.LeavesRange[0] ||
+    range[1] != internals.LeavesRange[1] || this->OctreeLeafSize != internals.LeavesLeafSize)
+  {
+    octree->GetLeafGridSize(internals.LeafGrid);
+    const int* grid = internals.LeafGrid;
+    std::vector<unsigned char> flags(static_cast<size_t>(grid[0]) * grid[1] * grid[2]);
+    size_t at = 0;
+    for (int k = 0; k < grid[2]; ++k)
+    {
+      for (int j = 0; j < grid[1]; ++j)
+      {
+        for (int i = 0; i < grid[0]; ++i)
+        {
+          const auto index = static_cast<vtkIdType>(accelvolume::MortonEncode(i, j, k));
+          flags[at++] = octree->IsNodeTransparent(0, index) ? 255 : 0;
+        }
+      }
+    }
+    leaves->SetContext(window);
+    window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (!leaves->Create3DFromRaw(grid[0], grid[1], grid[2], 1, VTK_UNSIGNED_CHAR, flags.data()))
+    {
+      return false;
+    }
+    leaves->SetMinificationFilter(vtkTextureObject::Nearest);
+    leaves->SetMagnificationFilter(vtkTextureObject::Nearest);
+    internals.LeavesScalarsTime = scalarsTime;
+    internals.LeavesFunctionTime = opacity->GetMTime();
+    internals.LeavesRange[0] = range[0];
+    internals.LeavesRange[1] = range[1];
+    internals.LeavesLeafSize = this->OctreeLeafSize;
+  }
+  this->LastTransparentLeafFraction = octree->GetTransparentLeafFraction();
+  return true;
 }
 
 double* vtkAccelVolumeSliceMapper::GetBounds()
@@ -594,6 +659,15 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.TerminationInterval = this->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
+  frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
+  frame.SkipEmptyLeaves = composite && (this->EmptySpaceSkipping & SKIP_OCTREE) &&
+    this->UpdateEmptyLeaves(window, input, property, range);
+  this->LastTransparentLeafFraction = frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
+  frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, internals.LeafGrid[c] - 1));
+  }
   frame.Shade = composite && property->GetShade(0) != 0;
   frame.GradientOpacity = composite && property->HasGradientOpacity(0) &&
     !property->GetDisableGradientOpacity(0);

@@ -43,6 +43,8 @@
 #include <memory> // For std::unique_ptr
 
 class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkVolumeProperty;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -122,6 +124,29 @@ public:
   vtkGetMacro(LastNumberOfTerminationPasses, int);
   ///@}
 
+  enum EmptySpaceSkippingModes
+  {
+    SKIP_NONE = 0,
+    SKIP_FRAGMENT = 1, ///< transparent samples skip gradient and lighting
+    SKIP_OCTREE = 2,   ///< fragments in transparent min-max octree leaves skip everything
+    SKIP_BOTH = 3
+  };
+
+  ///@{
+  /**
+   * Composite only: empty-space skipping (default SKIP_BOTH). Exact: skipped samples have
+   * opacity 0 under the scalar opacity function. SKIP_OCTREE builds a
+   * vtkAccelVolumeMinMaxOctree (OctreeLeafSize^3 leaves, default 8) when the scalars change
+   * and re-classifies it when the transfer function changes.
+   */
+  vtkSetClampMacro(EmptySpaceSkipping, int, SKIP_NONE, SKIP_BOTH);
+  vtkGetMacro(EmptySpaceSkipping, int);
+  vtkSetClampMacro(OctreeLeafSize, int, 2, 64);
+  vtkGetMacro(OctreeLeafSize, int);
+  /** Fraction of octree leaves found transparent in the last frame (-1 when unused). */
+  vtkGetMacro(LastTransparentLeafFraction, double);
+  ///@}
+
   ///@{
   /**
    * Re-render the faces of the cropped / clipped volume after the slices (default on).
@@ -184,6 +209,9 @@ protected:
   int EarlyRayTerminationInterval = 16;
   double EarlyRayTerminationThreshold = 0.99;
   int LastNumberOfTerminationPasses = 0;
+  int EmptySpaceSkipping = SKIP_BOTH;
+  int OctreeLeafSize = 8;
+  double LastTransparentLeafFraction = -1.0;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 
@@ -199,6 +227,9 @@ private:
   void operator=(const vtkAccelVolumeSliceMapper&) = delete;
 
   bool ValidateInput(vtkImageData* input, vtkVolume* volume);
+  // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.
+  bool UpdateEmptyLeaves(vtkOpenGLRenderWindow* window, vtkImageData* input,
+    vtkVolumeProperty* property, const double range[2]);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -63,6 +63,8 @@ std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& fr
     "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") +
     "\n#define ACCELVOLUME_SHADE " + (composite && frame.Shade ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_OPACITY " + (composite && frame.GradientOpacity ? "1" : "0") +
+    "\n#define ACCELVOLUME_SKIP_TRANSPARENT " + (composite && frame.SkipTransparentSamples ? "1" : "0") +
+    "\n#define ACCELVOLUME_SKIP_OCTREE " + (composite && frame.SkipEmptyLeaves ? "1" : "0") +
     "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
@@ -94,6 +96,12 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniformi("parallelProjection", frame.Parallel ? 1 : 0);
   program->SetUniformf("additiveScale", frame.AdditiveScale);
   program->SetUniformf("opacityUnitDistance", frame.OpacityUnitDistance);
+  if (frame.SkipEmptyLeaves)
+  {
+    program->SetUniformi("emptyLeaves", resources.EmptyLeaves->GetTextureUnit());
+    program->SetUniformf("leafSize", frame.LeafSize);
+    program->SetUniform3f("leafGridMaximum", frame.LeafGridMaximum);
+  }
   if (frame.Shade || frame.GradientOpacity)
   {
     program->SetUniformMatrix3x3("normalMatrix", const_cast<float*>(frame.NormalMatrix));
@@ -247,6 +255,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.GradientOpacityTable->Activate();
   }
+  if (frame.SkipEmptyLeaves)
+  {
+    resources.EmptyLeaves->Activate();
+  }
   // Slices then faces: every blend here is order-independent.
   bool ok = DrawCells(window, resources, frame, false);
   if (ok && frame.BoundaryRerendering)
@@ -259,6 +271,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (frame.GradientOpacity)
   {
     resources.GradientOpacityTable->Deactivate();
+  }
+  if (frame.SkipEmptyLeaves)
+  {
+    resources.EmptyLeaves->Deactivate();
   }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;

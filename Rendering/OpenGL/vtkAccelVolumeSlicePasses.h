@@ -67,6 +67,13 @@ struct vtkAccelVolumeSliceFrame
   std::vector<int> SliceStarts;
   mutable int TerminationPasses = 0; // out: mark passes run
 
+  // Composite empty-space skipping: per fragment (transparent samples skip the shading) and
+  // by octree leaves (EmptyLeaves texture, 1 = transparent leaf).
+  bool SkipTransparentSamples = false;
+  bool SkipEmptyLeaves = false;
+  float LeafSize = 8;
+  float LeafGridMaximum[3] = { 0, 0, 0 };
+
   std::vector<Cell> Cells;
   const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles
 };

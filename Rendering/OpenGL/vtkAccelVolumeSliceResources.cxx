@@ -276,6 +276,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->VolumeTexture->ReleaseGraphicsResources(window);
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);
+  this->EmptyLeaves->ReleaseGraphicsResources(window);
   this->GradientTableMaximum = -1.0;
   this->Accumulation->ReleaseGraphicsResources(window);
   this->SceneDepth->ReleaseGraphicsResources(window);

@@ -59,6 +59,7 @@ public:
   vtkNew<vtkTextureObject> VolumeTexture;
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
+  vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;

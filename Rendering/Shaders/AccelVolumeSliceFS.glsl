@@ -40,6 +40,10 @@ uniform int lightCount;
 uniform vec3 lightDirections[4];    // eye space, towards the light
 uniform vec3 lightColors[4];        // colour times intensity
 uniform vec4 lighting;              // ambient, diffuse, specular, specular power
+// Composite empty-space skipping (ACCELVOLUME_SKIP_OCTREE, ACCELVOLUME_SKIP_TRANSPARENT):
+uniform sampler3D emptyLeaves;      // 1 where the octree leaf is transparent (leaf grid)
+uniform float leafSize;
+uniform vec3 leafGridMaximum;       // leaf grid size - 1 per axis
 
 float normalizedScalar()
 {
@@ -158,7 +162,23 @@ void main()
   // the slice count.
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+#if ACCELVOLUME_SKIP_OCTREE
+  // A transparent leaf (every voxel its samples read maps to opacity 0) adds nothing:
+  // one nearest fetch of the leaf grid replaces the volume fetch and the shading.
+  vec3 leaf = clamp(floor(indexPosition / leafSize), vec3(0.0), leafGridMaximum);
+  if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
+  {
+    discard;
+  }
+#endif
   vec4 sample = classify(normalizedScalar());
+#if ACCELVOLUME_SKIP_TRANSPARENT
+  // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
+  if (sample.a <= 0.0)
+  {
+    discard;
+  }
+#endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY
   // Central differences on the fly (one texel apart), in normalized scalar units.
   vec3 center = (indexPosition + vec3(0.5)) / volumeDimensions;

@@ -78,6 +78,13 @@ inline vtkSmartPointer<vtkImageData> LoadRawGz(const std::string& path, int nx, 
   return read == static_cast<int>(bytes) ? image : nullptr;
 }
 
+// An 8-bit volume from $ACCELVOLUME_DATA_DIR (../shared/data); nullptr when absent.
+inline vtkSmartPointer<vtkImageData> LoadSharedVolume(const char* file, int nx, int ny, int nz)
+{
+  const char* folder = std::getenv("ACCELVOLUME_DATA_DIR");
+  return folder ? LoadRawGz(std::string(folder) + "/" + file, nx, ny, nz) : nullptr;
+}
+
 // Grey ramp colour and a linear opacity ramp over [low, high].
 inline void SetRampProperty(
   vtkVolumeProperty* property, double low, double high, bool colour = false)

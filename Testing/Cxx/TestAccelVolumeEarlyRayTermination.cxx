@@ -7,27 +7,9 @@
 #include "vtkTimerLog.h"
 
 #include <cstdlib>
-#include <fstream>
 
 namespace
 {
-vtkSmartPointer<vtkImageData> LoadEngine()
-{
-  // The engine CT (256x256x128 uint8, gzipped raw) when ../shared/data is present.
-  const char* folder = std::getenv("ACCELVOLUME_DATA_DIR");
-  if (!folder)
-  {
-    return nullptr;
-  }
-  const std::string path = std::string(folder) + "/engine_256x256x128_uint8.raw.gz";
-  std::ifstream probe(path);
-  if (!probe)
-  {
-    return nullptr;
-  }
-  return accelvolume_test::LoadRawGz(path, 256, 256, 128);
-}
-
 std::vector<float> Render(vtkImageData* image, bool ert, double low, double high, double* ms,
   int* passes)
 {
@@ -82,7 +64,7 @@ bool Compare(const char* name, vtkImageData* image, double low, double high)
 int TestAccelVolumeEarlyRayTermination(int, char*[])
 {
   bool ok = Compare("shells phantom", accelvolume_test::MakePhantom("shells", 64, 64, 64), 200, 1000);
-  if (auto engine = LoadEngine())
+  if (auto engine = accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
   {
     ok = Compare("engine CT", engine, 60, 255) && ok;
   }

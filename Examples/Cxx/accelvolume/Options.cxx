@@ -270,6 +270,27 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         options.boundaryRerender =
           ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
       } },
+    { "--ert",
+      [&](const std::string& f)
+      {
+        options.earlyRayTermination =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+      } },
+    { "--ert-interval",
+      [&](const std::string& f)
+      {
+        options.ertInterval = reader.Integers(f, 1)[0];
+        if (options.ertInterval < 1 || options.ertInterval > 4096)
+        {
+          throw Usage("--ert-interval must be between 1 and 4096");
+        }
+      } },
+    { "--ess",
+      [&](const std::string& f)
+      {
+        options.emptySpaceSkipping = ParseChoice<int>(f, reader.Value(f),
+          { { "none", 0 }, { "fragment", 1 }, { "octree", 2 }, { "both", 3 } });
+      } },
     { "--slab-samples",
       [&](const std::string& f)
       {

@@ -76,6 +76,9 @@ struct Options
   double crop[6] = { 0, 0, 0, 0, 0, 0 }; // index coordinates
   bool boundaryRerender = true;
   int slabSamples = 0; // 0 = the mapper's default
+  bool earlyRayTermination = true;
+  int ertInterval = 0; // 0 = the mapper's default
+  int emptySpaceSkipping = 3; // vtkAccelVolumeSliceMapper::SKIP_* (both by default)
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

@@ -274,6 +274,12 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       slice->SetSampleDistance(result.sampleDistance);
       slice->SetNumberOfSlices(options.slices);
       slice->SetBoundaryRerendering(options.boundaryRerender);
+      slice->SetEarlyRayTermination(options.earlyRayTermination);
+      if (options.ertInterval > 0)
+      {
+        slice->SetEarlyRayTerminationInterval(options.ertInterval);
+      }
+      slice->SetEmptySpaceSkipping(options.emptySpaceSkipping);
       if (options.slabSamples > 0)
       {
         slice->SetSlabSamples(options.slabSamples);
@@ -403,6 +409,8 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.sampleDistance = sliceMapper->GetLastSliceSpacing();
     result.slices = sliceMapper->GetLastNumberOfSlices();
     result.slabSamples = sliceMapper->GetSlabSamples();
+    result.terminationPasses = sliceMapper->GetLastNumberOfTerminationPasses();
+    result.transparentLeafFraction = sliceMapper->GetLastTransparentLeafFraction();
   }
   else if (headless)
   {

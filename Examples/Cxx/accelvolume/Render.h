@@ -51,6 +51,9 @@ struct RenderResult
   std::string sampleDistanceSource; // "min-spacing", "flag" or "slices"
   int slices = -1;                  // slice mapper's last slice count; -1 for other mappers
   int slabSamples = -1;             // slice mapper's samples per proxy fragment; -1 for others
+  // Slice mapper, composite: what the accelerations did in the last frame (-1 = not used).
+  int terminationPasses = -1;
+  double transparentLeafFraction = -1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
   AppliedTransferFunction transferFunction;    // shading and lighting actually set
 };

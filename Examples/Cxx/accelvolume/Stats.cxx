@@ -171,6 +171,10 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"sample_distance_source\": " << JsonString(result.sampleDistanceSource) << ",\n"
          << "  \"slices\": " << (result.slices >= 0 ? std::to_string(result.slices) : "null")
          << ",\n"
+         << "  \"ert\": " << (options.earlyRayTermination ? "true" : "false") << ",\n"
+         << "  \"ert_passes\": " << result.terminationPasses << ",\n"
+         << "  \"ess\": " << options.emptySpaceSkipping << ",\n"
+         << "  \"transparent_leaf_fraction\": " << Number(result.transparentLeafFraction) << ",\n"
          << "  \"slab_samples\": "
          << (result.slabSamples >= 0 ? std::to_string(result.slabSamples) : "null") << ",\n"
          << "  \"boundary_rerender\": "
