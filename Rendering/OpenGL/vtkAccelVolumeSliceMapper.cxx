@@ -659,8 +659,24 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.TerminationInterval = this->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
+  frame.TransferFunction2D =
+    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  if (frame.TransferFunction2D)
+  {
+    std::string tableError;
+    if (!internals.Resources.UpdateTransferFunction2D(
+          window, property->GetTransferFunction2D(0), tableError))
+    {
+      vtkErrorMacro("Cannot use the 2D transfer function: " << tableError);
+      return;
+    }
+    // The table's y axis spans [0, the steepest central difference the data allow].
+    frame.Gradient2DMaximum = static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
+  }
   frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
-  frame.SkipEmptyLeaves = composite && (this->EmptySpaceSkipping & SKIP_OCTREE) &&
+  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
+  frame.SkipEmptyLeaves = composite && !frame.TransferFunction2D &&
+    (this->EmptySpaceSkipping & SKIP_OCTREE) &&
     this->UpdateEmptyLeaves(window, input, property, range);
   this->LastTransparentLeafFraction = frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
   frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
@@ -672,7 +688,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.GradientOpacity = composite && property->HasGradientOpacity(0) &&
     !property->GetDisableGradientOpacity(0);
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
-  if (frame.Shade || frame.GradientOpacity)
+  if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
     FillShading(frame, renderer, property, indexToEye, view);
   }

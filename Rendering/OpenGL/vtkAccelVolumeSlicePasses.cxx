@@ -65,6 +65,7 @@ std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& fr
     "\n#define ACCELVOLUME_GRADIENT_OPACITY " + (composite && frame.GradientOpacity ? "1" : "0") +
     "\n#define ACCELVOLUME_SKIP_TRANSPARENT " + (composite && frame.SkipTransparentSamples ? "1" : "0") +
     "\n#define ACCELVOLUME_SKIP_OCTREE " + (composite && frame.SkipEmptyLeaves ? "1" : "0") +
+    "\n#define ACCELVOLUME_TF2D " + (composite && frame.TransferFunction2D ? "1" : "0") +
     "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
@@ -102,7 +103,12 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniformf("leafSize", frame.LeafSize);
     program->SetUniform3f("leafGridMaximum", frame.LeafGridMaximum);
   }
-  if (frame.Shade || frame.GradientOpacity)
+  if (frame.TransferFunction2D)
+  {
+    program->SetUniformi("transferTable2D", resources.TransferTable2D->GetTextureUnit());
+    program->SetUniformf("gradient2DMaximum", frame.Gradient2DMaximum);
+  }
+  if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
     program->SetUniformMatrix3x3("normalMatrix", const_cast<float*>(frame.NormalMatrix));
     program->SetUniformf("scalarRangeWidth", frame.ScalarRangeWidth);
@@ -259,6 +265,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.EmptyLeaves->Activate();
   }
+  if (frame.TransferFunction2D)
+  {
+    resources.TransferTable2D->Activate();
+  }
   // Slices then faces: every blend here is order-independent.
   bool ok = DrawCells(window, resources, frame, false);
   if (ok && frame.BoundaryRerendering)
@@ -275,6 +285,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (frame.SkipEmptyLeaves)
   {
     resources.EmptyLeaves->Deactivate();
+  }
+  if (frame.TransferFunction2D)
+  {
+    resources.TransferTable2D->Deactivate();
   }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;

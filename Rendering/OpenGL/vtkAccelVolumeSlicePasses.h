@@ -69,6 +69,8 @@ struct vtkAccelVolumeSliceFrame
 
   // Composite empty-space skipping: per fragment (transparent samples skip the shading) and
   // by octree leaves (EmptyLeaves texture, 1 = transparent leaf).
+  bool TransferFunction2D = false; // vtkVolumeProperty::TF_2D
+  float Gradient2DMaximum = 1;      // gradient magnitude at the 2D table's top row
   bool SkipTransparentSamples = false;
   bool SkipEmptyLeaves = false;
   float LeafSize = 8;

@@ -10,6 +10,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkTextureObject.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -237,6 +238,43 @@ void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
   this->GradientTableBuildTime.Modified();
 }
 
+bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
+  vtkOpenGLRenderWindow* window, vtkImageData* function, std::string& error)
+{
+  if (!function || !function->GetPointData()->GetScalars())
+  {
+    error = "TF_2D mode needs a 2D transfer function image (vtkVolumeProperty::SetTransferFunction2D)";
+    return false;
+  }
+  vtkDataArray* values = function->GetPointData()->GetScalars();
+  int dims[3];
+  function->GetDimensions(dims);
+  if (values->GetNumberOfComponents() != 4 || dims[0] < 1 || dims[1] < 1 || dims[2] != 1)
+  {
+    error = "the 2D transfer function must be an X x Y x 1 image with 4 components (RGBA)";
+    return false;
+  }
+  if (this->TransferTable2D->GetHandle() && this->Table2DSource == function &&
+    function->GetMTime() <= this->Table2DBuildTime && values->GetMTime() <= this->Table2DBuildTime)
+  {
+    return true;
+  }
+  std::vector<float> rgba(static_cast<size_t>(dims[0]) * dims[1] * 4);
+  for (size_t i = 0; i < rgba.size(); ++i)
+  {
+    rgba[i] = static_cast<float>(values->GetComponent(static_cast<vtkIdType>(i / 4), static_cast<int>(i % 4)));
+  }
+  this->TransferTable2D->SetContext(window);
+  this->TransferTable2D->Create2DFromRaw(dims[0], dims[1], 4, VTK_FLOAT, rgba.data());
+  this->TransferTable2D->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->TransferTable2D->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->TransferTable2D->SetMinificationFilter(vtkTextureObject::Linear);
+  this->TransferTable2D->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->Table2DSource = function;
+  this->Table2DBuildTime.Modified();
+  return true;
+}
+
 bool vtkAccelVolumeSliceResources::PrepareTargets(
   vtkOpenGLRenderWindow* window, int width, int height, int channels)
 {
@@ -277,6 +315,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);
   this->EmptyLeaves->ReleaseGraphicsResources(window);
+  this->TransferTable2D->ReleaseGraphicsResources(window);
+  this->Table2DSource = nullptr;
   this->GradientTableMaximum = -1.0;
   this->Accumulation->ReleaseGraphicsResources(window);
   this->SceneDepth->ReleaseGraphicsResources(window);

@@ -49,6 +49,13 @@ public:
     vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum);
 
   /**
+   * Uploads the property's 2D transfer function (an RGBA float vtkImageData, x: scalar,
+   * y: gradient magnitude) when it changed. False (with error) for a malformed image.
+   */
+  bool UpdateTransferFunction2D(
+    vtkOpenGLRenderWindow* window, vtkImageData* function, std::string& error);
+
+  /**
    * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
    * integrating modes) and the scene depth copy to the viewport.
    */
@@ -60,6 +67,7 @@ public:
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
   vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
+  vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
@@ -79,6 +87,8 @@ private:
   vtkTimeStamp VolumeUploadTime;
   vtkTimeStamp TableBuildTime;
   vtkTimeStamp GradientTableBuildTime;
+  vtkTimeStamp Table2DBuildTime;
+  vtkImageData* Table2DSource = nullptr;
   double GradientTableMaximum = -1.0;
   vtkDataArray* UploadedScalars = nullptr;
   double UploadedRange[2] = { 0.0, 0.0 };

@@ -43,6 +43,9 @@ uniform vec4 lighting;              // ambient, diffuse, specular, specular powe
 // Composite empty-space skipping (ACCELVOLUME_SKIP_OCTREE, ACCELVOLUME_SKIP_TRANSPARENT):
 uniform sampler3D emptyLeaves;      // 1 where the octree leaf is transparent (leaf grid)
 uniform float leafSize;
+// 2D transfer function (ACCELVOLUME_TF2D): rgba over (scalar, gradient magnitude / maximum).
+uniform sampler2D transferTable2D;
+uniform float gradient2DMaximum;
 uniform vec3 leafGridMaximum;       // leaf grid size - 1 per axis
 
 float normalizedScalar()
@@ -171,15 +174,20 @@ void main()
     discard;
   }
 #endif
+#if ACCELVOLUME_TF2D
+  float scalar2D = normalizedScalar();
+  vec4 sample = vec4(0.0);
+#else
   vec4 sample = classify(normalizedScalar());
-#if ACCELVOLUME_SKIP_TRANSPARENT
+#endif
+#if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
   // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
   if (sample.a <= 0.0)
   {
     discard;
   }
 #endif
-#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY
+#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
   // Central differences on the fly (one texel apart), in normalized scalar units.
   vec3 center = (indexPosition + vec3(0.5)) / volumeDimensions;
   vec3 texel = 1.0 / volumeDimensions;
@@ -191,6 +199,17 @@ void main()
       texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
         texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
   vec3 eyeGradient = normalMatrix * indexGradient;
+#endif
+#if ACCELVOLUME_TF2D
+  // Value x gradient-magnitude classification (the paper's 2D transfer function).
+  float magnitude2D = length(eyeGradient) * scalarRangeWidth / gradient2DMaximum;
+  sample = texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
+#if ACCELVOLUME_SKIP_TRANSPARENT
+  if (sample.a <= 0.0)
+  {
+    discard;
+  }
+#endif
 #endif
 #if ACCELVOLUME_GRADIENT_OPACITY
   // Gradient magnitude in data units per world unit, looked up like VTK's gradient opacity.
