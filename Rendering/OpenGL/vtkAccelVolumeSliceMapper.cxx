@@ -170,6 +170,7 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SlabSamples: " << this->SlabSamples << "\n";
   os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
   os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "FrontToBack: " << this->FrontToBack << "\n";
   os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
@@ -558,8 +559,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
         ordered.emplace_back(stack.depths[k], std::move(stack.polygons[k]));
       }
     }
-    std::stable_sort(ordered.begin(), ordered.end(),
-      [](const auto& a, const auto& b) { return a.first < b.first; });
+    const bool frontToBack = this->FrontToBack != 0;
+    std::stable_sort(ordered.begin(), ordered.end(), [frontToBack](const auto& a, const auto& b)
+      { return frontToBack ? a.first < b.first : a.first > b.first; });
     vtkAccelVolumeSliceFrame::Cell draw;
     draw.Lower = { static_cast<float>(volumeBox.lower.x), static_cast<float>(volumeBox.lower.y),
       static_cast<float>(volumeBox.lower.z) };
@@ -655,7 +657,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     frame.SliceStarts.clear();
   }
-  frame.EarlyTermination = composite && this->EarlyRayTermination;
+  frame.FrontToBack = this->FrontToBack != 0;
+  frame.EarlyTermination = composite && this->EarlyRayTermination && frame.FrontToBack;
   frame.TerminationInterval = this->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;

@@ -124,6 +124,16 @@ public:
   vtkGetMacro(LastNumberOfTerminationPasses, int);
   ///@}
 
+  ///@{
+  /**
+   * Composite order (default on: front to back, which early ray termination needs). Off
+   * draws back to front with "over" blending: the same image, without termination.
+   */
+  vtkSetMacro(FrontToBack, vtkTypeBool);
+  vtkGetMacro(FrontToBack, vtkTypeBool);
+  vtkBooleanMacro(FrontToBack, vtkTypeBool);
+  ///@}
+
   enum EmptySpaceSkippingModes
   {
     SKIP_NONE = 0,
@@ -210,6 +220,7 @@ protected:
   double EarlyRayTerminationThreshold = 0.99;
   int LastNumberOfTerminationPasses = 0;
   int EmptySpaceSkipping = SKIP_BOTH;
+  vtkTypeBool FrontToBack = 1;
   int OctreeLeafSize = 8;
   double LastTransparentLeafFraction = -1.0;
   double AdditiveUnitDistance = 0.0;

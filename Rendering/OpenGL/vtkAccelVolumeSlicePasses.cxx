@@ -243,10 +243,15 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendEquation(maximum ? GL_MAX : (minimum ? GL_MIN : GL_FUNC_ADD));
-  if (composite)
+  if (composite && frame.FrontToBack)
   {
     // Front to back "under": the new premultiplied sample goes behind what is there.
     state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  }
+  else if (composite)
+  {
+    // Back to front "over".
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   }
   else
   {

@@ -61,6 +61,7 @@ struct vtkAccelVolumeSliceFrame
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
   // reached TerminationThreshold are closed for later slices. SliceStarts holds the first
   // vertex of each composite slice (and the end), so slices can be drawn in batches.
+  bool FrontToBack = true; // composite order (back to front uses "over")
   bool EarlyTermination = false;
   int TerminationInterval = 16;
   float TerminationThreshold = 0.99f;

@@ -1,4 +1,4 @@
-// Empty-space skipping is exact: composite images with skipping per fragment, by octree
+// Empty-space skipping is exact, and so is back-to-front compositing: composite images with skipping per fragment, by octree
 // leaves, or both, equal the unskipped image (same samples; skipped ones have opacity 0),
 // on a procedural volume and on the engine CT, shaded, with early termination off.
 #include "AccelVolumeTestUtilities.h"
@@ -9,11 +9,12 @@
 namespace
 {
 std::vector<float> Render(vtkImageData* image, int skipping, double low, double high,
-  double* leafFraction)
+  double* leafFraction, bool frontToBack = true)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
   mapper->SetBlendModeToComposite();
+  mapper->SetFrontToBack(frontToBack);
   mapper->SetEarlyRayTermination(false);
   mapper->SetEmptySpaceSkipping(skipping);
   vtkNew<vtkVolume> volume;
@@ -46,6 +47,15 @@ bool Check(const char* name, vtkImageData* image, double low, double high)
     std::cout << name << ", skipping mode " << mode << ": max |diff| " << d.maximum
               << ", transparent leaves " << fraction << (same ? "" : "  FAILED") << "\n";
     ok = same && ok;
+    // Back to front ("over") composites the same samples in the other order.
+    if (mode == vtkAccelVolumeSliceMapper::SKIP_BOTH)
+    {
+      const std::vector<float> backToFront = Render(image, mode, low, high, &fraction, false);
+      const accelvolume_test::ImageDifference order =
+        accelvolume_test::CompareImages(backToFront, skipped, 1.0 / 255.0);
+      std::cout << name << ", back to front vs front to back: max |diff| " << order.maximum << "\n";
+      ok = order.maximum <= 2.0 / 255.0 + 1e-6 && ok;
+    }
     if (mode != vtkAccelVolumeSliceMapper::SKIP_FRAGMENT && !(fraction > 0.0))
     {
       std::cerr << name << ": the octree found no transparent leaf\n";
