@@ -171,6 +171,7 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
   os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";
+  os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";
   os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
@@ -694,6 +695,15 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
     FillShading(frame, renderer, property, indexToEye, view);
+    constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
+    const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
+    frame.GradientTexture = this->PrecomputeGradients && gradientBytes <= GradientTextureBudget &&
+      internals.Resources.UpdateGradients(window, input, scalars, range);
+    frame.GradientTextureScale = internals.Resources.GradientScale;
+  }
+  else
+  {
+    frame.GradientTexture = false;
   }
   if (frame.GradientOpacity)
   {

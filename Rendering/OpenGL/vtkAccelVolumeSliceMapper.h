@@ -134,6 +134,19 @@ public:
   vtkBooleanMacro(FrontToBack, vtkTypeBool);
   ///@}
 
+  ///@{
+  /**
+   * Composite shading / gradient opacity / 2D transfer functions: gradients precomputed into
+   * a 4-channel 16-bit texture (the paper's way; 8 bytes per voxel, rebuilt when the data
+   * change) instead of central differences on the fly (6 extra fetches per sample).
+   * Default on: measured 15-25% faster on llvmpipe (engine CT, shaded, 512^2: 549-568 vs
+   * 630-720 ms). Volumes whose gradient texture would pass 1 GiB use central differences.
+   */
+  vtkSetMacro(PrecomputeGradients, vtkTypeBool);
+  vtkGetMacro(PrecomputeGradients, vtkTypeBool);
+  vtkBooleanMacro(PrecomputeGradients, vtkTypeBool);
+  ///@}
+
   enum EmptySpaceSkippingModes
   {
     SKIP_NONE = 0,
@@ -221,6 +234,7 @@ protected:
   int LastNumberOfTerminationPasses = 0;
   int EmptySpaceSkipping = SKIP_BOTH;
   vtkTypeBool FrontToBack = 1;
+  vtkTypeBool PrecomputeGradients = 1;
   int OctreeLeafSize = 8;
   double LastTransparentLeafFraction = -1.0;
   double AdditiveUnitDistance = 0.0;

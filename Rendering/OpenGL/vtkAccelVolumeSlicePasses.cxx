@@ -66,6 +66,7 @@ std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& fr
     "\n#define ACCELVOLUME_SKIP_TRANSPARENT " + (composite && frame.SkipTransparentSamples ? "1" : "0") +
     "\n#define ACCELVOLUME_SKIP_OCTREE " + (composite && frame.SkipEmptyLeaves ? "1" : "0") +
     "\n#define ACCELVOLUME_TF2D " + (composite && frame.TransferFunction2D ? "1" : "0") +
+    "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
     "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
@@ -102,6 +103,11 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniformi("emptyLeaves", resources.EmptyLeaves->GetTextureUnit());
     program->SetUniformf("leafSize", frame.LeafSize);
     program->SetUniform3f("leafGridMaximum", frame.LeafGridMaximum);
+  }
+  if (frame.GradientTexture)
+  {
+    program->SetUniformi("gradientTexture", resources.Gradients->GetTextureUnit());
+    program->SetUniformf("gradientTextureScale", frame.GradientTextureScale);
   }
   if (frame.TransferFunction2D)
   {
@@ -274,6 +280,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.TransferTable2D->Activate();
   }
+  if (frame.GradientTexture)
+  {
+    resources.Gradients->Activate();
+  }
   // Slices then faces: every blend here is order-independent.
   bool ok = DrawCells(window, resources, frame, false);
   if (ok && frame.BoundaryRerendering)
@@ -294,6 +304,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (frame.TransferFunction2D)
   {
     resources.TransferTable2D->Deactivate();
+  }
+  if (frame.GradientTexture)
+  {
+    resources.Gradients->Deactivate();
   }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;

@@ -70,6 +70,8 @@ struct vtkAccelVolumeSliceFrame
 
   // Composite empty-space skipping: per fragment (transparent samples skip the shading) and
   // by octree leaves (EmptyLeaves texture, 1 = transparent leaf).
+  bool GradientTexture = false;    // precomputed gradients instead of central differences
+  float GradientTextureScale = 1;
   bool TransferFunction2D = false; // vtkVolumeProperty::TF_2D
   float Gradient2DMaximum = 1;      // gradient magnitude at the 2D table's top row
   bool SkipTransparentSamples = false;

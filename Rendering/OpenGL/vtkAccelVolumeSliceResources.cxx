@@ -11,6 +11,7 @@
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkTextureObject.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -238,6 +239,84 @@ void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
   this->GradientTableBuildTime.Modified();
 }
 
+bool vtkAccelVolumeSliceResources::UpdateGradients(vtkOpenGLRenderWindow* window,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+{
+  if (this->Gradients->GetHandle() && this->GradientScalars == scalars &&
+    scalars->GetMTime() <= this->GradientBuildTime && image->GetMTime() <= this->GradientBuildTime)
+  {
+    return true;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
+  // Normalized, NaN-free values once; then clamped central differences (edges one-sided,
+  // like clamp-to-edge sampling of the volume texture).
+  std::vector<float> values(static_cast<size_t>(count));
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const double v = scalars->GetComponent(i, 0);
+      values[i] = std::isfinite(v) ? static_cast<float>(std::min(1.0, std::max(0.0, (v - range[0]) / width))) : 0.0f;
+    }
+  });
+  std::vector<float> gradients(static_cast<size_t>(count) * 3);
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
+  vtkSMPTools::For(0, dims[2], [&](vtkIdType zBegin, vtkIdType zEnd) {
+    for (vtkIdType z = zBegin; z < zEnd; ++z)
+    {
+      for (int y = 0; y < dims[1]; ++y)
+      {
+        for (int x = 0; x < dims[0]; ++x)
+        {
+          const vtkIdType at = z * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
+          const int step[3] = { 1, dims[0], static_cast<int>(sliceSize) };
+          const int position[3] = { x, y, static_cast<int>(z) };
+          for (int c = 0; c < 3; ++c)
+          {
+            const vtkIdType low = position[c] > 0 ? at - step[c] : at;
+            const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
+            gradients[3 * at + c] = 0.5f * (values[high] - values[low]);
+          }
+        }
+      }
+    }
+  });
+  float largest = 1.0e-12f;
+  for (float g : gradients)
+  {
+    largest = std::max(largest, std::fabs(g));
+  }
+  std::vector<unsigned short> packed(static_cast<size_t>(count) * 4);
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        packed[4 * i + c] =
+          static_cast<unsigned short>(std::lround((gradients[3 * i + c] / largest * 0.5f + 0.5f) * 65535.0f));
+      }
+      packed[4 * i + 3] = static_cast<unsigned short>(std::lround(values[i] * 65535.0f));
+    }
+  });
+  this->Gradients->SetContext(window);
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (!this->Gradients->Create3DFromRaw(dims[0], dims[1], dims[2], 4, VTK_UNSIGNED_SHORT, packed.data()))
+  {
+    return false;
+  }
+  this->Gradients->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->Gradients->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->Gradients->SetWrapR(vtkTextureObject::ClampToEdge);
+  this->Gradients->SetMinificationFilter(vtkTextureObject::Linear);
+  this->Gradients->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->GradientScale = largest;
+  this->GradientScalars = scalars;
+  this->GradientBuildTime.Modified();
+  return true;
+}
+
 bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
   vtkOpenGLRenderWindow* window, vtkImageData* function, std::string& error)
 {
@@ -316,6 +395,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->GradientOpacityTable->ReleaseGraphicsResources(window);
   this->EmptyLeaves->ReleaseGraphicsResources(window);
   this->TransferTable2D->ReleaseGraphicsResources(window);
+  this->Gradients->ReleaseGraphicsResources(window);
+  this->GradientScalars = nullptr;
   this->Table2DSource = nullptr;
   this->GradientTableMaximum = -1.0;
   this->Accumulation->ReleaseGraphicsResources(window);

@@ -56,6 +56,13 @@ public:
     vtkOpenGLRenderWindow* window, vtkImageData* function, std::string& error);
 
   /**
+   * Precomputes central-difference gradients of the normalized scalars (the paper's
+   * 4-channel texture) when the volume changed. Call after UploadVolume.
+   */
+  bool UpdateGradients(vtkOpenGLRenderWindow* window, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2]);
+
+  /**
    * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
    * integrating modes) and the scene depth copy to the viewport.
    */
@@ -68,6 +75,8 @@ public:
   vtkNew<vtkTextureObject> GradientOpacityTable;
   vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
   vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
+  vtkNew<vtkTextureObject> Gradients; // RGBA16: index-space gradient (rgb), value (a)
+  float GradientScale = 1.0f;         // decoded gradient = (rgb * 2 - 1) * GradientScale
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
@@ -88,6 +97,8 @@ private:
   vtkTimeStamp TableBuildTime;
   vtkTimeStamp GradientTableBuildTime;
   vtkTimeStamp Table2DBuildTime;
+  vtkTimeStamp GradientBuildTime;
+  vtkDataArray* GradientScalars = nullptr;
   vtkImageData* Table2DSource = nullptr;
   double GradientTableMaximum = -1.0;
   vtkDataArray* UploadedScalars = nullptr;

@@ -43,6 +43,10 @@ uniform vec4 lighting;              // ambient, diffuse, specular, specular powe
 // Composite empty-space skipping (ACCELVOLUME_SKIP_OCTREE, ACCELVOLUME_SKIP_TRANSPARENT):
 uniform sampler3D emptyLeaves;      // 1 where the octree leaf is transparent (leaf grid)
 uniform float leafSize;
+// Precomputed gradients (ACCELVOLUME_GRADIENT_TEXTURE): index-space central differences in
+// normalized scalar units, stored as rgb * 2 - 1 times gradientTextureScale.
+uniform sampler3D gradientTexture;
+uniform float gradientTextureScale;
 // 2D transfer function (ACCELVOLUME_TF2D): rgba over (scalar, gradient magnitude / maximum).
 uniform sampler2D transferTable2D;
 uniform float gradient2DMaximum;
@@ -188,8 +192,12 @@ void main()
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-  // Central differences on the fly (one texel apart), in normalized scalar units.
   vec3 center = (indexPosition + vec3(0.5)) / volumeDimensions;
+#if ACCELVOLUME_GRADIENT_TEXTURE
+  vec3 indexGradient =
+    (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
+#else
+  // Central differences on the fly (one texel apart), in normalized scalar units.
   vec3 texel = 1.0 / volumeDimensions;
   vec3 indexGradient = 0.5 * scalarScale *
     vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
@@ -198,6 +206,7 @@ void main()
         texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
       texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
         texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
+#endif
   vec3 eyeGradient = normalMatrix * indexGradient;
 #endif
 #if ACCELVOLUME_TF2D

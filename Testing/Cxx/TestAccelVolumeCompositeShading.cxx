@@ -72,5 +72,18 @@ int TestAccelVolumeCompositeShading(int, char*[])
            accelvolume_test::CompareImages(image2, reference, 16.0 / 255.0), 4.0 / 255.0, 0.05) &&
       ok;
   }
+  // Precomputed 16-bit gradients against central differences on the fly.
+  for (bool perspective : { false, true })
+  {
+    auto image = accelvolume_test::MakePhantom("shells", 56, 52, 48);
+    vtkNew<vtkAccelVolumeSliceMapper> onTheFly;
+    vtkNew<vtkAccelVolumeSliceMapper> precomputed;
+    precomputed->PrecomputeGradientsOn();
+    const std::vector<float> a = RenderWith(onTheFly, image, true, true, perspective);
+    const std::vector<float> b = RenderWith(precomputed, image, true, true, perspective);
+    ok = accelvolume_test::Report("precomputed vs on-the-fly gradients",
+           accelvolume_test::CompareImages(b, a, 4.0 / 255.0), 1.0 / 255.0, 0.01) &&
+      ok;
+  }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

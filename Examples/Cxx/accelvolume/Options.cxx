@@ -285,6 +285,12 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
           throw Usage("--ert-interval must be between 1 and 4096");
         }
       } },
+    { "--gradients",
+      [&](const std::string& f)
+      {
+        options.precomputeGradients = ParseChoice<bool>(
+          f, reader.Value(f), { { "texture", true }, { "on-the-fly", false } });
+      } },
     { "--ess",
       [&](const std::string& f)
       {

@@ -280,6 +280,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
         slice->SetEarlyRayTerminationInterval(options.ertInterval);
       }
       slice->SetEmptySpaceSkipping(options.emptySpaceSkipping);
+      slice->SetPrecomputeGradients(options.precomputeGradients);
       if (options.slabSamples > 0)
       {
         slice->SetSlabSamples(options.slabSamples);
