@@ -172,6 +172,7 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";
   os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";
+  os << indent << "Jittering: " << this->Jittering << "\n";
   os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
@@ -659,6 +660,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     frame.SliceStarts.clear();
   }
   frame.FrontToBack = this->FrontToBack != 0;
+  frame.Jitter = this->Jittering != 0;
   frame.EarlyTermination = composite && this->EarlyRayTermination && frame.FrontToBack;
   frame.TerminationInterval = this->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);

@@ -147,6 +147,17 @@ public:
   vtkBooleanMacro(PrecomputeGradients, vtkTypeBool);
   ///@}
 
+  ///@{
+  /**
+   * Composite: offset each pixel's samples by up to half a slice along its ray (default off),
+   * trading wood-grain rings for fine noise. Samples may then reach half a slice beyond a
+   * crop or clip face.
+   */
+  vtkSetMacro(Jittering, vtkTypeBool);
+  vtkGetMacro(Jittering, vtkTypeBool);
+  vtkBooleanMacro(Jittering, vtkTypeBool);
+  ///@}
+
   enum EmptySpaceSkippingModes
   {
     SKIP_NONE = 0,
@@ -235,6 +246,7 @@ protected:
   int EmptySpaceSkipping = SKIP_BOTH;
   vtkTypeBool FrontToBack = 1;
   vtkTypeBool PrecomputeGradients = 1;
+  vtkTypeBool Jittering = 0;
   int OctreeLeafSize = 8;
   double LastTransparentLeafFraction = -1.0;
   double AdditiveUnitDistance = 0.0;

@@ -67,6 +67,7 @@ std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& fr
     "\n#define ACCELVOLUME_SKIP_OCTREE " + (composite && frame.SkipEmptyLeaves ? "1" : "0") +
     "\n#define ACCELVOLUME_TF2D " + (composite && frame.TransferFunction2D ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
+    "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
     "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);

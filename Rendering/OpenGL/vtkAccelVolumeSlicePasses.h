@@ -62,6 +62,7 @@ struct vtkAccelVolumeSliceFrame
   // reached TerminationThreshold are closed for later slices. SliceStarts holds the first
   // vertex of each composite slice (and the end), so slices can be drawn in batches.
   bool FrontToBack = true; // composite order (back to front uses "over")
+  bool Jitter = false;      // composite: per-pixel sample offsets against wood-grain
   bool EarlyTermination = false;
   int TerminationInterval = 16;
   float TerminationThreshold = 0.99f;

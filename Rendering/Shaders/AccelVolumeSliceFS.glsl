@@ -52,6 +52,12 @@ uniform sampler2D transferTable2D;
 uniform float gradient2DMaximum;
 uniform vec3 leafGridMaximum;       // leaf grid size - 1 per axis
 
+float normalizedScalarAt(vec3 position)
+{
+  vec3 textureCoordinate = (position + vec3(0.5)) / volumeDimensions;
+  return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
+}
+
 float normalizedScalar()
 {
   vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
@@ -169,20 +175,27 @@ void main()
   // the slice count.
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+  vec3 samplePosition = indexPosition;
+#if ACCELVOLUME_JITTER
+  // Per-pixel offset of up to half a slice along the ray (interleaved gradient noise) turns
+  // wood-grain rings into fine noise.
+  float noise = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+  samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
+#endif
 #if ACCELVOLUME_SKIP_OCTREE
   // A transparent leaf (every voxel its samples read maps to opacity 0) adds nothing:
   // one nearest fetch of the leaf grid replaces the volume fetch and the shading.
-  vec3 leaf = clamp(floor(indexPosition / leafSize), vec3(0.0), leafGridMaximum);
+  vec3 leaf = clamp(floor(samplePosition / leafSize), vec3(0.0), leafGridMaximum);
   if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
   {
     discard;
   }
 #endif
 #if ACCELVOLUME_TF2D
-  float scalar2D = normalizedScalar();
+  float scalar2D = normalizedScalarAt(samplePosition);
   vec4 sample = vec4(0.0);
 #else
-  vec4 sample = classify(normalizedScalar());
+  vec4 sample = classify(normalizedScalarAt(samplePosition));
 #endif
 #if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
   // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
@@ -192,7 +205,7 @@ void main()
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-  vec3 center = (indexPosition + vec3(0.5)) / volumeDimensions;
+  vec3 center = (samplePosition + vec3(0.5)) / volumeDimensions;
 #if ACCELVOLUME_GRADIENT_TEXTURE
   vec3 indexGradient =
     (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;

@@ -72,6 +72,22 @@ int TestAccelVolumeCompositeShading(int, char*[])
            accelvolume_test::CompareImages(image2, reference, 16.0 / 255.0), 4.0 / 255.0, 0.05) &&
       ok;
   }
+  // Jittered sampling: deterministic, close to the plain image on average.
+  {
+    auto image = accelvolume_test::MakePhantom("shells", 56, 52, 48);
+    vtkNew<vtkAccelVolumeSliceMapper> plain;
+    vtkNew<vtkAccelVolumeSliceMapper> jittered;
+    vtkNew<vtkAccelVolumeSliceMapper> jitteredAgain;
+    jittered->JitteringOn();
+    jitteredAgain->JitteringOn();
+    const std::vector<float> a = RenderWith(plain, image, true, false, true);
+    const std::vector<float> b = RenderWith(jittered, image, true, false, true);
+    const std::vector<float> c = RenderWith(jitteredAgain, image, true, false, true);
+    const accelvolume_test::ImageDifference shift = accelvolume_test::CompareImages(b, a, 16.0 / 255.0);
+    std::cout << "jittered vs plain: mean " << shift.mean << "\n";
+    ok = shift.mean > 0.0 && shift.mean < 4.0 / 255.0 && ok;
+    ok = accelvolume_test::CompareImages(b, c, 0.0).maximum == 0.0 && ok;
+  }
   // Precomputed 16-bit gradients against central differences on the fly.
   for (bool perspective : { false, true })
   {
@@ -79,6 +95,7 @@ int TestAccelVolumeCompositeShading(int, char*[])
     vtkNew<vtkAccelVolumeSliceMapper> onTheFly;
     vtkNew<vtkAccelVolumeSliceMapper> precomputed;
     precomputed->PrecomputeGradientsOn();
+    onTheFly->PrecomputeGradientsOff();
     const std::vector<float> a = RenderWith(onTheFly, image, true, true, perspective);
     const std::vector<float> b = RenderWith(precomputed, image, true, true, perspective);
     ok = accelvolume_test::Report("precomputed vs on-the-fly gradients",

@@ -79,6 +79,7 @@ std::string RenderHelp()
     "  --ert-interval N           slices between termination passes (default 16)\n"
     "  --ess none|fragment|octree|both\n"
     "                             composite empty-space skipping (slice mapper; default both)\n"
+    "  --jitter on|off            composite per-pixel sample jitter (slice mapper; default off)\n"
     "  --gradients texture|on-the-fly\n"
     "                             shading gradients precomputed or by central differences\n"
     "                             (slice mapper; default texture)\n"

@@ -285,6 +285,12 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
           throw Usage("--ert-interval must be between 1 and 4096");
         }
       } },
+    { "--jitter",
+      [&](const std::string& f)
+      {
+        options.jitter =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+      } },
     { "--gradients",
       [&](const std::string& f)
       {

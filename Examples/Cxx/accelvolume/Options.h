@@ -80,6 +80,7 @@ struct Options
   int ertInterval = 0; // 0 = the mapper's default
   int emptySpaceSkipping = 3; // vtkAccelVolumeSliceMapper::SKIP_* (both by default)
   bool precomputeGradients = true;
+  bool jitter = false;
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

@@ -281,6 +281,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       }
       slice->SetEmptySpaceSkipping(options.emptySpaceSkipping);
       slice->SetPrecomputeGradients(options.precomputeGradients);
+      slice->SetJittering(options.jitter);
       if (options.slabSamples > 0)
       {
         slice->SetSlabSamples(options.slabSamples);
