@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeSliceMapper.h"
 
 #include "vtkAccelVolumeMinMaxOctree.h"
+#include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
@@ -546,8 +547,40 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   int proxyCount = 0;
   int faceCount = 0;
   const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  const bool transferFunction2D =
+    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
+  const bool skipEmptyLeaves = composite && !transferFunction2D &&
+    (this->EmptySpaceSkipping & SKIP_OCTREE) &&
+    this->UpdateEmptyLeaves(window, input, property, range);
   if (composite)
   {
+    // Octree skipping, geometry part: each slice keeps only the part inside the bounding box
+    // of the non-empty octree boxes its plane crosses. One convex polygon per slice, so no
+    // cracks; whatever is cut lies in transparent leaves, so the image is unchanged.
+    std::vector<accelvolume::Box> nonEmpty;
+    std::vector<std::pair<double, double>> nonEmptyDepths;
+    if (skipEmptyLeaves)
+    {
+      if (accelvolume::MinMaxOctree* core = internals.Octree->GetInternals()->GetCPUOctree())
+      {
+        nonEmpty = core->NonEmptyBoxes();
+      }
+      for (const accelvolume::Box& box : nonEmpty)
+      {
+        double low = VTK_DOUBLE_MAX;
+        double high = -VTK_DOUBLE_MAX;
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          const accelvolume::Vec3 p = MakeVec3(corner & 1 ? box.upper.x : box.lower.x,
+            corner & 2 ? box.upper.y : box.lower.y, corner & 4 ? box.upper.z : box.lower.z);
+          const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
+          low = std::min(low, depth);
+          high = std::max(high, depth);
+        }
+        nonEmptyDepths.emplace_back(low, high);
+      }
+    }
     // Front to back across all cells: at one depth the cells' polygons are disjoint, so
     // drawing depth-major keeps every ray's samples in compositing order. No cut faces: a
     // composite sample stands for a slab of thickness, so extra face samples would count twice.
@@ -558,7 +591,32 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
         depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::FrontToBack);
       for (size_t k = 0; k < stack.polygons.size(); ++k)
       {
-        ordered.emplace_back(stack.depths[k], std::move(stack.polygons[k]));
+        accelvolume::Polygon polygon = std::move(stack.polygons[k]);
+        if (skipEmptyLeaves)
+        {
+          accelvolume::Box bounds;
+          bounds.lower = MakeVec3(VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX);
+          bounds.upper = MakeVec3(-VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX);
+          for (size_t b = 0; b < nonEmpty.size(); ++b)
+          {
+            if (nonEmptyDepths[b].first <= stack.depths[k] && stack.depths[k] <= nonEmptyDepths[b].second)
+            {
+              const accelvolume::Box& box = nonEmpty[b];
+              bounds.lower = MakeVec3(std::min(bounds.lower.x, box.lower.x),
+                std::min(bounds.lower.y, box.lower.y), std::min(bounds.lower.z, box.lower.z));
+              bounds.upper = MakeVec3(std::max(bounds.upper.x, box.upper.x),
+                std::max(bounds.upper.y, box.upper.y), std::max(bounds.upper.z, box.upper.z));
+            }
+          }
+          for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(bounds))
+          {
+            polygon = polygon.empty() ? polygon : accelvolume::ClipPolygon(polygon, half);
+          }
+        }
+        if (!polygon.empty())
+        {
+          ordered.emplace_back(stack.depths[k], std::move(polygon));
+        }
       }
     }
     const bool frontToBack = this->FrontToBack != 0;
@@ -665,8 +723,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.TerminationInterval = this->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
-  frame.TransferFunction2D =
-    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  frame.TransferFunction2D = transferFunction2D;
   if (frame.TransferFunction2D)
   {
     std::string tableError;
@@ -680,10 +737,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     frame.Gradient2DMaximum = static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
   }
   frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
-  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
-  frame.SkipEmptyLeaves = composite && !frame.TransferFunction2D &&
-    (this->EmptySpaceSkipping & SKIP_OCTREE) &&
-    this->UpdateEmptyLeaves(window, input, property, range);
+  frame.SkipEmptyLeaves = skipEmptyLeaves;
   this->LastTransparentLeafFraction = frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
   frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
   for (int c = 0; c < 3; ++c)
