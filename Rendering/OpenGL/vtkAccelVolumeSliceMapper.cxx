@@ -560,6 +560,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     // cracks; whatever is cut lies in transparent leaves, so the image is unchanged.
     std::vector<accelvolume::Box> nonEmpty;
     std::vector<std::pair<double, double>> nonEmptyDepths;
+    double fullArea = 0.0; // index-space slice area before and after the culling
+    double keptArea = 0.0;
     if (skipEmptyLeaves)
     {
       if (accelvolume::MinMaxOctree* core = internals.Octree->GetInternals()->GetCPUOctree())
@@ -592,6 +594,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       for (size_t k = 0; k < stack.polygons.size(); ++k)
       {
         accelvolume::Polygon polygon = std::move(stack.polygons[k]);
+        fullArea += accelvolume::PolygonArea(polygon);
         if (skipEmptyLeaves)
         {
           accelvolume::Box bounds;
@@ -615,10 +618,12 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
         }
         if (!polygon.empty())
         {
+          keptArea += accelvolume::PolygonArea(polygon);
           ordered.emplace_back(stack.depths[k], std::move(polygon));
         }
       }
     }
+    this->LastProxyAreaFraction = fullArea > 0 ? keptArea / fullArea : 1.0;
     const bool frontToBack = this->FrontToBack != 0;
     std::stable_sort(ordered.begin(), ordered.end(), [frontToBack](const auto& a, const auto& b)
       { return frontToBack ? a.first < b.first : a.first > b.first; });

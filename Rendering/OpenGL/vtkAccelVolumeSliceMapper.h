@@ -179,6 +179,8 @@ public:
   vtkGetMacro(OctreeLeafSize, int);
   /** Fraction of octree leaves found transparent in the last frame (-1 when unused). */
   vtkGetMacro(LastTransparentLeafFraction, double);
+  /** Composite: fraction of the slice area kept by the octree culling in the last frame. */
+  vtkGetMacro(LastProxyAreaFraction, double);
   ///@}
 
   ///@{
@@ -249,6 +251,7 @@ protected:
   vtkTypeBool Jittering = 0;
   int OctreeLeafSize = 8;
   double LastTransparentLeafFraction = -1.0;
+  double LastProxyAreaFraction = 1.0;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 

@@ -413,6 +413,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.slabSamples = sliceMapper->GetSlabSamples();
     result.terminationPasses = sliceMapper->GetLastNumberOfTerminationPasses();
     result.transparentLeafFraction = sliceMapper->GetLastTransparentLeafFraction();
+    result.proxyAreaFraction = sliceMapper->GetLastProxyAreaFraction();
   }
   else if (headless)
   {

@@ -54,6 +54,7 @@ struct RenderResult
   // Slice mapper, composite: what the accelerations did in the last frame (-1 = not used).
   int terminationPasses = -1;
   double transparentLeafFraction = -1;
+  double proxyAreaFraction = 1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
   AppliedTransferFunction transferFunction;    // shading and lighting actually set
 };

@@ -175,6 +175,7 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"ert_passes\": " << result.terminationPasses << ",\n"
          << "  \"ess\": " << options.emptySpaceSkipping << ",\n"
          << "  \"transparent_leaf_fraction\": " << Number(result.transparentLeafFraction) << ",\n"
+         << "  \"slice_area_kept\": " << Number(result.proxyAreaFraction) << ",\n"
          << "  \"slab_samples\": "
          << (result.slabSamples >= 0 ? std::to_string(result.slabSamples) : "null") << ",\n"
          << "  \"boundary_rerender\": "
