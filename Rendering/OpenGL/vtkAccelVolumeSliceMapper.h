@@ -1,8 +1,9 @@
 /**
  * @class   vtkAccelVolumeSliceMapper
  * @brief   Slice-based OpenGL volume mapper: view-aligned proxy slices through a 3D texture,
- *          for maximum / minimum intensity projection, raysum (additive) and average, with
- *          cropping whose cut faces are re-rendered to remove boundary aliasing.
+ *          for composite (shaded direct volume rendering with early ray termination and
+ *          empty-space skipping), maximum / minimum intensity projection, raysum (additive)
+ *          and average, with cropping whose cut faces are re-rendered against aliasing.
  *
  * The volume is uploaded once as a 3D texture (trilinear or nearest sampling, as the volume
  * property says). Every frame the mapper draws planes of constant eye depth, clipped to the
@@ -16,6 +17,15 @@
  *   unit (the smallest voxel spacing) it equals VTK's per-voxel-step sum.
  * - AVERAGE_INTENSITY_BLEND: ray-length-weighted mean of opacity(s) * s over samples inside
  *   AverageIPScalarRange, shown grey.
+ * - COMPOSITE_BLEND: front-to-back (or back-to-front) compositing of colour and scalar
+ *   opacity, opacity corrected for each ray's slice spacing against
+ *   ScalarOpacityUnitDistance; gradient opacity; Phong shading with VTK's lights and the
+ *   property's coefficients (gradients precomputed or by central differences); 2D transfer
+ *   functions (TF_2D, value x gradient magnitude). Accelerations after Kim et al.'s
+ *   slice-based renderer (2005): early ray termination (a mark pass every N slices closes
+ *   saturated pixels through the early depth test) and exact empty-space skipping, per
+ *   fragment and with a min-max octree (slices clipped to the non-empty boxes, fragments in
+ *   transparent leaves discarded before any shading).
  *
  * Cropping (VTK's region flags, any combination: each visible region is drawn as a convex
  * cell) and up to 8 clipping planes restrict the sampled region. With BoundaryRerendering on
@@ -29,8 +39,8 @@
  *
  * Limits: one-component scalars of type char, unsigned char, short, unsigned short, int,
  * float or double (int, float and double are sampled as 32-bit floats normalised to the
- * data range; NaN samples count as the minimum). Composite blending is not provided yet.
- * Each axis must fit GL_MAX_3D_TEXTURE_SIZE.
+ * data range; NaN samples count as the minimum). Each axis must fit GL_MAX_3D_TEXTURE_SIZE.
+ * Boundary re-rendering applies to the projection modes, not to composite.
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h
