@@ -118,7 +118,9 @@ public:
   ///@{
   /**
    * Composite only: early ray termination (default on). Slices are drawn front to back; every
-   * EarlyRayTerminationInterval slices (default 16, as in the paper) a cheap pass closes the
+   * EarlyRayTerminationInterval slices (default 16, as in the paper; measured on the engine CT
+   * at 512^2, ms for 4/8/16/32: opaque TF 217/147-169/151-159/142-174, semi-transparent
+   * 338/280/235/236) a cheap pass closes the
    * pixels whose accumulated opacity reached EarlyRayTerminationThreshold (default 0.99), so
    * later slices generate no shaded fragments there. The image changes by at most the
    * remaining transparency (1 - threshold) at those pixels.
