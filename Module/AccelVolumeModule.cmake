@@ -10,6 +10,7 @@ set(_av_classes
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.
 set(_av_core_sources
+  Core/accelvolume/CompositeSlices
   Core/accelvolume/Geometry
   Core/accelvolume/MinMaxOctree
   Core/accelvolume/MinMaxOctreeQueries

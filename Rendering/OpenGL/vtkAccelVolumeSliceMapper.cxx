@@ -27,6 +27,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "accelvolume/CompositeSlices.h"
 #include "accelvolume/Geometry.h"
 #include "accelvolume/MinMaxOctree.h"
 #include "accelvolume/SlabProxy.h"
@@ -555,78 +556,20 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     this->UpdateEmptyLeaves(window, input, property, range);
   if (composite)
   {
-    // Octree skipping, geometry part: each slice keeps only the part inside the bounding box
-    // of the non-empty octree boxes its plane crosses. One convex polygon per slice, so no
-    // cracks; whatever is cut lies in transparent leaves, so the image is unchanged.
+    // Octree skipping, geometry part: slices are clipped to the non-empty octree boxes'
+    // bounds at their depth; what is cut lies in transparent leaves (image unchanged).
     std::vector<accelvolume::Box> nonEmpty;
-    std::vector<std::pair<double, double>> nonEmptyDepths;
-    double fullArea = 0.0; // index-space slice area before and after the culling
-    double keptArea = 0.0;
-    if (skipEmptyLeaves)
+    accelvolume::MinMaxOctree* core =
+      skipEmptyLeaves ? internals.Octree->GetInternals()->GetCPUOctree() : nullptr;
+    if (core)
     {
-      if (accelvolume::MinMaxOctree* core = internals.Octree->GetInternals()->GetCPUOctree())
-      {
-        nonEmpty = core->NonEmptyBoxes();
-      }
-      for (const accelvolume::Box& box : nonEmpty)
-      {
-        double low = VTK_DOUBLE_MAX;
-        double high = -VTK_DOUBLE_MAX;
-        for (int corner = 0; corner < 8; ++corner)
-        {
-          const accelvolume::Vec3 p = MakeVec3(corner & 1 ? box.upper.x : box.lower.x,
-            corner & 2 ? box.upper.y : box.lower.y, corner & 4 ? box.upper.z : box.lower.z);
-          const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
-          low = std::min(low, depth);
-          high = std::max(high, depth);
-        }
-        nonEmptyDepths.emplace_back(low, high);
-      }
+      nonEmpty = core->NonEmptyBoxes();
     }
-    // Front to back across all cells: at one depth the cells' polygons are disjoint, so
-    // drawing depth-major keeps every ray's samples in compositing order. No cut faces: a
-    // composite sample stands for a slab of thickness, so extra face samples would count twice.
-    std::vector<std::pair<double, accelvolume::Polygon>> ordered;
-    for (const accelvolume::Box& region : regions)
-    {
-      accelvolume::SliceStack stack = accelvolume::ComputeViewAlignedSlices(region, clip,
-        depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::FrontToBack);
-      for (size_t k = 0; k < stack.polygons.size(); ++k)
-      {
-        accelvolume::Polygon polygon = std::move(stack.polygons[k]);
-        fullArea += accelvolume::PolygonArea(polygon);
-        if (skipEmptyLeaves)
-        {
-          accelvolume::Box bounds;
-          bounds.lower = MakeVec3(VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX);
-          bounds.upper = MakeVec3(-VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX);
-          for (size_t b = 0; b < nonEmpty.size(); ++b)
-          {
-            if (nonEmptyDepths[b].first <= stack.depths[k] && stack.depths[k] <= nonEmptyDepths[b].second)
-            {
-              const accelvolume::Box& box = nonEmpty[b];
-              bounds.lower = MakeVec3(std::min(bounds.lower.x, box.lower.x),
-                std::min(bounds.lower.y, box.lower.y), std::min(bounds.lower.z, box.lower.z));
-              bounds.upper = MakeVec3(std::max(bounds.upper.x, box.upper.x),
-                std::max(bounds.upper.y, box.upper.y), std::max(bounds.upper.z, box.upper.z));
-            }
-          }
-          for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(bounds))
-          {
-            polygon = polygon.empty() ? polygon : accelvolume::ClipPolygon(polygon, half);
-          }
-        }
-        if (!polygon.empty())
-        {
-          keptArea += accelvolume::PolygonArea(polygon);
-          ordered.emplace_back(stack.depths[k], std::move(polygon));
-        }
-      }
-    }
-    this->LastProxyAreaFraction = fullArea > 0 ? keptArea / fullArea : 1.0;
-    const bool frontToBack = this->FrontToBack != 0;
-    std::stable_sort(ordered.begin(), ordered.end(), [frontToBack](const auto& a, const auto& b)
-      { return frontToBack ? a.first < b.first : a.first > b.first; });
+    const accelvolume::CompositeSlices composited = accelvolume::ComputeCompositeSlices(regions,
+      clip, depthGradient, depthOffset, spacing, phase, this->FrontToBack != 0,
+      core ? &nonEmpty : nullptr);
+    const auto& ordered = composited.slices;
+    this->LastProxyAreaFraction = composited.keptAreaFraction;
     vtkAccelVolumeSliceFrame::Cell draw;
     draw.Lower = { static_cast<float>(volumeBox.lower.x), static_cast<float>(volumeBox.lower.y),
       static_cast<float>(volumeBox.lower.z) };

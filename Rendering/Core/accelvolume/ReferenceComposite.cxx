@@ -1,21 +1,18 @@
 // ReferenceComposite: CPU oracle for front-to-back composite ray casting with opacity correction.
 #include "accelvolume/ReferenceComposite.h"
 
+#include "accelvolume/ReferenceCommon.h"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
-#include <thread>
 
 namespace accelvolume
 {
 
 namespace
 {
-// Absorbs rounding in length / step so an exact multiple does not gain an extra tiny step
-// (the same slack RenderReference uses).
-constexpr double StepCountSlack = 1e-9;
+using detail::StepCountSlack;
 
 struct Rgb
 {
@@ -100,16 +97,8 @@ std::vector<CompositePixel> RenderReferenceComposite(const ScalarVolume& volume,
     return {};
   }
   const std::size_t pixelCount = static_cast<std::size_t>(width) * height;
-  if (raysEnd && raysEnd->size() != pixelCount)
-  {
-    throw std::invalid_argument(
-      "accelvolume::RenderReferenceComposite: raysEnd size != width * height");
-  }
-  if (!(options.stepWorld > 0))
-  {
-    throw std::invalid_argument(
-      "accelvolume::RenderReferenceComposite: stepWorld must be positive");
-  }
+  constexpr const char* caller = "accelvolume::RenderReferenceComposite";
+  detail::CheckRaysEndAndStep(caller, pixelCount, raysEnd, options.stepWorld);
   if (!(options.opacityUnitDistance > 0))
   {
     throw std::invalid_argument(
@@ -120,12 +109,7 @@ std::vector<CompositePixel> RenderReferenceComposite(const ScalarVolume& volume,
     throw std::invalid_argument(
       "accelvolume::RenderReferenceComposite: colourTable size is not a multiple of 3");
   }
-  if (volume.dims[0] <= 0 || volume.dims[1] <= 0 || volume.dims[2] <= 0 ||
-    volume.values.size() !=
-      static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2])
-  {
-    throw std::invalid_argument("accelvolume::RenderReferenceComposite: values do not match dims");
-  }
+  detail::CheckVolume(caller, volume);
   const Affine worldToIndex = volume.indexToWorld.Inverse();
   std::vector<CompositePixel> pixels(pixelCount);
 
@@ -134,22 +118,14 @@ std::vector<CompositePixel> RenderReferenceComposite(const ScalarVolume& volume,
     std::vector<Interval> intervals;
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t index = static_cast<std::size_t>(j) * width + i;
-      const Ray ray = PixelRay(camera, width, height, i, j);
-      const Vec3 origin = worldToIndex.Apply(ray.origin);
-      const Vec3 direction = worldToIndex.ApplyLinear(ray.direction);
-      const double end = raysEnd ? (*raysEnd)[index] : std::numeric_limits<double>::infinity();
+      const detail::IndexRay ray =
+        detail::PixelIndexRay(worldToIndex, camera, width, height, i, j, raysEnd);
       intervals.clear();
       for (const Box& region : regions)
       {
         double t0 = 0, t1 = 0;
-        if (!IntersectRayRegion(origin, direction, region, clip, t0, t1))
-        {
-          continue;
-        }
-        t0 = std::max(t0, 0.0);
-        t1 = std::min(t1, end);
-        if (t0 < t1 && std::isfinite(t1))
+        // Strictly positive length only: an empty interval composites nothing.
+        if (detail::ClipRayToRegion(ray, region, clip, t0, t1) && t0 < t1)
         {
           intervals.push_back({ t0, t1 });
         }
@@ -162,9 +138,9 @@ std::vector<CompositePixel> RenderReferenceComposite(const ScalarVolume& volume,
       for (const Interval& interval : intervals)
       {
         CompositeInterval(
-          volume, colourTable, opacity, options, origin, direction, interval, accumulator);
+          volume, colourTable, opacity, options, ray.origin, ray.direction, interval, accumulator);
       }
-      CompositePixel& pixel = pixels[index];
+      CompositePixel& pixel = pixels[static_cast<std::size_t>(j) * width + i];
       for (int c = 0; c < 3; ++c)
       {
         pixel.rgba[c] = static_cast<float>(accumulator.rgb[c]);
@@ -173,28 +149,7 @@ std::vector<CompositePixel> RenderReferenceComposite(const ScalarVolume& volume,
     }
   };
 
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const int threadCount =
-    std::min(height, options.threads > 0 ? options.threads : static_cast<int>(hardware));
-  // Rows are handed out dynamically; each pixel is computed alone, so results ignore scheduling.
-  std::atomic<int> nextRow{ 0 };
-  auto work = [&]()
-  {
-    for (int j = nextRow++; j < height; j = nextRow++)
-    {
-      renderRow(j);
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threadCount; ++t)
-  {
-    workers.emplace_back(work);
-  }
-  work();
-  for (std::thread& worker : workers)
-  {
-    worker.join();
-  }
+  detail::ForEachRowInParallel(height, options.threads, renderRow);
   return pixels;
 }
 

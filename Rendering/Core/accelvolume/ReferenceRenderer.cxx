@@ -1,12 +1,12 @@
 // ReferenceRenderer: CPU oracle for the projection blends, integrated finely along pixel rays.
 #include "accelvolume/ReferenceRenderer.h"
 
+#include "accelvolume/ReferenceCommon.h"
+
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <thread>
 
 namespace accelvolume
 {
@@ -14,8 +14,7 @@ namespace accelvolume
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-// Absorbs rounding in length / step so an exact multiple does not gain an extra tiny step.
-constexpr double StepCountSlack = 1e-9;
+using detail::StepCountSlack;
 
 double ClampIndex(double coordinate, int count)
 {
@@ -233,20 +232,9 @@ std::vector<ReferencePixel> RenderReference(const ScalarVolume& volume,
     return {};
   }
   const std::size_t pixelCount = static_cast<std::size_t>(width) * height;
-  if (raysEnd && raysEnd->size() != pixelCount)
-  {
-    throw std::invalid_argument("accelvolume::RenderReference: raysEnd size != width * height");
-  }
-  if (!(options.stepWorld > 0))
-  {
-    throw std::invalid_argument("accelvolume::RenderReference: stepWorld must be positive");
-  }
-  if (volume.dims[0] <= 0 || volume.dims[1] <= 0 || volume.dims[2] <= 0 ||
-    volume.values.size() !=
-      static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2])
-  {
-    throw std::invalid_argument("accelvolume::RenderReference: values do not match dims");
-  }
+  constexpr const char* caller = "accelvolume::RenderReference";
+  detail::CheckRaysEndAndStep(caller, pixelCount, raysEnd, options.stepWorld);
+  detail::CheckVolume(caller, volume);
   const Affine worldToIndex = volume.indexToWorld.Inverse();
   std::vector<ReferencePixel> pixels(pixelCount);
 
@@ -254,52 +242,23 @@ std::vector<ReferencePixel> RenderReference(const ScalarVolume& volume,
   {
     for (int i = 0; i < width; ++i)
     {
-      const std::size_t index = static_cast<std::size_t>(j) * width + i;
-      const Ray ray = PixelRay(camera, width, height, i, j);
-      const Vec3 origin = worldToIndex.Apply(ray.origin);
-      const Vec3 direction = worldToIndex.ApplyLinear(ray.direction);
-      const double end = raysEnd ? (*raysEnd)[index] : std::numeric_limits<double>::infinity();
+      const detail::IndexRay ray =
+        detail::PixelIndexRay(worldToIndex, camera, width, height, i, j, raysEnd);
       RayAccumulator accumulator;
       for (const Box& region : regions)
       {
         double t0 = 0, t1 = 0;
-        if (!IntersectRayRegion(origin, direction, region, clip, t0, t1))
+        if (detail::ClipRayToRegion(ray, region, clip, t0, t1))
         {
-          continue;
-        }
-        t0 = std::max(t0, 0.0);
-        t1 = std::min(t1, end);
-        if (t0 <= t1 && std::isfinite(t1))
-        {
-          IntegrateInterval(volume, opacity, options, origin, direction, t0, t1, accumulator);
+          IntegrateInterval(
+            volume, opacity, options, ray.origin, ray.direction, t0, t1, accumulator);
         }
       }
-      pixels[index] = Finish(accumulator, options);
+      pixels[static_cast<std::size_t>(j) * width + i] = Finish(accumulator, options);
     }
   };
 
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const int threadCount =
-    std::min(height, options.threads > 0 ? options.threads : static_cast<int>(hardware));
-  // Rows are handed out dynamically; each pixel is computed alone, so results ignore scheduling.
-  std::atomic<int> nextRow{ 0 };
-  auto work = [&]()
-  {
-    for (int j = nextRow++; j < height; j = nextRow++)
-    {
-      renderRow(j);
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threadCount; ++t)
-  {
-    workers.emplace_back(work);
-  }
-  work();
-  for (std::thread& worker : workers)
-  {
-    worker.join();
-  }
+  detail::ForEachRowInParallel(height, options.threads, renderRow);
   return pixels;
 }
 
