@@ -13,6 +13,7 @@
 // RMS of ERT+both against base (should be ~0: both are exact up to the 0.99 threshold) and
 // against VTK's image, at the fixed oblique view.
 // Options: BenchmarkCompositeOptions.{h,cxx}; table and JSON: BenchmarkCompositeReport.{h,cxx}.
+#include "BenchmarkCommon.h"
 #include "BenchmarkCompositeOptions.h"
 #include "BenchmarkCompositeReport.h"
 #include "BenchmarkImageMetrics.h"
@@ -51,55 +52,6 @@ using namespace accelvolume::benchmark::composite;
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder.
-std::string FindDatasetFile(const std::string& dataDir, const std::string& name)
-{
-  const std::regex pattern("^" +
-    std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-    R"(_\d+x\d+x\d+_[A-Za-z0-9]+\.raw(\.gz)?$)");
-  std::error_code ec;
-  std::vector<std::string> matches;
-  for (const auto& entry : fs::directory_iterator(dataDir, ec))
-  {
-    if (std::regex_match(entry.path().filename().string(), pattern))
-    {
-      matches.push_back(entry.path().string());
-    }
-  }
-  std::sort(matches.begin(), matches.end());
-  return matches.empty() ? std::string() : matches.front();
-}
-
-std::vector<std::uint8_t> Capture(vtkRenderWindow* window, int size)
-{
-  vtkNew<vtkUnsignedCharArray> pixels;
-  window->GetPixelData(0, 0, size - 1, size - 1, 0, pixels.Get());
-  const auto* data = pixels->GetPointer(0);
-  return std::vector<std::uint8_t>(data, data + static_cast<size_t>(size) * size * 3);
-}
-
-void WritePng(const std::string& path, const std::vector<std::uint8_t>& rgb, int size)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(size, size, 1);
-  vtkNew<vtkUnsignedCharArray> array;
-  array->SetNumberOfComponents(3);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(size) * size);
-  std::copy(rgb.begin(), rgb.end(), array->GetPointer(0));
-  image->GetPointData()->SetScalars(array);
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-}
-
 // Grey-level differences over the pixels that are non-black in either image (the black
 // background would dilute the RMS by the empty share of the window).
 ErrorStats Compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int size)
@@ -243,7 +195,7 @@ void RunDataset(const Options& options, const DatasetInfo& info, vtkImageData* i
         {
           window->Render(); // a second frame: the first may include one-time work
           auto& target = r.Cfg.Id == "base" ? baseImage : r.Cfg.Vtk ? vtkImage : bothImage;
-          target = Capture(window, size);
+          target = Capture(window, size, size);
         }
       }
       c.ErtBothVsBase = Compare(baseImage, bothImage, size);
@@ -254,9 +206,9 @@ void RunDataset(const Options& options, const DatasetInfo& info, vtkImageData* i
         fs::create_directories(options.Images, ec);
         const std::string stem =
           options.Images + "/" + info.Name + "_" + tf + "_" + std::to_string(size) + "_";
-        WritePng(stem + "base.png", baseImage, size);
-        WritePng(stem + "ert_both.png", bothImage, size);
-        WritePng(stem + "vtk.png", vtkImage, size);
+        WritePng(stem + "base.png", baseImage, size, size);
+        WritePng(stem + "ert_both.png", bothImage, size, size);
+        WritePng(stem + "vtk.png", vtkImage, size, size);
       }
 
       for (int f = 0; f < c.Frames; ++f)
@@ -305,24 +257,14 @@ int main(int argc, char* argv[])
   {
     return 2;
   }
-  const int backend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.GL.c_str());
-  if (backend < 0 || backend == vtkAccelVolumeHeadlessRenderWindow::BACKEND_X)
+  int backend = 0;
+  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
   {
-    std::cerr << "--gl must be egl, osmesa or auto\n";
-    return 2;
-  }
-  if (backend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
-    !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(backend))
-  {
-    std::cerr << "headless backend " << options.GL << " is not available here\n";
-    return 1;
+    return exitCode;
   }
 
   vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  window->SetBackend(backend);
-  window->SetMultiSamples(0);
-  window->SetSize(options.Sizes.front(), options.Sizes.front());
-  window->Render(); // creates the context
+  StartHeadlessWindow(window, backend, options.Sizes.front(), options.Sizes.front());
   const std::string rendererName = window->GetOpenGLRendererString();
   const std::string backendName =
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());

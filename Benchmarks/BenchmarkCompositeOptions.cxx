@@ -1,9 +1,10 @@
 // Command-line parsing, usage text and validation of accelvolume_benchmark_composite's options.
 #include "BenchmarkCompositeOptions.h"
 
+#include "BenchmarkCommon.h"
+
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 
 namespace accelvolume::benchmark::composite
 {
@@ -30,34 +31,6 @@ void Usage()
        "  --images DIR        save PNGs of the quality-check view (base, ERT+both, VTK)\n";
 }
 
-void TakeValue(const char* text, std::string& value)
-{
-  value = text;
-}
-void TakeValue(const char* text, int& value)
-{
-  value = std::atoi(text);
-}
-void TakeValue(const char* text, double& value)
-{
-  value = std::atof(text);
-}
-
-// Comma-separated list; empty items (",," or a trailing comma) are dropped.
-std::vector<std::string> Split(const std::string& list)
-{
-  std::vector<std::string> items;
-  std::stringstream stream(list);
-  std::string item;
-  while (std::getline(stream, item, ','))
-  {
-    if (!item.empty())
-    {
-      items.push_back(item);
-    }
-  }
-  return items;
-}
 } // namespace
 
 bool ParseArguments(int argc, char* argv[], Options& options)
@@ -68,19 +41,7 @@ bool ParseArguments(int argc, char* argv[], Options& options)
     const std::string arg = argv[i];
     // True when `arg` is `name` and is followed by one value per field, which it then consumes.
     auto option = [&](const char* name, auto&... values)
-    {
-      if (arg != name)
-      {
-        return false;
-      }
-      if (i + static_cast<int>(sizeof...(values)) >= argc)
-      {
-        std::cerr << "missing value after " << arg << "\n";
-        return false;
-      }
-      (TakeValue(argv[++i], values), ...);
-      return true;
-    };
+    { return TakeOption(argc, argv, i, name, values...); };
     std::string list;
     if (arg == "--help" || arg == "-h")
     {
@@ -89,16 +50,16 @@ bool ParseArguments(int argc, char* argv[], Options& options)
     }
     else if (option("--datasets", list))
     {
-      options.Datasets = Split(list);
+      options.Datasets = SplitList(list);
     }
     else if (option("--tfs", list))
     {
-      options.TransferFunctions = Split(list);
+      options.TransferFunctions = SplitList(list);
     }
     else if (option("--sizes", list))
     {
       options.Sizes.clear();
-      for (const std::string& size : Split(list))
+      for (const std::string& size : SplitList(list))
       {
         const int value = std::atoi(size.c_str());
         sizesValid = sizesValid && value >= 16 && value <= 4096;

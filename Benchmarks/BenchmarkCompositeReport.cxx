@@ -2,7 +2,6 @@
 #include "BenchmarkCompositeReport.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -12,30 +11,6 @@ namespace accelvolume::benchmark::composite
 {
 namespace
 {
-std::string JsonEscape(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-      out += c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-      out += buffer;
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return out;
-}
-
 // "1.23x" or "-" when unknown.
 std::string Times(double value)
 {
@@ -94,17 +69,6 @@ const ConfigResult* CaseResult::Best() const
     }
   }
   return best;
-}
-
-std::string Num(double value, int precision)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream << std::setprecision(precision) << std::fixed << value;
-  return stream.str();
 }
 
 void PrintTable(const std::vector<DatasetInfo>& datasets, const std::vector<CaseResult>& cases)

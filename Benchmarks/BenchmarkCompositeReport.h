@@ -3,6 +3,7 @@
 #ifndef accelvolume_benchmark_BenchmarkCompositeReport_h
 #define accelvolume_benchmark_BenchmarkCompositeReport_h
 
+#include "BenchmarkCommon.h"
 #include "BenchmarkCompositeOptions.h"
 #include "BenchmarkImageMetrics.h"
 
@@ -73,7 +74,6 @@ struct DatasetInfo
 };
 
 std::vector<Config> MakeConfigs();
-std::string Num(double value, int precision);
 void PrintTable(const std::vector<DatasetInfo>& datasets, const std::vector<CaseResult>& cases);
 void WriteJson(const Options& options, const std::string& renderer, const std::string& backend,
   const std::vector<DatasetInfo>& datasets, const std::vector<CaseResult>& cases,

@@ -14,6 +14,7 @@
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
 // printed description of the masks).
 // Options: BenchmarkCroppingOptions.{h,cxx}; table and JSON: BenchmarkCroppingReport.{h,cxx}.
+#include "BenchmarkCommon.h"
 #include "BenchmarkCroppingOptions.h"
 #include "BenchmarkCroppingReport.h"
 #include "BenchmarkImageMetrics.h"
@@ -86,54 +87,10 @@ std::vector<Config> MakeConfigs()
   };
 }
 
-// NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder.
-std::string FindDatasetFile(const std::string& dataDir, const std::string& name)
-{
-  const std::regex pattern("^" +
-    std::regex_replace(name, std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-    R"(_\d+x\d+x\d+_[A-Za-z0-9]+\.raw(\.gz)?$)");
-  std::error_code ec;
-  std::vector<std::string> matches;
-  for (const auto& entry : fs::directory_iterator(dataDir, ec))
-  {
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, pattern))
-    {
-      matches.push_back(entry.path().string());
-    }
-  }
-  std::sort(matches.begin(), matches.end());
-  return matches.empty() ? std::string() : matches.front();
-}
-
-std::vector<std::uint8_t> Capture(vtkRenderWindow* window, int width, int height)
-{
-  vtkNew<vtkUnsignedCharArray> pixels;
-  window->GetPixelData(0, 0, width - 1, height - 1, 0, pixels.Get());
-  const auto* data = pixels->GetPointer(0);
-  return std::vector<std::uint8_t>(data, data + static_cast<size_t>(width) * height * 3);
-}
-
-bool WritePng(const std::string& path, const std::vector<std::uint8_t>& rgb, int width, int height)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(width, height, 1);
-  vtkNew<vtkUnsignedCharArray> array;
-  array->SetNumberOfComponents(3);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  std::copy(rgb.begin(), rgb.end(), array->GetPointer(0));
-  image->GetPointData()->SetScalars(array);
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return writer->GetErrorCode() == 0;
-}
-
 bool RunDataset(const Options& options, const std::string& name, bool saveImages,
   vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result)
 {
-  const auto datasetStart = std::chrono::steady_clock::now();
+  const auto datasetStart = Clock::now();
   result.Name = name;
   result.File = FindDatasetFile(options.DataDir, name);
   if (result.File.empty())
@@ -145,10 +102,9 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
   accelvolume::cli::VolumeRequest request;
   request.inputPath = result.File;
   std::string error;
-  const auto loadStart = std::chrono::steady_clock::now();
+  const auto loadStart = Clock::now();
   vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
-  result.LoadSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+  result.LoadSeconds = SecondsSince(loadStart);
   if (!image)
   {
     std::cerr << "dataset " << name << ": " << error << "\n";
@@ -336,9 +292,9 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
         continue;
       }
       apply(r.Cfg);
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = Clock::now();
       renderAndWait();
-      const auto stop = std::chrono::steady_clock::now();
+      const auto stop = Clock::now();
       r.FrameMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
       if (!r.Cfg.Gpu)
       {
@@ -445,8 +401,7 @@ bool RunDataset(const Options& options, const std::string& name, bool saveImages
   }
 
   window->RemoveRenderer(renderer);
-  result.TotalSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - datasetStart).count();
+  result.TotalSeconds = SecondsSince(datasetStart);
   return true;
 }
 
@@ -459,24 +414,14 @@ int main(int argc, char* argv[])
   {
     return 2;
   }
-  const int backend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.GL.c_str());
-  if (backend < 0 || backend == vtkAccelVolumeHeadlessRenderWindow::BACKEND_X)
+  int backend = 0;
+  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
   {
-    std::cerr << "--gl must be egl, osmesa or auto\n";
-    return 2;
-  }
-  if (backend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
-    !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(backend))
-  {
-    std::cerr << "headless backend " << options.GL << " is not available here\n";
-    return 1;
+    return exitCode;
   }
 
   vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  window->SetBackend(backend);
-  window->SetMultiSamples(0);
-  window->SetSize(options.Width, options.Height);
-  window->Render(); // creates the context
+  StartHeadlessWindow(window, backend, options.Width, options.Height);
   const std::string rendererName = window->GetOpenGLRendererString();
   const std::string backendName =
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
@@ -510,7 +455,7 @@ int main(int argc, char* argv[])
 
   std::vector<DatasetResult> datasets;
   bool ok = true;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   for (size_t i = 0; i < options.Datasets.size(); ++i)
   {
     DatasetResult result;
@@ -530,9 +475,7 @@ int main(int argc, char* argv[])
   std::cout << "\npaper Table 2 (Radeon 9800 Pro, 256x256x240 Big Head, fps): re-render 256 slices "
                "149.83, plain 256 150.81, 400 97.24, 512 73.85\n";
   WriteJson(options, rendererName, backendName, datasets);
-  std::cout << "results written to " << options.Json << "; total "
-            << Num(
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1)
+  std::cout << "results written to " << options.Json << "; total " << Num(SecondsSince(start), 1)
             << " s\n";
   return ok && !datasets.empty() ? 0 : 1;
 }

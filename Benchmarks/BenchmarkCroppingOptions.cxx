@@ -1,9 +1,10 @@
 // Command-line parsing, usage text and validation of accelvolume_benchmark_cropping's options.
 #include "BenchmarkCroppingOptions.h"
 
+#include "BenchmarkCommon.h"
+
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 
 namespace accelvolume::benchmark
 {
@@ -30,36 +31,6 @@ void Usage()
        "  --window LOW HIGH   transfer-function window for every dataset (default: per dataset)\n";
 }
 
-// One option value per field; the field's type picks the conversion. atoi / atof are kept from
-// the original parser, so a malformed number still reads as 0 rather than being an error.
-void TakeValue(const char* text, std::string& value)
-{
-  value = text;
-}
-void TakeValue(const char* text, int& value)
-{
-  value = std::atoi(text);
-}
-void TakeValue(const char* text, double& value)
-{
-  value = std::atof(text);
-}
-
-// Comma-separated list; empty names (",," or a trailing comma) are dropped.
-std::vector<std::string> SplitNames(const std::string& list)
-{
-  std::vector<std::string> names;
-  std::stringstream stream(list);
-  std::string name;
-  while (std::getline(stream, name, ','))
-  {
-    if (!name.empty())
-    {
-      names.push_back(name);
-    }
-  }
-  return names;
-}
 } // namespace
 
 bool ParseArguments(int argc, char* argv[], Options& options)
@@ -67,25 +38,9 @@ bool ParseArguments(int argc, char* argv[], Options& options)
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    auto need = [&](int count)
-    {
-      if (i + count >= argc)
-      {
-        std::cerr << "missing value after " << arg << "\n";
-        return false;
-      }
-      return true;
-    };
     // True when `arg` is `name` and is followed by one value per field, which it then consumes.
     auto option = [&](const char* name, auto&... values)
-    {
-      if (arg != name || !need(static_cast<int>(sizeof...(values))))
-      {
-        return false;
-      }
-      (TakeValue(argv[++i], values), ...);
-      return true;
-    };
+    { return TakeOption(argc, argv, i, name, values...); };
     std::string datasets;
     if (arg == "--help" || arg == "-h")
     {
@@ -94,7 +49,7 @@ bool ParseArguments(int argc, char* argv[], Options& options)
     }
     else if (option("--datasets", datasets))
     {
-      options.Datasets = SplitNames(datasets);
+      options.Datasets = SplitList(datasets);
     }
     else if (option("--window", options.Window[0], options.Window[1]))
     {

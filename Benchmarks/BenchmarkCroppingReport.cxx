@@ -1,7 +1,6 @@
 // Printed comparison table and JSON output of accelvolume_benchmark_cropping.
 #include "BenchmarkCroppingReport.h"
 
-#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -10,49 +9,6 @@
 
 namespace accelvolume::benchmark
 {
-namespace
-{
-std::string JsonEscape(const std::string& text)
-{
-  std::string out;
-  for (char c : text)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-      out += c;
-    }
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-      out += buffer;
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return out;
-}
-
-double SafeRatio(double a, double b)
-{
-  return b > 0 ? a / b : std::nan("");
-}
-} // namespace
-
-std::string Num(double value, int precision)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream << std::setprecision(precision) << std::fixed << value;
-  return stream.str();
-}
-
 void PrintTable(const DatasetResult& d)
 {
   const ConfigResult* oneAndHalf = nullptr;

@@ -3,6 +3,7 @@
 #ifndef accelvolume_benchmark_BenchmarkCroppingReport_h
 #define accelvolume_benchmark_BenchmarkCroppingReport_h
 
+#include "BenchmarkCommon.h"
 #include "BenchmarkCroppingOptions.h"
 #include "BenchmarkImageMetrics.h"
 
@@ -79,7 +80,7 @@ struct DatasetResult
   std::vector<ConfigResult> Results;
 };
 
-// Fixed-point text of `value`, or "null" (valid JSON) when it is not finite.
+// The shared Num() (BenchmarkCommon.h), with this program's usual precision as the default.
 std::string Num(double value, int precision = 4);
 
 // Prints the comparison table of one dataset and the paper's claims checked against it.

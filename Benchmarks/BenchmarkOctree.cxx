@@ -42,13 +42,6 @@ using namespace accelvolume::benchmark;
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double MsSince(Clock::time_point start)
-{
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 // One thread streaming every byte once; the sum is published so the loop is not elided.
 volatile std::uint64_t Sink = 0;
 double ReadFloorMs(const void* data, std::size_t bytes)
@@ -71,8 +64,9 @@ double ReadFloorMs(const void* data, std::size_t bytes)
   return MsSince(start);
 }
 
-// NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder ("" if absent).
-std::string FindDatasetFile(const std::string& dir, const std::string& name)
+// NAME_*.raw[.gz] in the data folder ("" if absent): a looser match than the shared
+// FindDatasetFile(), which also requires the _<X>x<Y>x<Z>_<type> part.
+std::string FindPrefixedRawFile(const std::string& dir, const std::string& name)
 {
   std::error_code ec;
   std::vector<std::string> matches;
@@ -308,10 +302,7 @@ int main(int argc, char* argv[])
     return 2;
   }
   vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  window->SetBackend(backend);
-  window->SetMultiSamples(0);
-  window->SetSize(512, 512);
-  window->Render(); // creates the context
+  StartHeadlessWindow(window, backend, 512, 512);
   GPUState gpu;
   gpu.Renderer = window->GetOpenGLRendererString();
   int major = 0, minor = 0;
@@ -353,7 +344,7 @@ int main(int argc, char* argv[])
       results.push_back(std::move(d));
       continue;
     }
-    d.File = FindDatasetFile(options.DataDir, name);
+    d.File = FindPrefixedRawFile(options.DataDir, name);
     if (d.File.empty())
     {
       std::cerr << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "

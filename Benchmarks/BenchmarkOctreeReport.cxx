@@ -73,11 +73,6 @@ const BuildResult* Find(const DatasetResult& d, const std::string& builder, bool
   return nullptr;
 }
 
-double Ratio(double a, double b)
-{
-  return b > 0 ? a / b : NAN;
-}
-
 } // namespace
 
 bool ParseArguments(int argc, char* argv[], Options& options)
@@ -150,17 +145,6 @@ bool ParseArguments(int argc, char* argv[], Options& options)
   return true;
 }
 
-std::string Num(double value, int precision)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream << std::setprecision(precision) << std::fixed << value;
-  return stream.str();
-}
-
 double Median(std::vector<double> values)
 {
   if (values.empty())
@@ -192,8 +176,8 @@ void PrintReport(const Machine& machine, const std::vector<DatasetResult>& resul
       std::cout << std::left << std::setw(20) << d.Name << std::setw(13) << dims << std::setw(8)
                 << type << std::setw(11) << builder << std::right << std::setw(8) << threads
                 << std::setw(11) << Num(ms, 2) << std::setw(8) << Num(d.Bytes / ms / 1e6, 2)
-                << std::setw(9) << Num(reference ? Ratio(Median(reference->Ms), ms) : NAN, 2)
-                << std::setw(9) << Num(Ratio(ms, floor), 2) << note << "\n";
+                << std::setw(9) << Num(reference ? SafeRatio(Median(reference->Ms), ms) : NAN, 2)
+                << std::setw(9) << Num(SafeRatio(ms, floor), 2) << note << "\n";
     };
     row("read-floor", "1", floor, "");
     for (const BuildResult& b : d.Builds)
@@ -214,11 +198,11 @@ void PrintReport(const Machine& machine, const std::vector<DatasetResult>& resul
     const BuildResult* gpu = Find(d, "gpu", true);
     const double cpuMs = cpu ? Median(cpu->Ms) : NAN;
     std::cout << "  " << std::left << std::setw(20) << d.Name << std::right
-              << "cpu(all) vs reference " << Num(Ratio(Median(reference->Ms), cpuMs), 2)
+              << "cpu(all) vs reference " << Num(SafeRatio(Median(reference->Ms), cpuMs), 2)
               << "x faster, cpu(1) vs reference "
-              << Num(cpu1 ? Ratio(Median(reference->Ms), Median(cpu1->Ms)) : NAN, 2)
-              << "x, cpu(all) / floor " << Num(Ratio(cpuMs, Median(d.ReadFloorMs)), 2)
-              << ", gpu / cpu(all) " << (gpu ? Num(Ratio(Median(gpu->Ms), cpuMs), 2) : "n/a")
+              << Num(cpu1 ? SafeRatio(Median(reference->Ms), Median(cpu1->Ms)) : NAN, 2)
+              << "x, cpu(all) / floor " << Num(SafeRatio(cpuMs, Median(d.ReadFloorMs)), 2)
+              << ", gpu / cpu(all) " << (gpu ? Num(SafeRatio(Median(gpu->Ms), cpuMs), 2) : "n/a")
               << ", classify median " << Num(Median(d.ClassifyMs), 4) << " ms (min "
               << Num(*std::min_element(d.ClassifyMs.begin(), d.ClassifyMs.end()), 4) << "), "
               << d.Nodes << " nodes, depth " << d.Depth << ", "
@@ -281,8 +265,8 @@ void WriteJson(
           << ", \"ms\": " << JsonList(r.Ms)
           << ", \"reduced_repeats\": " << (r.ReducedRepeats ? "true" : "false")
           << ", \"gb_per_s\": " << Num(d.Bytes / ms / 1e6, 4)
-          << ", \"x_reference\": " << Num(reference ? Ratio(Median(reference->Ms), ms) : NAN, 4)
-          << ", \"x_floor\": " << Num(Ratio(ms, floor), 4) << "}";
+          << ", \"x_reference\": " << Num(reference ? SafeRatio(Median(reference->Ms), ms) : NAN, 4)
+          << ", \"x_floor\": " << Num(SafeRatio(ms, floor), 4) << "}";
     }
     out << "]";
     if (!d.Frames.FrameMs.empty())

@@ -2,6 +2,8 @@
 #ifndef accelvolume_benchmark_BenchmarkOctreeReport_h
 #define accelvolume_benchmark_BenchmarkOctreeReport_h
 
+#include "BenchmarkCommon.h"
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -71,6 +73,7 @@ struct Machine
   std::string GPUNote; // why the gpu builder was skipped ("" when it ran)
 };
 
+// The shared Num() (BenchmarkCommon.h), with this program's usual precision as the default.
 std::string Num(double value, int precision = 3);
 double Median(std::vector<double> values);
 
