@@ -22,6 +22,7 @@ set(_av_core_sources
 set(_av_private_sources
   OpenGL/vtkAccelVolumeObjectFactory
   OpenGL/vtkAccelVolumeOctreeGPUBuilder
+  OpenGL/vtkAccelVolumeScalarEncoding
   OpenGL/vtkAccelVolumeSlicePasses
   OpenGL/vtkAccelVolumeSliceResources)
 

@@ -1,6 +1,8 @@
 // GPU min-max octree builder: volume upload, leaf and reduce compute passes, read-back.
 #include "vtkAccelVolumeOctreeGPUBuilder.h"
 
+#include "vtkAccelVolumeScalarEncoding.h"
+
 #include "accelvolume/MinMaxOctree.h"
 
 #include "vtkDataArray.h"
@@ -149,32 +151,6 @@ unsigned long long LevelLength(const accelvolume::OctreeLevel& level)
     1;
 }
 
-// The slice mapper's encodings: 8/16-bit integers exact in unsigned normalised textures (signed
-// ones offset), everything else normalised to the finite data range in a float texture.
-template <typename Source, typename Target>
-void OffsetCopy(const Source* source, size_t count, int offset, std::vector<Target>& target)
-{
-  target.resize(count);
-  for (size_t i = 0; i < count; ++i)
-  {
-    target[i] = static_cast<Target>(static_cast<int>(source[i]) + offset);
-  }
-}
-
-template <typename Source>
-void NormalizeCopy(
-  const Source* source, size_t count, const double range[2], std::vector<float>& target)
-{
-  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
-  target.resize(count);
-  for (size_t i = 0; i < count; ++i)
-  {
-    const double value = static_cast<double>(source[i]);
-    target[i] = std::isnan(value)
-      ? 0.0f
-      : static_cast<float>(std::min(1.0, std::max(0.0, (value - range[0]) / width)));
-  }
-}
 }
 
 vtkAccelVolumeOctreeGPUBuilder::vtkAccelVolumeOctreeGPUBuilder() = default;
@@ -357,79 +333,44 @@ bool vtkAccelVolumeOctreeGPUBuilder::Build(vtkOpenGLRenderWindow* window, vtkIma
   }
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
-  const size_t count = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
-  const void* raw = scalars->GetVoidPointer(0);
-  std::vector<unsigned char> bytes;
-  std::vector<unsigned short> shorts;
-  std::vector<float> floats;
-  const void* upload = raw;
+  double range[2] = { 0.0, 1.0 };
+  scalars->GetFiniteRange(range, 0);
+  if (!(range[0] <= range[1]))
+  {
+    range[0] = range[1] = 0.0; // no finite value at all
+  }
+  vtkAccelVolumeEncodedScalars encoded;
+  if (!vtkAccelVolumeEncodeScalars(scalars, range, encoded, error))
+  {
+    return false;
+  }
+  const void* upload = encoded.Data;
   GLenum internalFormat = GL_R32F;
   GLenum type = GL_FLOAT;
-  Decode decode;
-  decode.roundTexel = true;
-  switch (scalars->GetDataType())
+  if (encoded.TextureType == VTK_UNSIGNED_CHAR)
   {
-    case VTK_UNSIGNED_CHAR:
-      internalFormat = GL_R8;
-      type = GL_UNSIGNED_BYTE;
-      decode.scale = 255.0;
-      break;
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      OffsetCopy(static_cast<const signed char*>(raw), count, 128, bytes);
-      upload = bytes.data();
-      internalFormat = GL_R8;
-      type = GL_UNSIGNED_BYTE;
-      decode.scale = 255.0;
-      decode.offset = -128.0;
-      break;
-    case VTK_UNSIGNED_SHORT:
-      internalFormat = GL_R16;
-      type = GL_UNSIGNED_SHORT;
-      decode.scale = 65535.0;
-      break;
-    case VTK_SHORT:
-      OffsetCopy(static_cast<const short*>(raw), count, 32768, shorts);
-      upload = shorts.data();
-      internalFormat = GL_R16;
-      type = GL_UNSIGNED_SHORT;
-      decode.scale = 65535.0;
-      decode.offset = -32768.0;
-      break;
-    case VTK_INT:
-    case VTK_FLOAT:
-    case VTK_DOUBLE:
-    {
-      double range[2];
-      scalars->GetFiniteRange(range, 0);
-      if (!(range[0] <= range[1]))
-      {
-        range[0] = range[1] = 0.0; // no finite value at all
-      }
-      if (scalars->GetDataType() == VTK_INT)
-      {
-        NormalizeCopy(static_cast<const int*>(raw), count, range, floats);
-      }
-      else if (scalars->GetDataType() == VTK_FLOAT)
-      {
-        NormalizeCopy(static_cast<const float*>(raw), count, range, floats);
-      }
-      else
-      {
-        NormalizeCopy(static_cast<const double*>(raw), count, range, floats);
-      }
-      upload = floats.data();
-      decode.roundTexel = false;
-      decode.scale = range[1] > range[0] ? range[1] - range[0] : 1.0;
-      decode.offset = range[0];
-      // Normalising and decoding each round twice in float (~2^-24 relative to the range's
-      // magnitude); widen by a few of those so the ranges stay conservative.
-      decode.margin = std::ldexp(std::fabs(range[0]) + std::fabs(range[1]), -20);
-      break;
-    }
-    default:
-      error = std::string("unsupported scalar type ") + scalars->GetDataTypeAsString();
-      return false;
+    internalFormat = GL_R8;
+    type = GL_UNSIGNED_BYTE;
+  }
+  else if (encoded.TextureType == VTK_UNSIGNED_SHORT)
+  {
+    internalFormat = GL_R16;
+    type = GL_UNSIGNED_SHORT;
+  }
+  Decode decode;
+  decode.roundTexel = !encoded.Normalized;
+  if (encoded.Normalized)
+  {
+    decode.scale = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    decode.offset = range[0];
+    // Normalising and decoding each round twice in float (~2^-24 relative to the range's
+    // magnitude); widen by a few of those so the ranges stay conservative.
+    decode.margin = std::ldexp(std::fabs(range[0]) + std::fabs(range[1]), -20);
+  }
+  else
+  {
+    decode.scale = encoded.DecodeScale;
+    decode.offset = encoded.DecodeOffset;
   }
 
   ScopedComputeState scope(window);

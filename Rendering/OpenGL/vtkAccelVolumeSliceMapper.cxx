@@ -11,17 +11,17 @@
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
-#include "vtkOpenGLState.h"
 #include "vtkPointData.h"
-#include "vtkTextureObject.h"
 #include "vtkRenderer.h"
+#include "vtkTextureObject.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -74,7 +74,8 @@ void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
     double focal[3];
     light->GetPosition(position);
     light->GetFocalPoint(focal);
-    double direction[3] = { position[0] - focal[0], position[1] - focal[1], position[2] - focal[2] };
+    double direction[3] = { position[0] - focal[0], position[1] - focal[1],
+      position[2] - focal[2] };
     if (light->LightTypeIsHeadlight())
     {
       direction[0] = direction[1] = 0.0;
@@ -98,7 +99,8 @@ void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
     for (int c = 0; c < 3; ++c)
     {
       frame.LightDirections[frame.LightCount][c] = static_cast<float>(direction[c]);
-      frame.LightColors[frame.LightCount][c] = static_cast<float>(colour[c] * light->GetIntensity());
+      frame.LightColors[frame.LightCount][c] =
+        static_cast<float>(colour[c] * light->GetIntensity());
     }
     ++frame.LightCount;
   }
@@ -565,9 +567,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     {
       nonEmpty = core->NonEmptyBoxes();
     }
-    const accelvolume::CompositeSlices composited = accelvolume::ComputeCompositeSlices(regions,
-      clip, depthGradient, depthOffset, spacing, phase, this->FrontToBack != 0,
-      core ? &nonEmpty : nullptr);
+    const accelvolume::CompositeSlices composited =
+      accelvolume::ComputeCompositeSlices(regions, clip, depthGradient, depthOffset, spacing, phase,
+        this->FrontToBack != 0, core ? &nonEmpty : nullptr);
     const auto& ordered = composited.slices;
     this->LastProxyAreaFraction = composited.keptAreaFraction;
     vtkAccelVolumeSliceFrame::Cell draw;
@@ -682,19 +684,21 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       return;
     }
     // The table's y axis spans [0, the steepest central difference the data allow].
-    frame.Gradient2DMaximum = static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
+    frame.Gradient2DMaximum =
+      static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
   }
   frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
   frame.SkipEmptyLeaves = skipEmptyLeaves;
-  this->LastTransparentLeafFraction = frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
+  this->LastTransparentLeafFraction =
+    frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
   frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
   for (int c = 0; c < 3; ++c)
   {
     frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, internals.LeafGrid[c] - 1));
   }
   frame.Shade = composite && property->GetShade(0) != 0;
-  frame.GradientOpacity = composite && property->HasGradientOpacity(0) &&
-    !property->GetDisableGradientOpacity(0);
+  frame.GradientOpacity =
+    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {

@@ -53,8 +53,8 @@ std::string BlendName(int blendMode)
 }
 
 // Inserts the variant's #defines before the output declarations (after #version).
-std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& frame,
-  int slabSamples, bool boundaryFace)
+std::string ShaderVariant(
+  const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
 {
   std::string text = source;
   const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
@@ -63,12 +63,12 @@ std::string ShaderVariant(const char* source, const vtkAccelVolumeSliceFrame& fr
     "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") +
     "\n#define ACCELVOLUME_SHADE " + (composite && frame.Shade ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_OPACITY " + (composite && frame.GradientOpacity ? "1" : "0") +
-    "\n#define ACCELVOLUME_SKIP_TRANSPARENT " + (composite && frame.SkipTransparentSamples ? "1" : "0") +
-    "\n#define ACCELVOLUME_SKIP_OCTREE " + (composite && frame.SkipEmptyLeaves ? "1" : "0") +
-    "\n#define ACCELVOLUME_TF2D " + (composite && frame.TransferFunction2D ? "1" : "0") +
+    "\n#define ACCELVOLUME_SKIP_TRANSPARENT " +
+    (composite && frame.SkipTransparentSamples ? "1" : "0") + "\n#define ACCELVOLUME_SKIP_OCTREE " +
+    (composite && frame.SkipEmptyLeaves ? "1" : "0") + "\n#define ACCELVOLUME_TF2D " +
+    (composite && frame.TransferFunction2D ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
-    "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
-    "\n";
+    "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -190,8 +190,8 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
       const int last = std::min(sliceCount, first + frame.TerminationInterval);
       window->GetShaderCache()->ReadyShaderProgram(program);
       resources.SliceArray->Bind();
-      glDrawArrays(GL_TRIANGLES, frame.SliceStarts[first],
-        frame.SliceStarts[last] - frame.SliceStarts[first]);
+      glDrawArrays(
+        GL_TRIANGLES, frame.SliceStarts[first], frame.SliceStarts[last] - frame.SliceStarts[first]);
       resources.SliceArray->Release();
       if (last < sliceCount && !MarkSaturatedPixels(window, resources, frame))
       {
@@ -362,8 +362,7 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   // compositing needs premultiplied colour and alpha.
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
-  const int channels =
-    frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
+  const int channels = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
   bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels);
   if (ok)
   {

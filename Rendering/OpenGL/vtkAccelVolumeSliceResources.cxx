@@ -1,6 +1,8 @@
 // GPU resources of the slice mapper: texture upload with exact integer encodings.
 #include "vtkAccelVolumeSliceResources.h"
 
+#include "vtkAccelVolumeScalarEncoding.h"
+
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -18,37 +20,6 @@
 
 #include <cmath>
 #include <limits>
-
-namespace
-{
-// Signed 8/16-bit data are stored offset into unsigned textures, which GL normalises exactly;
-// wider or floating-point types are normalised to [0,1] on the CPU into a 32-bit float texture.
-template <typename Source, typename Target>
-void OffsetCopy(const Source* source, size_t count, int offset, std::vector<Target>& target)
-{
-  target.resize(count);
-  for (size_t i = 0; i < count; ++i)
-  {
-    target[i] = static_cast<Target>(static_cast<int>(source[i]) + offset);
-  }
-}
-
-template <typename Source>
-void NormalizeCopy(
-  const Source* source, size_t count, const double range[2], std::vector<float>& target)
-{
-  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
-  target.resize(count);
-  for (size_t i = 0; i < count; ++i)
-  {
-    const double value = static_cast<double>(source[i]);
-    // NaN samples become the minimum; +/-Inf clamp to the ends of the finite range.
-    target[i] = std::isnan(value)
-      ? 0.0f
-      : static_cast<float>(std::min(1.0, std::max(0.0, (value - range[0]) / width)));
-  }
-}
-}
 
 vtkAccelVolumeSliceResources::vtkAccelVolumeSliceResources() = default;
 vtkAccelVolumeSliceResources::~vtkAccelVolumeSliceResources() = default;
@@ -81,69 +52,25 @@ bool vtkAccelVolumeSliceResources::UploadVolume(vtkOpenGLRenderWindow* window, v
     }
     const size_t count = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
     const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
-    void* raw = scalars->GetVoidPointer(0);
-    std::vector<unsigned char> bytes;
-    std::vector<unsigned short> shorts;
-    std::vector<float> floats;
-    int textureType = VTK_FLOAT;
-    const void* upload = nullptr;
-    double decodeScale = 1.0; // texel -> stored integer value
-    double decodeOffset = 0.0;
-    switch (scalars->GetDataType())
+    vtkAccelVolumeEncodedScalars encoded;
+    if (!vtkAccelVolumeEncodeScalars(scalars, range, encoded, error))
     {
-      case VTK_UNSIGNED_CHAR:
-        textureType = VTK_UNSIGNED_CHAR;
-        upload = raw;
-        decodeScale = 255.0;
-        break;
-      case VTK_CHAR:
-      case VTK_SIGNED_CHAR:
-        OffsetCopy(static_cast<const signed char*>(raw), count, 128, bytes);
-        textureType = VTK_UNSIGNED_CHAR;
-        upload = bytes.data();
-        decodeScale = 255.0;
-        decodeOffset = -128.0;
-        break;
-      case VTK_UNSIGNED_SHORT:
-        textureType = VTK_UNSIGNED_SHORT;
-        upload = raw;
-        decodeScale = 65535.0;
-        break;
-      case VTK_SHORT:
-        OffsetCopy(static_cast<const short*>(raw), count, 32768, shorts);
-        textureType = VTK_UNSIGNED_SHORT;
-        upload = shorts.data();
-        decodeScale = 65535.0;
-        decodeOffset = -32768.0;
-        break;
-      case VTK_INT:
-        NormalizeCopy(static_cast<const int*>(raw), count, range, floats);
-        break;
-      case VTK_FLOAT:
-        NormalizeCopy(static_cast<const float*>(raw), count, range, floats);
-        break;
-      case VTK_DOUBLE:
-        NormalizeCopy(static_cast<const double*>(raw), count, range, floats);
-        break;
-      default:
-        error = std::string("unsupported scalar type ") + scalars->GetDataTypeAsString();
-        return false;
+      return false;
     }
-    if (textureType == VTK_FLOAT)
+    if (encoded.Normalized)
     {
-      upload = floats.data();
       this->ScalarScale = 1.0f;
       this->ScalarBias = 0.0f;
     }
     else
     {
-      this->ScalarScale = static_cast<float>(decodeScale / width);
-      this->ScalarBias = static_cast<float>((decodeOffset - range[0]) / width);
+      this->ScalarScale = static_cast<float>(encoded.DecodeScale / width);
+      this->ScalarBias = static_cast<float>((encoded.DecodeOffset - range[0]) / width);
     }
     this->VolumeTexture->SetContext(window);
     window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     if (!this->VolumeTexture->Create3DFromRaw(
-          dims[0], dims[1], dims[2], 1, textureType, const_cast<void*>(upload)))
+          dims[0], dims[1], dims[2], 1, encoded.TextureType, const_cast<void*>(encoded.Data)))
     {
       error = "could not create the 3D texture (out of GPU memory?)";
       return false;
@@ -239,8 +166,8 @@ void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
   this->GradientTableBuildTime.Modified();
 }
 
-bool vtkAccelVolumeSliceResources::UpdateGradients(vtkOpenGLRenderWindow* window,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2])
+bool vtkAccelVolumeSliceResources::UpdateGradients(
+  vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, const double range[2])
 {
   if (this->Gradients->GetHandle() && this->GradientScalars == scalars &&
     scalars->GetMTime() <= this->GradientBuildTime && image->GetMTime() <= this->GradientBuildTime)
@@ -254,55 +181,64 @@ bool vtkAccelVolumeSliceResources::UpdateGradients(vtkOpenGLRenderWindow* window
   // Normalized, NaN-free values once; then clamped central differences (edges one-sided,
   // like clamp-to-edge sampling of the volume texture).
   std::vector<float> values(static_cast<size_t>(count));
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const double v = scalars->GetComponent(i, 0);
-      values[i] = std::isfinite(v) ? static_cast<float>(std::min(1.0, std::max(0.0, (v - range[0]) / width))) : 0.0f;
-    }
-  });
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double v = scalars->GetComponent(i, 0);
+        values[i] = std::isfinite(v)
+          ? static_cast<float>(std::min(1.0, std::max(0.0, (v - range[0]) / width)))
+          : 0.0f;
+      }
+    });
   std::vector<float> gradients(static_cast<size_t>(count) * 3);
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
-  vtkSMPTools::For(0, dims[2], [&](vtkIdType zBegin, vtkIdType zEnd) {
-    for (vtkIdType z = zBegin; z < zEnd; ++z)
+  vtkSMPTools::For(0, dims[2],
+    [&](vtkIdType zBegin, vtkIdType zEnd)
     {
-      for (int y = 0; y < dims[1]; ++y)
+      for (vtkIdType z = zBegin; z < zEnd; ++z)
       {
-        for (int x = 0; x < dims[0]; ++x)
+        for (int y = 0; y < dims[1]; ++y)
         {
-          const vtkIdType at = z * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
-          const int step[3] = { 1, dims[0], static_cast<int>(sliceSize) };
-          const int position[3] = { x, y, static_cast<int>(z) };
-          for (int c = 0; c < 3; ++c)
+          for (int x = 0; x < dims[0]; ++x)
           {
-            const vtkIdType low = position[c] > 0 ? at - step[c] : at;
-            const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
-            gradients[3 * at + c] = 0.5f * (values[high] - values[low]);
+            const vtkIdType at = z * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
+            const int step[3] = { 1, dims[0], static_cast<int>(sliceSize) };
+            const int position[3] = { x, y, static_cast<int>(z) };
+            for (int c = 0; c < 3; ++c)
+            {
+              const vtkIdType low = position[c] > 0 ? at - step[c] : at;
+              const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
+              gradients[3 * at + c] = 0.5f * (values[high] - values[low]);
+            }
           }
         }
       }
-    }
-  });
+    });
   float largest = 1.0e-12f;
   for (float g : gradients)
   {
     largest = std::max(largest, std::fabs(g));
   }
   std::vector<unsigned short> packed(static_cast<size_t>(count) * 4);
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      for (int c = 0; c < 3; ++c)
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        packed[4 * i + c] =
-          static_cast<unsigned short>(std::lround((gradients[3 * i + c] / largest * 0.5f + 0.5f) * 65535.0f));
+        for (int c = 0; c < 3; ++c)
+        {
+          packed[4 * i + c] = static_cast<unsigned short>(
+            std::lround((gradients[3 * i + c] / largest * 0.5f + 0.5f) * 65535.0f));
+        }
+        packed[4 * i + 3] = static_cast<unsigned short>(std::lround(values[i] * 65535.0f));
       }
-      packed[4 * i + 3] = static_cast<unsigned short>(std::lround(values[i] * 65535.0f));
-    }
-  });
+    });
   this->Gradients->SetContext(window);
   window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (!this->Gradients->Create3DFromRaw(dims[0], dims[1], dims[2], 4, VTK_UNSIGNED_SHORT, packed.data()))
+  if (!this->Gradients->Create3DFromRaw(
+        dims[0], dims[1], dims[2], 4, VTK_UNSIGNED_SHORT, packed.data()))
   {
     return false;
   }
@@ -322,7 +258,8 @@ bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
 {
   if (!function || !function->GetPointData()->GetScalars())
   {
-    error = "TF_2D mode needs a 2D transfer function image (vtkVolumeProperty::SetTransferFunction2D)";
+    error =
+      "TF_2D mode needs a 2D transfer function image (vtkVolumeProperty::SetTransferFunction2D)";
     return false;
   }
   vtkDataArray* values = function->GetPointData()->GetScalars();
@@ -341,7 +278,8 @@ bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
   std::vector<float> rgba(static_cast<size_t>(dims[0]) * dims[1] * 4);
   for (size_t i = 0; i < rgba.size(); ++i)
   {
-    rgba[i] = static_cast<float>(values->GetComponent(static_cast<vtkIdType>(i / 4), static_cast<int>(i % 4)));
+    rgba[i] = static_cast<float>(
+      values->GetComponent(static_cast<vtkIdType>(i / 4), static_cast<int>(i % 4)));
   }
   this->TransferTable2D->SetContext(window);
   this->TransferTable2D->Create2DFromRaw(dims[0], dims[1], 4, VTK_FLOAT, rgba.data());

@@ -80,8 +80,10 @@ bool RunCase(const Case& c)
   accelvolume::OpacityTable opacity;
   opacity.values.resize(TableSize);
   std::vector<float> colours(3 * TableSize);
-  volume->GetProperty()->GetScalarOpacity()->GetTable(range[0], range[1], TableSize, opacity.values.data());
-  volume->GetProperty()->GetRGBTransferFunction()->GetTable(range[0], range[1], TableSize, colours.data());
+  volume->GetProperty()->GetScalarOpacity()->GetTable(
+    range[0], range[1], TableSize, opacity.values.data());
+  volume->GetProperty()->GetRGBTransferFunction()->GetTable(
+    range[0], range[1], TableSize, colours.data());
   if (regions.empty())
   {
     accelvolume::Box whole;
@@ -99,7 +101,8 @@ bool RunCase(const Case& c)
   {
     for (int k = 0; k < 3; ++k)
     {
-      reference[3 * p + k] = pixels[p].rgba[k] + (1.0f - pixels[p].rgba[3]) * static_cast<float>(background[k]);
+      reference[3 * p + k] =
+        pixels[p].rgba[k] + (1.0f - pixels[p].rgba[3]) * static_cast<float>(background[k]);
     }
   }
   DumpImage(std::string(c.Name) + "_ours", ours, Size, Size);

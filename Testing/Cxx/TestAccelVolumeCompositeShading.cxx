@@ -8,8 +8,8 @@
 
 namespace
 {
-std::vector<float> RenderWith(vtkVolumeMapper* mapper, vtkImageData* image, bool shade,
-  bool gradientOpacity, bool perspective)
+std::vector<float> RenderWith(
+  vtkVolumeMapper* mapper, vtkImageData* image, bool shade, bool gradientOpacity, bool perspective)
 {
   constexpr int Size = 180;
   mapper->SetInputData(image);
@@ -65,7 +65,8 @@ int TestAccelVolumeCompositeShading(int, char*[])
     ours->SetSampleDistance(0.5);
     const std::vector<float> reference =
       RenderWith(vtkMapper, image, c.Shade, c.GradientOpacity, c.Perspective);
-    const std::vector<float> image2 = RenderWith(ours, image, c.Shade, c.GradientOpacity, c.Perspective);
+    const std::vector<float> image2 =
+      RenderWith(ours, image, c.Shade, c.GradientOpacity, c.Perspective);
     accelvolume_test::DumpImage(std::string(c.Name) + "_vtk", reference, 180, 180);
     accelvolume_test::DumpImage(std::string(c.Name) + "_ours", image2, 180, 180);
     ok = accelvolume_test::Report(c.Name,
@@ -83,7 +84,8 @@ int TestAccelVolumeCompositeShading(int, char*[])
     const std::vector<float> a = RenderWith(plain, image, true, false, true);
     const std::vector<float> b = RenderWith(jittered, image, true, false, true);
     const std::vector<float> c = RenderWith(jitteredAgain, image, true, false, true);
-    const accelvolume_test::ImageDifference shift = accelvolume_test::CompareImages(b, a, 16.0 / 255.0);
+    const accelvolume_test::ImageDifference shift =
+      accelvolume_test::CompareImages(b, a, 16.0 / 255.0);
     std::cout << "jittered vs plain: mean " << shift.mean << "\n";
     ok = shift.mean > 0.0 && shift.mean < 4.0 / 255.0 && ok;
     ok = accelvolume_test::CompareImages(b, c, 0.0).maximum == 0.0 && ok;

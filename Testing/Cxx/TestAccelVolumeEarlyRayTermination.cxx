@@ -10,8 +10,8 @@
 
 namespace
 {
-std::vector<float> Render(vtkImageData* image, bool ert, double low, double high, double* ms,
-  int* passes)
+std::vector<float> Render(
+  vtkImageData* image, bool ert, double low, double high, double* ms, int* passes)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
@@ -63,8 +63,10 @@ bool Compare(const char* name, vtkImageData* image, double low, double high)
 
 int TestAccelVolumeEarlyRayTermination(int, char*[])
 {
-  bool ok = Compare("shells phantom", accelvolume_test::MakePhantom("shells", 64, 64, 64), 200, 1000);
-  if (auto engine = accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
+  bool ok =
+    Compare("shells phantom", accelvolume_test::MakePhantom("shells", 64, 64, 64), 200, 1000);
+  if (auto engine =
+        accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
   {
     ok = Compare("engine CT", engine, 60, 255) && ok;
   }

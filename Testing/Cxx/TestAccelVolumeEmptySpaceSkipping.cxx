@@ -1,6 +1,7 @@
-// Empty-space skipping is exact, and so is back-to-front compositing: composite images with skipping per fragment, by octree
-// leaves, or both, equal the unskipped image (same samples; skipped ones have opacity 0),
-// on a procedural volume and on the engine CT, shaded, with early termination off.
+// Empty-space skipping is exact, and so is back-to-front compositing: composite images with
+// skipping per fragment, by octree leaves, or both, equal the unskipped image (same samples;
+// skipped ones have opacity 0), on a procedural volume and on the engine CT, shaded, with early
+// termination off.
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
@@ -36,8 +37,8 @@ bool Check(const char* name, vtkImageData* image, double low, double high)
   const std::vector<float> none =
     Render(image, vtkAccelVolumeSliceMapper::SKIP_NONE, low, high, &fraction);
   bool ok = true;
-  for (int mode : { vtkAccelVolumeSliceMapper::SKIP_FRAGMENT, vtkAccelVolumeSliceMapper::SKIP_OCTREE,
-         vtkAccelVolumeSliceMapper::SKIP_BOTH })
+  for (int mode : { vtkAccelVolumeSliceMapper::SKIP_FRAGMENT,
+         vtkAccelVolumeSliceMapper::SKIP_OCTREE, vtkAccelVolumeSliceMapper::SKIP_BOTH })
   {
     const std::vector<float> skipped = Render(image, mode, low, high, &fraction);
     const accelvolume_test::ImageDifference d =
@@ -69,7 +70,8 @@ bool Check(const char* name, vtkImageData* image, double low, double high)
 int TestAccelVolumeEmptySpaceSkipping(int, char*[])
 {
   bool ok = Check("blobs phantom", accelvolume_test::MakePhantom("blobs", 60, 52, 44), 150, 900);
-  if (auto engine = accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
+  if (auto engine =
+        accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
   {
     ok = Check("engine CT", engine, 60, 255) && ok;
   }

@@ -13,8 +13,8 @@ constexpr int Columns = 1024;
 constexpr int Rows = 64;
 
 // RGBA image: each row the 1D colour and opacity over the data range, times rowOpacity(y).
-vtkSmartPointer<vtkImageData> MakeTable(vtkVolumeProperty* property, const double range[2],
-  double minimumGradientFraction)
+vtkSmartPointer<vtkImageData> MakeTable(
+  vtkVolumeProperty* property, const double range[2], double minimumGradientFraction)
 {
   std::vector<float> opacity(Columns);
   std::vector<float> colours(3 * Columns);
@@ -39,7 +39,8 @@ vtkSmartPointer<vtkImageData> MakeTable(vtkVolumeProperty* property, const doubl
   return table;
 }
 
-std::vector<float> Render(vtkImageData* image, bool use2D, double minimumGradientFraction, int skipping)
+std::vector<float> Render(
+  vtkImageData* image, bool use2D, double minimumGradientFraction, int skipping)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
@@ -92,9 +93,10 @@ int TestAccelVolumeTransferFunction2D(int, char*[])
     std::cerr << "a 2D table that hides low gradients should change, not blank, the image\n";
     ok = false;
   }
-  const std::vector<float> skipped = Render(image, true, 0.08, vtkAccelVolumeSliceMapper::SKIP_BOTH);
-  ok = Report("2D table with skipping vs without", CompareImages(skipped, edges, 1.0 / 255.0),
-         0.0, 0.0) &&
+  const std::vector<float> skipped =
+    Render(image, true, 0.08, vtkAccelVolumeSliceMapper::SKIP_BOTH);
+  ok = Report("2D table with skipping vs without", CompareImages(skipped, edges, 1.0 / 255.0), 0.0,
+         0.0) &&
     ok;
   DumpImage("tf2d_flat", flat2D, Size, Size);
   DumpImage("tf2d_edges", edges, Size, Size);

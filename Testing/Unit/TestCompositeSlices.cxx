@@ -89,7 +89,8 @@ TEST(CompositeSlices, CullingKeepsEveryNonEmptyPoint)
         p = p + (slice.first - Dot(gradient, p)) * gradient; // onto the plane
         const bool inBox = p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y &&
           p.y <= box.upper.y && p.z >= box.lower.z && p.z <= box.upper.z;
-        const bool inRegion = p.x >= 0 && p.x <= 20 && p.y >= 0 && p.y <= 16 && p.z >= 0 && p.z <= 12;
+        const bool inRegion =
+          p.x >= 0 && p.x <= 20 && p.y >= 0 && p.y <= 16 && p.z >= 0 && p.z <= 12;
         if (inBox && inRegion)
         {
           EXPECT_TRUE(InsidePolygon(slice.second, gradient, p));

@@ -27,8 +27,8 @@ std::pair<double, double> DepthRange(const Box& box, const Vec3& depthGradient, 
 }
 
 // Bounding box of the boxes whose depth interval contains depth (empty box if none).
-Box BoundsAtDepth(const std::vector<Box>& boxes,
-  const std::vector<std::pair<double, double>>& depths, double depth)
+Box BoundsAtDepth(
+  const std::vector<Box>& boxes, const std::vector<std::pair<double, double>>& depths, double depth)
 {
   Box bounds;
   bounds.lower = { Huge, Huge, Huge };
@@ -48,8 +48,8 @@ Box BoundsAtDepth(const std::vector<Box>& boxes,
 }
 
 CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
-  const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset,
-  double spacing, double phase, bool frontToBack, const std::vector<Box>* nonEmpty)
+  const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
+  double phase, bool frontToBack, const std::vector<Box>* nonEmpty)
 {
   std::vector<std::pair<double, double>> nonEmptyDepths;
   if (nonEmpty)

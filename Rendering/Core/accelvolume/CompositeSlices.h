@@ -22,8 +22,8 @@ struct CompositeSlices
 // bounding box of the boxes its plane crosses: one convex polygon per slice, so neighbouring
 // pieces never crack; whatever is cut lies outside every non-empty box.
 CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
-  const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset,
-  double spacing, double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
+  const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
+  double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
 }
 
 #endif
