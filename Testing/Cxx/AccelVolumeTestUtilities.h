@@ -9,6 +9,7 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
@@ -60,6 +61,21 @@ inline vtkSmartPointer<vtkImageData> MakePhantom(const std::string& name, int nx
   image->GetPointData()->SetScalars(scalars);
   return image;
 }
+
+// Records VTK error messages instead of printing them (ctest fails on printed errors).
+class ErrorRecorder : public vtkCommand
+{
+public:
+  static ErrorRecorder* New() { return new ErrorRecorder; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    this->Messages += data ? static_cast<const char*>(data) : "(null)";
+    this->Messages += "\n";
+    ++this->Count;
+  }
+  std::string Messages;
+  int Count = 0;
+};
 
 // A gzipped headerless 8-bit raw volume (../shared/data style); nullptr when unreadable.
 inline vtkSmartPointer<vtkImageData> LoadRawGz(const std::string& path, int nx, int ny, int nz)

@@ -12,24 +12,12 @@
 
 namespace
 {
-// Records error messages instead of printing them (ctest fails on printed errors).
-class ErrorRecorder : public vtkCommand
-{
-public:
-  static ErrorRecorder* New() { return new ErrorRecorder; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Messages += data ? static_cast<const char*>(data) : "(null)";
-    this->Messages += "\n";
-  }
-  std::string Messages;
-};
 
 bool Expect(const char* what, const std::function<void(vtkAccelVolumeSliceMapper*)>& configure,
   const char* expectedText)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
-  vtkNew<ErrorRecorder> recorder;
+  vtkNew<accelvolume_test::ErrorRecorder> recorder;
   mapper->AddObserver(vtkCommand::ErrorEvent, recorder);
   configure(mapper);
   vtkNew<vtkVolume> volume;

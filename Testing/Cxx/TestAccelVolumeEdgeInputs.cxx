@@ -11,20 +11,13 @@
 
 namespace
 {
-class ErrorCounter : public vtkCommand
-{
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void*) override { ++this->Count; }
-  int Count = 0;
-};
 
 // Renders and returns the centre pixel's brightness; -1 on an error.
 double RenderCentre(vtkImageData* image, int blend = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
   const double* crop = nullptr)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
-  vtkNew<ErrorCounter> errors;
+  vtkNew<accelvolume_test::ErrorRecorder> errors;
   mapper->AddObserver(vtkCommand::ErrorEvent, errors);
   mapper->SetInputData(image);
   mapper->SetBlendMode(blend);

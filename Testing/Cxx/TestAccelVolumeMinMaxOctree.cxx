@@ -26,19 +26,6 @@ public:
   vtkMTimeType GetClassifyStamp() const { return this->ClassifyTime.GetMTime(); }
 };
 
-// Records error messages instead of printing them (ctest fails on printed errors).
-class ErrorRecorder : public vtkCommand
-{
-public:
-  static ErrorRecorder* New() { return new ErrorRecorder; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Messages += data ? static_cast<const char*>(data) : "(null)";
-    this->Messages += "\n";
-  }
-  std::string Messages;
-};
-
 bool Check(bool condition, const std::string& what)
 {
   if (!condition)
@@ -419,7 +406,7 @@ bool TestGPUBuilder()
 
 bool ExpectError(const char* what, vtkAccelVolumeMinMaxOctree* octree, const char* expected)
 {
-  vtkNew<ErrorRecorder> recorder;
+  vtkNew<accelvolume_test::ErrorRecorder> recorder;
   octree->AddObserver(vtkCommand::ErrorEvent, recorder);
   const bool updated = octree->Update();
   const bool reported = recorder->Messages.find(expected) != std::string::npos;

@@ -1,4 +1,5 @@
 // TestReferenceComposite: analytic checks of the CPU composite (direct volume rendering) oracle.
+#include "ReferenceTestSupport.h"
 #include "accelvolume/ReferenceComposite.h"
 
 #include <gtest/gtest.h>
@@ -12,23 +13,8 @@ namespace
 {
 using namespace accelvolume;
 
-ScalarVolume MakeVolume(int nx, int ny, int nz, const std::function<float(int, int, int)>& value)
-{
-  ScalarVolume volume;
-  volume.dims[0] = nx;
-  volume.dims[1] = ny;
-  volume.dims[2] = nz;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        volume.values.push_back(value(i, j, k));
-  return volume;
-}
-
-Box IndexBox(const ScalarVolume& volume)
-{
-  return { { 0, 0, 0 }, { volume.dims[0] - 1.0, volume.dims[1] - 1.0, volume.dims[2] - 1.0 } };
-}
+using accelvolume_test::IndexBox;
+using accelvolume_test::MakeVolume;
 
 // Parallel rays along +x (or -x) through the middle of a 21 x 11 x 11 index box: chord length 20,
 // entered 5 world units from the ray origins.
