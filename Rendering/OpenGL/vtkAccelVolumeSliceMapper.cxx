@@ -148,6 +148,9 @@ public:
   double LeavesRange[2] = { 0, 0 };
   int LeavesLeafSize = 0;
   int LeafGrid[3] = { 0, 0, 0 };
+  // The octree's merged non-empty boxes for that classification (slice culling).
+  std::vector<accelvolume::Box> NonEmptyBoxes;
+  bool HaveNonEmptyBoxes = false;
   std::string Renderer;
   std::vector<float> Vertices;
   bool ReportedError = false;
@@ -236,6 +239,10 @@ bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
     internals.LeavesRange[0] = range[0];
     internals.LeavesRange[1] = range[1];
     internals.LeavesLeafSize = this->OctreeLeafSize;
+    // Only a new classification changes them: not a per-frame traversal.
+    accelvolume::MinMaxOctree* core = octree->GetInternals()->GetCPUOctree();
+    internals.HaveNonEmptyBoxes = core != nullptr;
+    internals.NonEmptyBoxes = core ? core->NonEmptyBoxes() : std::vector<accelvolume::Box>();
   }
   this->LastTransparentLeafFraction = octree->GetTransparentLeafFraction();
   return true;
@@ -560,16 +567,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     // Octree skipping, geometry part: slices are clipped to the non-empty octree boxes'
     // bounds at their depth; what is cut lies in transparent leaves (image unchanged).
-    std::vector<accelvolume::Box> nonEmpty;
-    accelvolume::MinMaxOctree* core =
-      skipEmptyLeaves ? internals.Octree->GetInternals()->GetCPUOctree() : nullptr;
-    if (core)
-    {
-      nonEmpty = core->NonEmptyBoxes();
-    }
-    const accelvolume::CompositeSlices composited =
-      accelvolume::ComputeCompositeSlices(regions, clip, depthGradient, depthOffset, spacing, phase,
-        this->FrontToBack != 0, core ? &nonEmpty : nullptr);
+    const accelvolume::CompositeSlices composited = accelvolume::ComputeCompositeSlices(regions,
+      clip, depthGradient, depthOffset, spacing, phase, this->FrontToBack != 0,
+      skipEmptyLeaves && internals.HaveNonEmptyBoxes ? &internals.NonEmptyBoxes : nullptr);
     const auto& ordered = composited.slices;
     this->LastProxyAreaFraction = composited.keptAreaFraction;
     vtkAccelVolumeSliceFrame::Cell draw;
