@@ -6,20 +6,30 @@ get_filename_component(_av_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 set(_av_classes
   OpenGL/vtkAccelVolumeHeadlessRenderWindow
   OpenGL/vtkAccelVolumeMinMaxOctree
+  OpenGL/vtkAccelVolumeRayCastMapper
   OpenGL/vtkAccelVolumeSliceMapper)
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.
 set(_av_core_sources
+  Core/accelvolume/CellClassification
+  Core/accelvolume/CellLeapTable
   Core/accelvolume/CompositeSlices
+  Core/accelvolume/DistanceMap
+  Core/accelvolume/DistanceTemplate
   Core/accelvolume/Geometry
   Core/accelvolume/MinMaxOctree
   Core/accelvolume/MinMaxOctreeQueries
+  Core/accelvolume/OpacityRange
   Core/accelvolume/Phantoms
+  Core/accelvolume/RayCastEngine
+  Core/accelvolume/RayCastKernel
   Core/accelvolume/ReferenceRenderer
   Core/accelvolume/SlabProxy)
 
 # Thin OpenGL helpers, excluded from wrapping and installation.
 set(_av_private_sources
+  OpenGL/vtkAccelVolumeImageDisplay
+  OpenGL/vtkAccelVolumeMapperSupport
   OpenGL/vtkAccelVolumeObjectFactory
   OpenGL/vtkAccelVolumeOctreeGPUBuilder
   OpenGL/vtkAccelVolumeScalarEncoding
@@ -31,6 +41,7 @@ set(_av_shaders
   AccelVolumeSliceFS
   AccelVolumeResolveVS
   AccelVolumeResolveFS
+  AccelVolumeImageFS
   AccelVolumeTerminationFS
   AccelVolumeOctreeLeafCS
   AccelVolumeOctreeReduceCS)

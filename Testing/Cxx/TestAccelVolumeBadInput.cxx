@@ -1,5 +1,7 @@
-// Bad input never crashes: each case gets a clear vtkErrorMacro and an unchanged background.
+// Bad input never crashes: each case gets a clear vtkErrorMacro and an unchanged background,
+// for the slice mapper and the CPU ray cast mapper alike.
 #include "AccelVolumeTestUtilities.h"
+#include "vtkAccelVolumeRayCastMapper.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
 #include "vtkCharArray.h"
@@ -9,14 +11,16 @@
 #include <cstdlib>
 #include <functional>
 #include <string>
+#include <type_traits>
 
 namespace
 {
 
-bool Expect(const char* what, const std::function<void(vtkAccelVolumeSliceMapper*)>& configure,
+template <typename MapperType>
+bool Expect(const char* what, const std::function<void(vtkVolumeMapper*)>& configure,
   const char* expectedText)
 {
-  vtkNew<vtkAccelVolumeSliceMapper> mapper;
+  vtkNew<MapperType> mapper;
   vtkNew<accelvolume_test::ErrorRecorder> recorder;
   mapper->AddObserver(vtkCommand::ErrorEvent, recorder);
   configure(mapper);
@@ -33,30 +37,31 @@ bool Expect(const char* what, const std::function<void(vtkAccelVolumeSliceMapper
   const std::vector<float> pixels = accelvolume_test::ReadPixels(window);
   const bool untouched = std::abs(pixels[3 * (32 * 64 + 32) + 2] - 0.6f) < 0.01f;
   const bool reported = recorder->Messages.find(expectedText) != std::string::npos;
-  std::cout << what << ": " << (reported ? "reported" : "NOT reported") << " -> "
-            << recorder->Messages;
+  std::cout << mapper->GetClassName() << ", " << what << ": "
+            << (reported ? "reported" : "NOT reported") << " -> " << recorder->Messages;
   return reported && untouched;
 }
 }
 
-int TestAccelVolumeBadInput(int, char*[])
+template <typename MapperType>
+bool ExpectAll()
 {
   bool ok = true;
-  ok = Expect(
-         "no input", [](vtkAccelVolumeSliceMapper*) {}, "No input") &&
+  ok = Expect<MapperType>(
+         "no input", [](vtkVolumeMapper*) {}, "No input") &&
     ok;
-  ok = Expect(
+  ok = Expect<MapperType>(
          "empty image",
-         [](vtkAccelVolumeSliceMapper* mapper)
+         [](vtkVolumeMapper* mapper)
          {
            vtkNew<vtkImageData> empty;
            mapper->SetInputData(empty);
          },
          "Empty input") &&
     ok;
-  ok = Expect(
+  ok = Expect<MapperType>(
          "no scalars",
-         [](vtkAccelVolumeSliceMapper* mapper)
+         [](vtkVolumeMapper* mapper)
          {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
@@ -64,9 +69,9 @@ int TestAccelVolumeBadInput(int, char*[])
          },
          "no point scalars") &&
     ok;
-  ok = Expect(
+  ok = Expect<MapperType>(
          "three components",
-         [](vtkAccelVolumeSliceMapper* mapper)
+         [](vtkVolumeMapper* mapper)
          {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
@@ -75,9 +80,9 @@ int TestAccelVolumeBadInput(int, char*[])
          },
          "single-component") &&
     ok;
-  ok = Expect(
+  ok = Expect<MapperType>(
          "unsigned int scalars",
-         [](vtkAccelVolumeSliceMapper* mapper)
+         [](vtkVolumeMapper* mapper)
          {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
@@ -86,28 +91,38 @@ int TestAccelVolumeBadInput(int, char*[])
          },
          "Unsupported scalar type") &&
     ok;
-  ok = Expect(
+  ok = Expect<MapperType>(
          "isosurface blend (not provided)",
-         [](vtkAccelVolumeSliceMapper* mapper)
+         [](vtkVolumeMapper* mapper)
          {
            mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
            mapper->SetBlendModeToIsoSurface();
          },
          "not supported") &&
     ok;
-  ok = Expect(
-         "nine clipping planes",
-         [](vtkAccelVolumeSliceMapper* mapper)
-         {
-           mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
-           for (int i = 0; i < 9; ++i)
+  if (std::is_same<MapperType, vtkAccelVolumeSliceMapper>::value)
+  {
+    ok = Expect<MapperType>(
+           "nine clipping planes (slice mapper only: the ray caster takes any number)",
+           [](vtkVolumeMapper* mapper)
            {
-             vtkNew<vtkPlane> plane;
-             plane->SetNormal(1, 0, 0);
-             mapper->AddClippingPlane(plane);
-           }
-         },
-         "clipping planes") &&
-    ok;
-  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+             mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
+             for (int i = 0; i < 9; ++i)
+             {
+               vtkNew<vtkPlane> plane;
+               plane->SetNormal(1, 0, 0);
+               mapper->AddClippingPlane(plane);
+             }
+           },
+           "clipping planes") &&
+      ok;
+  }
+  return ok;
+}
+
+int TestAccelVolumeBadInput(int, char*[])
+{
+  const bool slice = ExpectAll<vtkAccelVolumeSliceMapper>();
+  const bool rayCast = ExpectAll<vtkAccelVolumeRayCastMapper>();
+  return slice && rayCast ? EXIT_SUCCESS : EXIT_FAILURE;
 }

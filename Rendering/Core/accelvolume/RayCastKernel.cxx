@@ -1,0 +1,712 @@
+// RayCastKernel: per-tile ray loops, templated on the scalar type.
+#include "accelvolume/RayCastKernel.h"
+
+#include "accelvolume/CellLeapTable.h"
+#include "accelvolume/DistanceTemplate.h"
+#include "accelvolume/ReferenceCommon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace accelvolume
+{
+namespace detail
+{
+namespace
+{
+
+inline float Lerp(float a, float b, float t)
+{
+  return a + t * (b - a);
+}
+
+// A sample's cell: base voxel offset, per-axis corner offsets (0 on one-voxel axes) and the
+// fractional position, computed once and shared by the leaping tests and the interpolation so
+// both see bit-identical inputs.
+struct SampleCell
+{
+  std::ptrdiff_t base = 0;
+  std::ptrdiff_t offset[3] = { 0, 0, 0 };
+  float f[3] = { 0, 0, 0 };
+  std::size_t cell = 0;
+};
+
+template <typename T>
+class Sampler
+{
+public:
+  Sampler(const VolumeView& volume)
+    : Data(static_cast<const T*>(volume.data))
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Dims[a] = volume.dims[a];
+      this->CellDims[a] = std::max(volume.dims[a] - 1, 1);
+    }
+    this->Stride[0] = 1;
+    this->Stride[1] = volume.dims[0];
+    this->Stride[2] = static_cast<std::ptrdiff_t>(volume.dims[0]) * volume.dims[1];
+  }
+
+  void Locate(const double p[3], SampleCell& s) const
+  {
+    std::ptrdiff_t base = 0;
+    std::size_t cell = 0;
+    std::size_t cellStride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = this->Dims[a];
+      int i = 0;
+      float f = 0;
+      if (n > 1)
+      {
+        // Clamp like GL_CLAMP_TO_EDGE; the comparisons also turn NaN into 0.
+        const double q = p[a] > 0 ? (p[a] < n - 1 ? p[a] : n - 1.0) : 0.0;
+        i = std::min(static_cast<int>(q), n - 2);
+        f = static_cast<float>(q - i);
+        s.offset[a] = this->Stride[a];
+      }
+      else
+      {
+        s.offset[a] = 0;
+      }
+      s.f[a] = f;
+      base += i * this->Stride[a];
+      cell += static_cast<std::size_t>(i) * cellStride;
+      cellStride *= static_cast<std::size_t>(this->CellDims[a]);
+    }
+    s.base = base;
+    s.cell = cell;
+  }
+
+  float Corner(const SampleCell& s, int c) const
+  {
+    return static_cast<float>(this->Data[s.base + ((c & 1) ? s.offset[0] : 0) +
+      ((c & 2) ? s.offset[1] : 0) + ((c & 4) ? s.offset[2] : 0)]);
+  }
+
+  // x first, then y, then z: the x-edge lerps are those the cell-leap test evaluates.
+  float Trilinear(const SampleCell& s) const
+  {
+    const T* d = this->Data + s.base;
+    const std::ptrdiff_t ox = s.offset[0], oy = s.offset[1], oz = s.offset[2];
+    const float c00 = Lerp(static_cast<float>(d[0]), static_cast<float>(d[ox]), s.f[0]);
+    const float c10 = Lerp(static_cast<float>(d[oy]), static_cast<float>(d[oy + ox]), s.f[0]);
+    const float c01 = Lerp(static_cast<float>(d[oz]), static_cast<float>(d[oz + ox]), s.f[0]);
+    const float c11 =
+      Lerp(static_cast<float>(d[oz + oy]), static_cast<float>(d[oz + oy + ox]), s.f[0]);
+    return Lerp(Lerp(c00, c10, s.f[1]), Lerp(c01, c11, s.f[1]), s.f[2]);
+  }
+
+  // Like GL_NEAREST: voxel floor(p + 0.5), clamped.
+  float Nearest(const double p[3]) const
+  {
+    std::ptrdiff_t at = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double q = std::floor(p[a] + 0.5);
+      const int i = q > 0 ? (q < this->Dims[a] - 1 ? static_cast<int>(q) : this->Dims[a] - 1) : 0;
+      at += i * this->Stride[a];
+    }
+    return static_cast<float>(this->Data[at]);
+  }
+
+  float Sample(const double p[3], bool nearest) const
+  {
+    if (nearest)
+    {
+      return this->Nearest(p);
+    }
+    SampleCell s;
+    this->Locate(p, s);
+    return this->Trilinear(s);
+  }
+
+private:
+  const T* Data;
+  int Dims[3];
+  int CellDims[3];
+  std::ptrdiff_t Stride[3];
+};
+
+// A pixel's ray: world near-plane point and unit direction, index-space origin / direction,
+// and the world length before opaque geometry.
+struct PixelRay
+{
+  IndexRay index;
+  double eyeDirection[3];
+};
+
+void Unproject(const double m[4][4], double x, double y, double z, double out[3])
+{
+  double h[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    h[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    out[r] = h[r] / h[3];
+  }
+}
+
+PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
+{
+  const RayCastView& view = *frame.view;
+  const double x = 2.0 * (i + 0.5) / view.width - 1.0;
+  const double y = 2.0 * (j + 0.5) / view.height - 1.0;
+  double nearPoint[3], farPoint[3];
+  Unproject(view.clipToWorld, x, y, -1.0, nearPoint);
+  Unproject(view.clipToWorld, x, y, 1.0, farPoint);
+  const Vec3 origin{ nearPoint[0], nearPoint[1], nearPoint[2] };
+  const Vec3 direction =
+    Normalize(Vec3{ farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] });
+  double end = std::numeric_limits<double>::infinity();
+  if (view.depth)
+  {
+    const float depth = (*view.depth)[static_cast<std::size_t>(j) * view.width + i];
+    if (depth < 1.0f)
+    {
+      double hit[3];
+      Unproject(view.clipToWorld, x, y, 2.0 * depth - 1.0, hit);
+      end = Dot(Vec3{ hit[0], hit[1], hit[2] } - origin, direction);
+    }
+  }
+  PixelRay ray;
+  ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
+  const Vec3& d = ray.index.direction;
+  const RayCastLighting& l = *frame.lighting;
+  double eye[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    eye[r] = l.indexToEye[r][0] * d.x + l.indexToEye[r][1] * d.y + l.indexToEye[r][2] * d.z;
+  }
+  const double length = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
+  for (int r = 0; r < 3; ++r)
+  {
+    ray.eyeDirection[r] = length > 0 ? eye[r] / length : 0.0;
+  }
+  return ray;
+}
+
+struct Interval
+{
+  double t0, t1;
+};
+
+// Table lookup with linear interpolation between entries (OpacityTable::Lookup convention).
+inline void TablePosition(const KernelFrame& frame, float value, int& i, float& fraction)
+{
+  float u = value * frame.tableScale + frame.tableBias;
+  const float last = static_cast<float>(frame.tableSize - 1);
+  u = u > 0 ? (u < last ? u : last) : 0.0f;
+  i = std::min(static_cast<int>(u), frame.tableSize - 2);
+  fraction = u - static_cast<float>(i);
+}
+
+template <typename T>
+class RayCasterTile
+{
+public:
+  RayCasterTile(const KernelFrame& frame, RayCastCounters& counters)
+    : Frame(frame)
+    , Settings(*frame.settings)
+    , Sampling(frame.volume)
+    , Counters(counters)
+    , Table(GetCellLeapTable())
+  {
+  }
+
+  void Cast(int x0, int y0, int x1, int y1, float* rgba)
+  {
+    const int width = this->Frame.view->width;
+    std::vector<PixelRay> rays;
+    rays.reserve(static_cast<std::size_t>(x1 - x0) * (y1 - y0));
+    double maximumStep[3] = { 0, 0, 0 };
+    const double h = this->Settings.sampleDistance;
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        rays.push_back(MakePixelRay(this->Frame, i, j));
+        const Vec3& d = rays.back().index.direction;
+        maximumStep[0] = std::max(maximumStep[0], std::abs(d.x * h));
+        maximumStep[1] = std::max(maximumStep[1], std::abs(d.y * h));
+        maximumStep[2] = std::max(maximumStep[2], std::abs(d.z * h));
+      }
+    }
+    if (this->Frame.useOctree)
+    {
+      const MinMaxOctree& octree = *this->Frame.octree;
+      this->Template.Build(maximumStep, octree.GetLeafSize() << octree.GetDepth());
+    }
+    std::size_t at = 0;
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
+        this->CastRay(rays[at++], out);
+      }
+    }
+  }
+
+private:
+  // The ray's region intervals in increasing t0; false when it misses them all.
+  bool Intervals(const IndexRay& ray, std::vector<Interval>& intervals) const
+  {
+    intervals.clear();
+    for (const Box& region : this->Settings.regions)
+    {
+      Interval interval;
+      if (ClipRayToRegion(ray, region, this->Settings.clip, interval.t0, interval.t1))
+      {
+        intervals.push_back(interval);
+      }
+    }
+    std::sort(intervals.begin(), intervals.end(),
+      [](const Interval& a, const Interval& b) { return a.t0 < b.t0; });
+    return !intervals.empty();
+  }
+
+  // Samples after the current one that stay in the largest node around p that the predicate
+  // accepts, or -1 when the leaf itself is not accepted.
+  template <typename Accept>
+  std::int64_t OctreeLeap(const double p[3], const Vec3& step, Accept&& accept)
+  {
+    const MinMaxOctree& octree = *this->Frame.octree;
+    const int leaf = octree.GetLeafSize();
+    const int* grid = octree.GetLevel(0).gridSize;
+    std::uint32_t c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double q = std::floor(p[a] / leaf);
+      c[a] = static_cast<std::uint32_t>(q > 0 ? (q < grid[a] - 1 ? q : grid[a] - 1) : 0);
+    }
+    const std::uint64_t code = MortonEncode(c[0], c[1], c[2]);
+    if (code == this->LastRejectedLeaf)
+    {
+      return -1;
+    }
+    if (!accept(0, code))
+    {
+      this->LastRejectedLeaf = code;
+      return -1;
+    }
+    int level = 0;
+    while (level < octree.GetDepth() && accept(level + 1, code >> (3 * (level + 1))))
+    {
+      ++level;
+    }
+    const Box box = octree.NodeBox(level, code >> (3 * level));
+    return this->Template.StepsInside(box, Vec3{ p[0], p[1], p[2] }, step);
+  }
+
+  void CastRay(const PixelRay& pixel, float* out)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    if (!this->Intervals(pixel.index, this->RayIntervals))
+    {
+      return;
+    }
+    ++this->Counters.rays;
+    switch (this->Settings.blend)
+    {
+      case RayCastBlend::Composite:
+        this->Composite(pixel, out);
+        break;
+      case RayCastBlend::Maximum:
+      case RayCastBlend::Minimum:
+        this->Extreme(pixel, out);
+        break;
+      case RayCastBlend::Additive:
+      case RayCastBlend::Average:
+        this->Integrate(pixel, out);
+        break;
+    }
+  }
+
+  // Walks the samples of every interval; visit(p, cell) returns false to stop the ray.
+  // Zero-opacity leaping (octree, distance map, cell table) happens here when `leapTransparent`.
+  template <typename Visit>
+  void Walk(const PixelRay& pixel, bool leapTransparent, Visit&& visit)
+  {
+    const IndexRay& ray = pixel.index;
+    const double h = this->Settings.sampleDistance;
+    const Vec3 step = ray.direction * h;
+    const double largestStep = std::max({ std::abs(step.x), std::abs(step.y), std::abs(step.z) });
+    const double inverseLargestStep = largestStep > 0 ? 1.0 / largestStep : 1.0e30;
+    const bool octree = leapTransparent && this->Frame.useOctree;
+    const bool distance = leapTransparent && this->Frame.useDistance;
+    const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
+    const MinMaxOctree* tree = this->Frame.octree;
+    this->LastRejectedLeaf = ~std::uint64_t(0);
+    SampleCell cell;
+    for (const Interval& interval : this->RayIntervals)
+    {
+      const std::int64_t count =
+        static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+      for (std::int64_t k = 0; k < count; ++k)
+      {
+        const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
+        const double p[3] = { ray.origin.x + t * ray.direction.x,
+          ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+        if (octree)
+        {
+          const std::int64_t more = this->OctreeLeap(p, step,
+            [tree](int level, std::uint64_t index) { return tree->IsTransparent(level, index); });
+          if (more >= 0)
+          {
+            const std::int64_t skipped = std::min(more + 1, count - k);
+            this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+            k += skipped - 1;
+            continue;
+          }
+        }
+        this->Sampling.Locate(p, cell);
+        if (distance)
+        {
+          const int d = this->Frame.distance[cell.cell];
+          if (d > 0)
+          {
+            const auto more = static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
+            const std::int64_t skipped = std::min(more + 1, count - k);
+            this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
+            k += skipped - 1;
+            continue;
+          }
+        }
+        if (cellLeap)
+        {
+          const std::uint8_t configuration = this->Frame.cells->configuration[cell.cell];
+          if (configuration == 0)
+          {
+            ++this->Counters.leapedEmptyCell;
+            continue;
+          }
+          const CellLeapCase& leapCase = this->Table[configuration];
+          if (leapCase.leapCase >= 0 &&
+            CellLeapSampleIsTransparent(leapCase, cell.f, this->Frame.leapThreshold,
+              [this, &cell](int c) { return this->Sampling.Corner(cell, c); }))
+          {
+            ++this->Counters.leapedCell;
+            continue;
+          }
+        }
+        ++this->Counters.samples;
+        const float value = this->Settings.nearest ? this->Sampling.Nearest(p)
+                                                   : this->Sampling.Trilinear(cell);
+        if (!visit(p, value))
+        {
+          return;
+        }
+      }
+    }
+  }
+
+  void Composite(const PixelRay& pixel, float* out)
+  {
+    const KernelFrame& frame = this->Frame;
+    const RayCastLighting& lighting = *frame.lighting;
+    const bool gradientOpacity = frame.gradientOpacity != nullptr;
+    const bool needGradient = gradientOpacity || lighting.shade;
+    const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+    const bool terminate = this->Settings.earlyTermination;
+    float colour[3] = { 0, 0, 0 };
+    float alpha = 0;
+    this->Walk(pixel, true,
+      [&](const double p[3], float value)
+      {
+        if (value != value)
+        {
+          return true; // NaN samples are transparent
+        }
+        int i;
+        float fraction;
+        TablePosition(frame, value, i, fraction);
+        float a = Lerp(frame.correctedAlpha[i], frame.correctedAlpha[i + 1], fraction);
+        if (a <= 0.0f)
+        {
+          return true;
+        }
+        const float* e0 = frame.rgba + 4 * i;
+        const float* e1 = e0 + 4;
+        float rgb[3] = { Lerp(e0[0], e1[0], fraction), Lerp(e0[1], e1[1], fraction),
+          Lerp(e0[2], e1[2], fraction) };
+        if (needGradient)
+        {
+          float eyeGradient[3];
+          this->Gradient(p, eyeGradient);
+          if (gradientOpacity)
+          {
+            const float magnitude = std::sqrt(eyeGradient[0] * eyeGradient[0] +
+                                      eyeGradient[1] * eyeGradient[1] + eyeGradient[2] * eyeGradient[2]) *
+              frame.rangeWidth;
+            const float tableAlpha = Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
+            a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
+            if (a <= 0.0f)
+            {
+              return true;
+            }
+          }
+          if (lighting.shade)
+          {
+            this->Shade(pixel, eyeGradient, rgb);
+          }
+        }
+        const float weight = (1.0f - alpha) * a;
+        colour[0] += weight * rgb[0];
+        colour[1] += weight * rgb[1];
+        colour[2] += weight * rgb[2];
+        alpha += weight;
+        if (terminate && alpha >= threshold)
+        {
+          ++this->Counters.terminatedRays;
+          return false;
+        }
+        return true;
+      });
+    out[0] = colour[0];
+    out[1] = colour[1];
+    out[2] = colour[2];
+    out[3] = alpha;
+  }
+
+  void Extreme(const PixelRay& pixel, float* out)
+  {
+    const bool maximum = this->Settings.blend == RayCastBlend::Maximum;
+    float extreme = maximum ? -std::numeric_limits<float>::infinity()
+                            : std::numeric_limits<float>::infinity();
+    bool hit = false;
+    const MinMaxOctree* tree = this->Frame.useOctree ? this->Frame.octree : nullptr;
+    const IndexRay& ray = pixel.index;
+    const double h = this->Settings.sampleDistance;
+    const Vec3 step = ray.direction * h;
+    this->LastRejectedLeaf = ~std::uint64_t(0);
+    for (const Interval& interval : this->RayIntervals)
+    {
+      const std::int64_t count =
+        static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+      for (std::int64_t k = 0; k < count; ++k)
+      {
+        const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
+        const double p[3] = { ray.origin.x + t * ray.direction.x,
+          ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+        if (tree && hit)
+        {
+          // A node whose whole range cannot beat the current extreme adds nothing. The leaf
+          // cache is only valid for one extreme, so it is reset whenever that changes.
+          const std::int64_t more = this->OctreeLeap(p, step,
+            [tree, maximum, extreme](int level, std::uint64_t index)
+            {
+              const OctreeLevel& l = tree->GetLevel(level);
+              return maximum ? l.maximum[index] <= extreme : l.minimum[index] >= extreme;
+            });
+          if (more >= 0)
+          {
+            const std::int64_t skipped = std::min(more + 1, count - k);
+            this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+            k += skipped - 1;
+            continue;
+          }
+        }
+        ++this->Counters.samples;
+        const float value = this->Sampling.Sample(p, this->Settings.nearest);
+        if (value != value)
+        {
+          continue;
+        }
+        if (!hit || (maximum ? value > extreme : value < extreme))
+        {
+          extreme = value;
+          this->LastRejectedLeaf = ~std::uint64_t(0);
+        }
+        hit = true;
+      }
+    }
+    if (!hit)
+    {
+      return;
+    }
+    int i;
+    float fraction;
+    TablePosition(this->Frame, extreme, i, fraction);
+    const float* e0 = this->Frame.rgba + 4 * i;
+    const float* e1 = e0 + 4;
+    const float a = Lerp(e0[3], e1[3], fraction);
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] = Lerp(e0[c], e1[c], fraction) * a;
+    }
+    out[3] = a;
+  }
+
+  void Integrate(const PixelRay& pixel, float* out)
+  {
+    const KernelFrame& frame = this->Frame;
+    const bool additive = this->Settings.blend == RayCastBlend::Additive;
+    const float lower = static_cast<float>(this->Settings.averageRange[0]);
+    const float upper = static_cast<float>(this->Settings.averageRange[1]);
+    double sum = 0;
+    double count = 0;
+    // Zero-opacity samples add nothing to the raysum; the average counts them, so it never
+    // leaps.
+    this->Walk(pixel, additive,
+      [&](const double*, float value)
+      {
+        if (value != value || (!additive && !(value >= lower && value <= upper)))
+        {
+          return true;
+        }
+        int i;
+        float fraction;
+        TablePosition(frame, value, i, fraction);
+        const float a = Lerp(frame.rgba[4 * i + 3], frame.rgba[4 * i + 7], fraction);
+        const float s = value * frame.normalScale + frame.normalBias;
+        sum += static_cast<double>(a) * s;
+        count += 1;
+        return true;
+      });
+    float grey = 0;
+    if (additive)
+    {
+      grey = static_cast<float>(
+        sum * this->Settings.sampleDistance / this->Settings.additiveUnitDistance);
+    }
+    else
+    {
+      if (count <= 0)
+      {
+        return;
+      }
+      grey = static_cast<float>(sum / count);
+    }
+    grey = std::min(std::max(grey, 0.0f), 1.0f);
+    out[0] = out[1] = out[2] = grey;
+    out[3] = 1.0f;
+  }
+
+  // Central differences of trilinear samples one voxel apart (what the slice mapper's gradient
+  // texture holds), in normalised units, taken to eye space.
+  void Gradient(const double p[3], float eyeGradient[3]) const
+  {
+    double g[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      double forward[3] = { p[0], p[1], p[2] };
+      double backward[3] = { p[0], p[1], p[2] };
+      forward[a] += 1.0;
+      backward[a] -= 1.0;
+      g[a] = 0.5 *
+        (this->Sampling.Sample(forward, this->Settings.nearest) -
+          this->Sampling.Sample(backward, this->Settings.nearest)) *
+        this->Frame.normalScale;
+    }
+    const RayCastLighting& l = *this->Frame.lighting;
+    for (int r = 0; r < 3; ++r)
+    {
+      eyeGradient[r] =
+        static_cast<float>(l.normalMatrix[r][0] * g[0] + l.normalMatrix[r][1] * g[1] +
+          l.normalMatrix[r][2] * g[2]);
+    }
+  }
+
+  float GradientOpacity(float magnitude) const
+  {
+    const int n = this->Frame.gradientOpacitySize;
+    float u = magnitude / this->Frame.gradientOpacityMaximum * static_cast<float>(n - 1);
+    u = u > 0 ? (u < n - 1 ? u : static_cast<float>(n - 1)) : 0.0f;
+    const int i = std::min(static_cast<int>(u), n - 2);
+    return Lerp(this->Frame.gradientOpacity[i], this->Frame.gradientOpacity[i + 1], u - i);
+  }
+
+  // Phong with VTK's coefficients, two-sided, lights as directions (the slice mapper's shader).
+  void Shade(const PixelRay& pixel, const float eyeGradient[3], float rgb[3]) const
+  {
+    const RayCastLighting& l = *this->Frame.lighting;
+    float shaded[3] = { l.ambient * rgb[0], l.ambient * rgb[1], l.ambient * rgb[2] };
+    const float length = std::sqrt(eyeGradient[0] * eyeGradient[0] +
+      eyeGradient[1] * eyeGradient[1] + eyeGradient[2] * eyeGradient[2]);
+    if (length > 1.0e-8f)
+    {
+      const float normal[3] = { -eyeGradient[0] / length, -eyeGradient[1] / length,
+        -eyeGradient[2] / length };
+      const float toViewer[3] = { static_cast<float>(-pixel.eyeDirection[0]),
+        static_cast<float>(-pixel.eyeDirection[1]), static_cast<float>(-pixel.eyeDirection[2]) };
+      for (int i = 0; i < l.lightCount; ++i)
+      {
+        const float* light = l.directions[i];
+        float nDotL = normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2];
+        const float sign = nDotL < 0 ? -1.0f : 1.0f;
+        nDotL = std::abs(nDotL);
+        float rDotV = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          rDotV += (2.0f * nDotL * sign * normal[c] - light[c]) * toViewer[c];
+        }
+        const float specular = rDotV > 0 ? l.specular * std::pow(rDotV, l.specularPower) : 0.0f;
+        for (int c = 0; c < 3; ++c)
+        {
+          shaded[c] += (l.diffuse * nDotL * rgb[c] + specular) * l.colours[i][c];
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = std::min(shaded[c], 1.0f);
+    }
+  }
+
+  const KernelFrame& Frame;
+  const RayCastSettings& Settings;
+  Sampler<T> Sampling;
+  RayCastCounters& Counters;
+  const std::array<CellLeapCase, 256>& Table;
+  DistanceTemplate Template;
+  std::vector<Interval> RayIntervals;
+  std::uint64_t LastRejectedLeaf = ~std::uint64_t(0);
+};
+
+template <typename T>
+void CastTileTyped(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
+  RayCastCounters& counters)
+{
+  RayCasterTile<T> tile(frame, counters);
+  tile.Cast(x0, y0, x1, y1, rgba);
+}
+
+}
+
+void CastTile(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
+  RayCastCounters& counters)
+{
+  switch (frame.volume.type)
+  {
+    case ScalarType::Int8:
+      CastTileTyped<std::int8_t>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::UInt8:
+      CastTileTyped<std::uint8_t>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::Int16:
+      CastTileTyped<std::int16_t>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::UInt16:
+      CastTileTyped<std::uint16_t>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::Int32:
+      CastTileTyped<std::int32_t>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::Float32:
+      CastTileTyped<float>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+    case ScalarType::Float64:
+      CastTileTyped<double>(frame, x0, y0, x1, y1, rgba, counters);
+      break;
+  }
+}
+
+}
+}

@@ -1,0 +1,49 @@
+// RayCastKernel: the per-tile inner loops of the CPU ray caster (internal to RayCastEngine).
+#ifndef accelvolume_RayCastKernel_h
+#define accelvolume_RayCastKernel_h
+
+#include "accelvolume/CellClassification.h"
+#include "accelvolume/RayCastEngine.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace accelvolume
+{
+namespace detail
+{
+
+// Everything a tile reads, prepared once per frame by RayCaster::Render.
+struct KernelFrame
+{
+  VolumeView volume;
+  // Table position of a raw value: u = value * tableScale + tableBias, in [0, tableSize - 1].
+  float tableScale = 1, tableBias = 0;
+  int tableSize = 0;
+  const float* rgba = nullptr;           // 4 * tableSize, colour + table opacity
+  const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
+  // Normalised scalar: s = value * normalScale + normalBias.
+  float normalScale = 1, normalBias = 0;
+  float rangeWidth = 1; // data units per normalised unit
+  const float* gradientOpacity = nullptr;
+  int gradientOpacitySize = 0;
+  float gradientOpacityMaximum = 1;
+  float opacityExponent = 1; // sample distance / opacity unit distance
+  const RayCastLighting* lighting = nullptr;
+  const RayCastView* view = nullptr;
+  const RayCastSettings* settings = nullptr;
+  const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
+  const CellClassification* cells = nullptr;
+  const std::uint8_t* distance = nullptr;
+  float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
+  bool useOctree = false, useDistance = false, useCellLeap = false;
+};
+
+// Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
+void CastTile(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
+  RayCastCounters& counters);
+
+}
+}
+
+#endif

@@ -1,0 +1,38 @@
+// vtkAccelVolumeImageDisplay: draws a CPU-rendered premultiplied RGBA float image over the
+// renderer's viewport (blended "over" the scene). Not installed.
+#ifndef vtkAccelVolumeImageDisplay_h
+#define vtkAccelVolumeImageDisplay_h
+
+#include "vtkNew.h" // For vtkNew
+
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkTextureObject;
+class vtkWindow;
+
+class vtkAccelVolumeImageDisplay
+{
+public:
+  vtkAccelVolumeImageDisplay();
+  ~vtkAccelVolumeImageDisplay();
+
+  // rgba: imageWidth x imageHeight premultiplied pixels (4 floats, rows from the bottom),
+  // stretched over the viewport (lowerLeft, width x height). False if GL fails.
+  bool Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height,
+    int imageWidth, int imageHeight, const float* rgba);
+
+  // The viewport's window depth in [0, 1] (rows from the bottom), width * height values.
+  static bool ReadDepth(
+    vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height, float* depth);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkAccelVolumeImageDisplay(const vtkAccelVolumeImageDisplay&) = delete;
+  void operator=(const vtkAccelVolumeImageDisplay&) = delete;
+
+  vtkNew<vtkTextureObject> Image;
+  vtkNew<vtkOpenGLVertexArrayObject> Array;
+};
+
+#endif

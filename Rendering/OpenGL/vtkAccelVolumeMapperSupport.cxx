@@ -1,0 +1,265 @@
+// vtkAccelVolumeMapperSupport: scene and input handling shared by the AccelVolume mappers.
+#include "vtkAccelVolumeMapperSupport.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkRenderer.h"
+#include "vtkVolumeMapper.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+bool vtkAccelVolumeCheckInput(
+  vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error)
+{
+  std::ostringstream message;
+  if (!input)
+  {
+    error = "No input: connect a vtkImageData to the mapper";
+    return false;
+  }
+  int dims[3];
+  input->GetDimensions(dims);
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || input->GetNumberOfPoints() < 1)
+  {
+    message << "Empty input image (dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2]
+            << ")";
+    error = message.str();
+    return false;
+  }
+  if (!scalars)
+  {
+    error = "Input has no point scalars to render";
+    return false;
+  }
+  if (cellFlag)
+  {
+    error = "Cell scalars are not supported; use point scalars";
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    message << "Only single-component scalars are supported (input has "
+            << scalars->GetNumberOfComponents() << " components)";
+    error = message.str();
+    return false;
+  }
+  if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    error = "Scalar array size does not match the image dimensions";
+    return false;
+  }
+  switch (scalars->GetDataType())
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      return true;
+    default:
+      message << "Unsupported scalar type " << scalars->GetDataTypeAsString()
+              << " (use char, short, int, float or double)";
+      error = message.str();
+      return false;
+  }
+}
+
+void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2])
+{
+  scalars->GetFiniteRange(range, 0); // NaN and +/-Inf must not stretch the range
+  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+  {
+    range[0] = std::isfinite(range[0]) ? range[0] : 0.0;
+    range[1] = std::isfinite(range[1]) ? range[1] : range[0] + 1.0;
+  }
+}
+
+std::vector<float> vtkAccelVolumeTransferTable(
+  vtkVolumeProperty* property, const double range[2], int size)
+{
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  std::vector<float> opacities(size);
+  std::vector<float> colours(3 * size);
+  property->GetScalarOpacity(0)->GetTable(range[0], high, size, opacities.data());
+  if (property->GetColorChannels(0) == 1)
+  {
+    std::vector<float> greys(size);
+    property->GetGrayTransferFunction(0)->GetTable(range[0], high, size, greys.data());
+    for (int i = 0; i < size; ++i)
+    {
+      colours[3 * i] = colours[3 * i + 1] = colours[3 * i + 2] = greys[i];
+    }
+  }
+  else
+  {
+    property->GetRGBTransferFunction(0)->GetTable(range[0], high, size, colours.data());
+  }
+  std::vector<float> table(4 * size);
+  for (int i = 0; i < size; ++i)
+  {
+    std::copy(&colours[3 * i], &colours[3 * i] + 3, &table[4 * i]);
+    table[4 * i + 3] = opacities[i];
+  }
+  return table;
+}
+
+accelvolume::Box vtkAccelVolumeIndexBox(const int dims[3])
+{
+  accelvolume::Box box;
+  box.lower = { dims[0] > 1 ? 0.0 : -0.5, dims[1] > 1 ? 0.0 : -0.5, dims[2] > 1 ? 0.0 : -0.5 };
+  box.upper = { dims[0] > 1 ? dims[0] - 1.0 : 0.5, dims[1] > 1 ? dims[1] - 1.0 : 0.5,
+    dims[2] > 1 ? dims[2] - 1.0 : 0.5 };
+  return box;
+}
+
+std::vector<accelvolume::Box> vtkAccelVolumeRegions(
+  vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox)
+{
+  if (!mapper->GetCropping())
+  {
+    return { volumeBox };
+  }
+  // Cropping planes are in data (physical) coordinates along the image axes.
+  double origin[3];
+  double spacing[3];
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  const double* planes = mapper->GetCroppingRegionPlanes();
+  double indexPlanes[6];
+  for (int i = 0; i < 6; ++i)
+  {
+    const int axis = i / 2;
+    indexPlanes[i] = (planes[i] - origin[axis]) / spacing[axis];
+  }
+  return accelvolume::CroppingRegionBoxes(
+    volumeBox, indexPlanes, mapper->GetCroppingRegionFlags());
+}
+
+std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
+  vtkPlaneCollection* planes, vtkMatrix4x4* indexToWorld)
+{
+  std::vector<accelvolume::HalfSpace> clip;
+  for (int i = 0; planes && i < planes->GetNumberOfItems(); ++i)
+  {
+    vtkPlane* plane = planes->GetItem(i);
+    double normal[3];
+    double origin[3];
+    plane->GetNormal(normal);
+    plane->GetOrigin(origin);
+    // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
+    double indexNormal[3] = { 0, 0, 0 };
+    double offset = 0;
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        indexNormal[c] += indexToWorld->GetElement(r, c) * normal[r];
+      }
+      offset += normal[r] * (indexToWorld->GetElement(r, 3) - origin[r]);
+    }
+    accelvolume::HalfSpace halfSpace;
+    halfSpace.normal = { indexNormal[0], indexNormal[1], indexNormal[2] };
+    halfSpace.offset = offset;
+    clip.push_back(halfSpace);
+  }
+  return clip;
+}
+
+double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[3])
+{
+  double spacing = VTK_DOUBLE_MAX;
+  for (int c = 0; c < 3; ++c)
+  {
+    if (dims[c] > 1)
+    {
+      const double length = std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
+        indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
+        indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
+      spacing = std::min(spacing, length);
+    }
+  }
+  return spacing == VTK_DOUBLE_MAX || spacing <= 0 ? 1.0 : spacing;
+}
+
+void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToEye, vtkMatrix4x4* view, vtkAccelVolumeLights& lights)
+{
+  lights.Lighting[0] = static_cast<float>(property->GetAmbient(0));
+  lights.Lighting[1] = static_cast<float>(property->GetDiffuse(0));
+  lights.Lighting[2] = static_cast<float>(property->GetSpecular(0));
+  lights.Lighting[3] = static_cast<float>(property->GetSpecularPower(0));
+  lights.Count = 0;
+  vtkLightCollection* collection = renderer->GetLights();
+  vtkCollectionSimpleIterator iterator;
+  collection->InitTraversal(iterator);
+  while (vtkLight* light = collection->GetNextLight(iterator))
+  {
+    if (!light->GetSwitch() || lights.Count >= 4)
+    {
+      continue;
+    }
+    double position[3];
+    double focal[3];
+    light->GetPosition(position);
+    light->GetFocalPoint(focal);
+    double direction[3] = { position[0] - focal[0], position[1] - focal[1],
+      position[2] - focal[2] };
+    if (light->LightTypeIsHeadlight())
+    {
+      direction[0] = direction[1] = 0.0;
+      direction[2] = 1.0;
+    }
+    else if (light->LightTypeIsSceneLight())
+    {
+      double eye[3] = { 0, 0, 0 };
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          eye[r] += view->GetElement(r, c) * direction[c];
+        }
+      }
+      std::copy(eye, eye + 3, direction);
+    }
+    vtkMath::Normalize(direction);
+    double colour[3];
+    light->GetDiffuseColor(colour);
+    for (int c = 0; c < 3; ++c)
+    {
+      lights.Directions[lights.Count][c] = static_cast<float>(direction[c]);
+      lights.Colors[lights.Count][c] = static_cast<float>(colour[c] * light->GetIntensity());
+    }
+    ++lights.Count;
+  }
+  double linear[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear[r][c] = indexToEye->GetElement(r, c);
+    }
+  }
+  double inverse[3][3];
+  vtkMath::Invert3x3(linear, inverse);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lights.NormalMatrix[r][c] = inverse[c][r];
+    }
+  }
+}

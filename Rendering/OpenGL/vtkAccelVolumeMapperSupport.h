@@ -1,0 +1,62 @@
+// vtkAccelVolumeMapperSupport: scene and input handling shared by the AccelVolume mappers
+// (input checks, scalar range, transfer-function tables, cropping regions and clipping planes
+// in index space, VTK lights in eye space). Not installed.
+#ifndef vtkAccelVolumeMapperSupport_h
+#define vtkAccelVolumeMapperSupport_h
+
+#include "accelvolume/Geometry.h"
+
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkPlaneCollection;
+class vtkRenderer;
+class vtkVolumeMapper;
+class vtkVolumeProperty;
+
+// Point scalars the mappers can render: one component, a supported type, matching the image.
+// False with a user-facing message otherwise (input may be null).
+bool vtkAccelVolumeCheckInput(
+  vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error);
+
+// Finite scalar range; NaN / infinite data fall back to a unit range so tables stay defined.
+void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2]);
+
+// RGBA table of `size` entries over [range[0], range[1]] (range[1] <= range[0] widens to
+// range[0] + 1): colour (or grey) and scalar opacity of the property's first component.
+std::vector<float> vtkAccelVolumeTransferTable(
+  vtkVolumeProperty* property, const double range[2], int size);
+
+// The volume's index-space box; a one-voxel axis becomes a slab one voxel thick.
+accelvolume::Box vtkAccelVolumeIndexBox(const int dims[3]);
+
+// The visible cropping regions (or the whole box) in index coordinates.
+std::vector<accelvolume::Box> vtkAccelVolumeRegions(
+  vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox);
+
+// The mapper's clipping planes as index-space half-spaces (kept side: n.p + offset >= 0).
+std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
+  vtkPlaneCollection* planes, vtkMatrix4x4* indexToWorld);
+
+// The smallest world length of one index step along the axes with more than one voxel (1 if
+// none).
+double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[3]);
+
+// VTK's lighting coefficients and up to 4 lights as eye-space directions (headlights and camera
+// lights live in camera coordinates already) with colour times intensity, and the matrix that
+// takes an index-space gradient to eye space (inverse transpose of index -> eye), row-major.
+struct vtkAccelVolumeLights
+{
+  float Lighting[4] = { 0, 0, 0, 1 }; // ambient, diffuse, specular, specular power
+  int Count = 0;
+  float Directions[4][3] = {};
+  float Colors[4][3] = {};
+  double NormalMatrix[3][3] = {};
+};
+void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToEye, vtkMatrix4x4* view, vtkAccelVolumeLights& lights);
+
+#endif

@@ -1,0 +1,418 @@
+// CPU ray casting volume mapper with octree / distance-map and semi-transparent cell leaping.
+#include "vtkAccelVolumeRayCastMapper.h"
+
+#include "vtkAccelVolumeImageDisplay.h"
+#include "vtkAccelVolumeMapperSupport.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "accelvolume/RayCastEngine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int TableSize = 1024; // as the slice mapper, so both classify alike
+
+bool ToScalarType(int vtkType, accelvolume::ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      type = accelvolume::ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_CHAR:
+      type = accelvolume::ScalarType::UInt8;
+      return true;
+    case VTK_SHORT:
+      type = accelvolume::ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = accelvolume::ScalarType::UInt16;
+      return true;
+    case VTK_INT:
+      type = accelvolume::ScalarType::Int32;
+      return true;
+    case VTK_FLOAT:
+      type = accelvolume::ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      type = accelvolume::ScalarType::Float64;
+      return true;
+    default:
+      return false;
+  }
+}
+
+accelvolume::RayCastBlend ToBlend(int blendMode)
+{
+  switch (blendMode)
+  {
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return accelvolume::RayCastBlend::Maximum;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return accelvolume::RayCastBlend::Minimum;
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return accelvolume::RayCastBlend::Additive;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return accelvolume::RayCastBlend::Average;
+    default:
+      return accelvolume::RayCastBlend::Composite;
+  }
+}
+
+accelvolume::Affine ToAffine(vtkMatrix4x4* m)
+{
+  accelvolume::Affine a;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      a.m[r][c] = m->GetElement(r, c);
+    }
+  }
+  return a;
+}
+}
+
+// Per-mapper state kept out of the public header.
+class vtkAccelVolumeRayCastMapper::vtkInternals
+{
+public:
+  accelvolume::RayCaster Caster;
+  vtkAccelVolumeImageDisplay Display;
+  std::vector<float> Image;
+  std::vector<float> Depth;
+  std::vector<float> RayDepth;
+  // What the caster's caches were built from: versions bump when these change.
+  vtkDataArray* Scalars = nullptr;
+  vtkMTimeType ScalarsTime = 0;
+  vtkMTimeType InputTime = 0;
+  std::uint64_t VolumeVersion = 0;
+  std::vector<float> Table;
+  double TableRange[2] = { 0, 0 };
+  std::uint64_t TransferVersion = 0;
+  bool ReportedError = false;
+};
+
+vtkStandardNewMacro(vtkAccelVolumeRayCastMapper);
+
+vtkAccelVolumeRayCastMapper::vtkAccelVolumeRayCastMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkAccelVolumeRayCastMapper::~vtkAccelVolumeRayCastMapper() = default;
+
+void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "LeapMode: " << this->LeapMode << "\n";
+  os << indent << "CellLeaping: " << this->CellLeaping << "\n";
+  os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
+  os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "LastNumberOfRays: " << this->LastNumberOfRays << "\n";
+  os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
+  os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+}
+
+double* vtkAccelVolumeRayCastMapper::GetBounds()
+{
+  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
+  {
+    this->MissingInputReportTime.Modified();
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+  }
+  return this->Superclass::GetBounds();
+}
+
+int vtkAccelVolumeRayCastMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+void vtkAccelVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Display.ReleaseGraphicsResources(window);
+}
+
+void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  vtkInternals& internals = *this->Internals;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkAccelVolumeRayCastMapper needs an OpenGL render window to show its image");
+    return;
+  }
+  vtkImageData* input = nullptr;
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+    input = vtkImageData::SafeDownCast(this->GetInput());
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  std::string error;
+  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
+  {
+    vtkErrorMacro(<< error);
+    return;
+  }
+  vtkVolumeProperty* property = volume->GetProperty();
+  if (!property)
+  {
+    vtkErrorMacro("The volume has no property");
+    return;
+  }
+  if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
+    this->BlendMode == vtkVolumeMapper::SLICE_BLEND)
+  {
+    vtkErrorMacro("Blend mode " << this->BlendMode
+                                << " is not supported by the ray cast mapper (use composite, "
+                                   "maximum, minimum, additive or average intensity)");
+    return;
+  }
+  if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
+    this->BlendMode == COMPOSITE_BLEND && !internals.ReportedError)
+  {
+    internals.ReportedError = true;
+    vtkWarningMacro("2D transfer functions are not supported by the ray cast mapper; the 1D "
+                    "scalar opacity and colour are used");
+  }
+
+  double range[2];
+  vtkAccelVolumeScalarRange(scalars, range);
+  int dims[3];
+  input->GetDimensions(dims);
+  accelvolume::VolumeView view;
+  view.data = scalars->GetVoidPointer(0);
+  ToScalarType(scalars->GetDataType(), view.type);
+  std::copy(dims, dims + 3, view.dims);
+
+  // Cache keys: the caster rebuilds its octree / classification only when these change.
+  if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||
+    input->GetMTime() != internals.InputTime)
+  {
+    internals.Scalars = scalars;
+    internals.ScalarsTime = scalars->GetMTime();
+    internals.InputTime = input->GetMTime();
+    ++internals.VolumeVersion;
+  }
+  accelvolume::RayCastTransfer transfer;
+  transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  if (transfer.rgba != internals.Table || range[0] != internals.TableRange[0] ||
+    high != internals.TableRange[1])
+  {
+    internals.Table = transfer.rgba;
+    internals.TableRange[0] = range[0];
+    internals.TableRange[1] = high;
+    ++internals.TransferVersion;
+  }
+  transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
+
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  vtkNew<vtkMatrix4x4> worldToIndex;
+  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
+
+  int width = 0;
+  int height = 0;
+  int lowerLeft[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+
+  // Interactive frames trade samples for time like vtkFixedPointVolumeRayCastMapper.
+  const double allotted = volume->GetAllocatedRenderTime();
+  const bool interactive = this->AutoAdjustSampleDistances && allotted > 0 && allotted < 1.0;
+  double sampleDistance = interactive ? this->InteractiveSampleDistance : this->SampleDistance;
+  double imageSampleDistance = this->ImageSampleDistance;
+  if (interactive)
+  {
+    const double previous = std::max(this->LastImageSampleDistance, 1.0);
+    const double ratio = this->LastRenderTime > 0 ? std::sqrt(this->LastRenderTime / allotted) : 1.0;
+    imageSampleDistance = std::min(std::max(previous * ratio, this->MinimumImageSampleDistance),
+      std::max(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance));
+  }
+  this->LastSampleDistance = sampleDistance;
+  this->LastImageSampleDistance = imageSampleDistance;
+  const int imageWidth = std::max(1, static_cast<int>(std::ceil(width / imageSampleDistance)));
+  const int imageHeight = std::max(1, static_cast<int>(std::ceil(height / imageSampleDistance)));
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = static_cast<double>(width) / height;
+  vtkNew<vtkMatrix4x4> clipToWorld;
+  clipToWorld->DeepCopy(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1));
+  clipToWorld->Invert();
+  accelvolume::RayCastView rays;
+  rays.width = imageWidth;
+  rays.height = imageHeight;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      rays.clipToWorld[r][c] = clipToWorld->GetElement(r, c);
+    }
+  }
+  rays.worldToIndex = ToAffine(worldToIndex);
+  // Opaque geometry drawn before the volume stops the rays.
+  if (renderer->VisibleActorCount() > 0)
+  {
+    internals.Depth.resize(static_cast<std::size_t>(width) * height);
+    if (vtkAccelVolumeImageDisplay::ReadDepth(window, lowerLeft, width, height, internals.Depth.data()))
+    {
+      internals.RayDepth.resize(static_cast<std::size_t>(imageWidth) * imageHeight);
+      for (int j = 0; j < imageHeight; ++j)
+      {
+        const int y = std::min(height - 1, static_cast<int>((j + 0.5) * height / imageHeight));
+        for (int i = 0; i < imageWidth; ++i)
+        {
+          const int x = std::min(width - 1, static_cast<int>((i + 0.5) * width / imageWidth));
+          internals.RayDepth[static_cast<std::size_t>(j) * imageWidth + i] =
+            internals.Depth[static_cast<std::size_t>(y) * width + x];
+        }
+      }
+      rays.depth = &internals.RayDepth;
+    }
+  }
+
+  accelvolume::RayCastSettings settings;
+  settings.blend = ToBlend(this->BlendMode);
+  settings.sampleDistance = sampleDistance;
+  settings.nearest = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION;
+  settings.leap = this->LeapMode == LEAP_OCTREE
+    ? accelvolume::LeapMode::Octree
+    : (this->LeapMode == LEAP_DISTANCE_MAP ? accelvolume::LeapMode::DistanceMap
+                                           : accelvolume::LeapMode::None);
+  settings.cellLeap = this->CellLeaping != 0;
+  settings.earlyTermination = this->EarlyRayTermination != 0;
+  settings.terminationThreshold = this->EarlyRayTerminationThreshold;
+  settings.additiveUnitDistance =
+    this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
+  settings.averageRange[0] = this->AverageIPScalarRange[0];
+  settings.averageRange[1] = this->AverageIPScalarRange[1];
+  settings.octreeLeafSize = this->OctreeLeafSize;
+  settings.regions = vtkAccelVolumeRegions(this, input, vtkAccelVolumeIndexBox(dims));
+  settings.clip = vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
+
+  accelvolume::RayCastLighting lighting;
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  lighting.shade = composite && property->GetShade(0) != 0;
+  const bool gradientOpacity =
+    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  if (lighting.shade || gradientOpacity)
+  {
+    vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
+    vtkNew<vtkMatrix4x4> indexToEye;
+    vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
+    vtkAccelVolumeLights lights;
+    vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
+    lighting.ambient = lights.Lighting[0];
+    lighting.diffuse = lights.Lighting[1];
+    lighting.specular = lights.Lighting[2];
+    lighting.specularPower = lights.Lighting[3];
+    lighting.lightCount = lights.Count;
+    std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
+    std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
+        lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
+      }
+    }
+  }
+  if (gradientOpacity)
+  {
+    // Same table domain as the slice mapper: the function's own, or the steepest gradient.
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : rangeWidth / voxelSpacing;
+    transfer.gradientOpacity.resize(TableSize);
+    property->GetGradientOpacity(0)->GetTable(
+      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
+  }
+
+  accelvolume::ParallelFor parallel =
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
+  accelvolume::RayCastCounters counters;
+  bool ok = false;
+  vtkNew<vtkTimerLog> castTimer;
+  castTimer->StartTimer();
+  auto cast = [&]()
+  {
+    ok = internals.Caster.Render(view, range[0], high, internals.VolumeVersion, transfer,
+      internals.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
+      error);
+  };
+  if (this->NumberOfThreads > 0)
+  {
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, cast);
+  }
+  else
+  {
+    cast();
+  }
+  castTimer->StopTimer();
+  if (!ok)
+  {
+    vtkErrorMacro("Ray casting failed: " << error);
+    return;
+  }
+  this->LastPrepareTime = internals.Caster.GetLastPrepareSeconds();
+  this->LastCastTime = castTimer->GetElapsedTime() - this->LastPrepareTime;
+  this->LastNumberOfRays = static_cast<vtkTypeInt64>(counters.rays);
+  this->LastNumberOfSamples = static_cast<vtkTypeInt64>(counters.samples);
+  this->LastSamplesLeapedByOctree = static_cast<vtkTypeInt64>(counters.leapedOctree);
+  this->LastSamplesLeapedByDistanceMap = static_cast<vtkTypeInt64>(counters.leapedDistance);
+  this->LastSamplesLeapedByCellTable = static_cast<vtkTypeInt64>(counters.leapedCell);
+  this->LastSamplesInTransparentCells = static_cast<vtkTypeInt64>(counters.leapedEmptyCell);
+  this->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
+
+  if (!internals.Display.Draw(
+        window, lowerLeft, width, height, imageWidth, imageHeight, internals.Image.data()))
+  {
+    vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
+  }
+  timer->StopTimer();
+  this->LastRenderTime = timer->GetElapsedTime();
+}

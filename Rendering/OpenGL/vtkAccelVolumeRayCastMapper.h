@@ -1,0 +1,212 @@
+/**
+ * @class   vtkAccelVolumeRayCastMapper
+ * @brief   CPU volume ray caster with exact empty-space leaping (min-max octree with a
+ *          distance template, or a distance map) and semi-transparent cell leaping through a
+ *          modified Marching Cubes table (Lim, Kim & Shin 2009).
+ *
+ * For users without a GPU: rays are cast on the CPU (vtkSMPTools over fixed 16x16 pixel
+ * tiles, so the image never depends on the thread count) and the image is shown in the VTK
+ * scene as a textured quad, stopped by the opaque geometry already drawn (the depth buffer is
+ * read back when the renderer has visible actors).
+ *
+ * Blend modes: composite (colour, scalar opacity, gradient opacity, Phong shading with VTK's
+ * lights), maximum / minimum intensity, additive (raysum) and average, with the transfer
+ * function semantics of vtkAccelVolumeSliceMapper (1024-entry tables over the data range,
+ * opacity corrected from ScalarOpacityUnitDistance to the sample distance), VTK cropping
+ * (every region flag pattern) and any number of clipping planes, parallel and perspective
+ * cameras, trilinear or nearest interpolation, one-component scalars of type
+ * char, unsigned char, short, unsigned short, int, float or double.
+ *
+ * Rays sample at a fixed world distance: SampleDistance, or InteractiveSampleDistance when
+ * AutoAdjustSampleDistances is on and the renderer asks for an interactive frame (allocated
+ * time < 1 s). The image has one ray per ImageSampleDistance x ImageSampleDistance pixels;
+ * with AutoAdjustSampleDistances on, interactive frames adapt it between
+ * MinimumImageSampleDistance and MaximumImageSampleDistance to meet the allocated time, like
+ * vtkFixedPointVolumeRayCastMapper.
+ *
+ * Every acceleration is exact: the image is identical with and without it (early ray
+ * termination changes a pixel by at most 1 - EarlyRayTerminationThreshold, identically with
+ * and without leaping):
+ * - LEAP_OCTREE: a min-max octree (OctreeLeafSize^3 leaves, built in parallel in Morton order
+ *   when the scalars change, classified when the transfer function changes). Composite and
+ *   additive rays leap over transparent nodes; MIP / MinIP rays leap over nodes whose range
+ *   cannot beat the ray's current extreme. The step count out of a node comes from a per-tile
+ *   distance template instead of a ray-box intersection.
+ * - LEAP_DISTANCE_MAP: per cell, the chessboard distance to the nearest cell that may be
+ *   opaque (rebuilt when the transfer function changes); composite and additive only.
+ * - CellLeaping: in a semi-transparent cell (some corners transparent, some not) the cell's
+ *   Marching Cubes case says which edge interpolations bound the opaque part; a sample outside
+ *   it is transparent and is not resampled (composite and additive, trilinear only).
+ * Average intensity counts transparent samples, so it never leaps.
+ */
+
+#ifndef vtkAccelVolumeRayCastMapper_h
+#define vtkAccelVolumeRayCastMapper_h
+
+#include "vtkRenderingAccelVolumeModule.h" // For export macro
+#include "vtkTimeStamp.h"                  // For vtkTimeStamp
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkImageData;
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class VTKRENDERINGACCELVOLUME_EXPORT vtkAccelVolumeRayCastMapper : public vtkVolumeMapper
+{
+public:
+  static vtkAccelVolumeRayCastMapper* New();
+  vtkTypeMacro(vtkAccelVolumeRayCastMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum LeapModes
+  {
+    LEAP_NONE = 0,
+    LEAP_OCTREE = 1,
+    LEAP_DISTANCE_MAP = 2
+  };
+
+  ///@{
+  /** Empty-space leaping (default LEAP_OCTREE). */
+  vtkSetClampMacro(LeapMode, int, LEAP_NONE, LEAP_DISTANCE_MAP);
+  vtkGetMacro(LeapMode, int);
+  ///@}
+
+  ///@{
+  /** Semi-transparent cell leaping through the modified Marching Cubes table (default on). */
+  vtkSetMacro(CellLeaping, vtkTypeBool);
+  vtkGetMacro(CellLeaping, vtkTypeBool);
+  vtkBooleanMacro(CellLeaping, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /** Octree leaf edge in voxels, a power of two in [2, 64] (default 4). */
+  vtkSetClampMacro(OctreeLeafSize, int, 2, 64);
+  vtkGetMacro(OctreeLeafSize, int);
+  ///@}
+
+  ///@{
+  /** Distance between samples along a ray in world units (default 1.0). */
+  vtkSetClampMacro(SampleDistance, double, 1.0e-6, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  vtkSetClampMacro(InteractiveSampleDistance, double, 1.0e-6, VTK_DOUBLE_MAX);
+  vtkGetMacro(InteractiveSampleDistance, double);
+  ///@}
+
+  ///@{
+  /** Pixels per ray along each image axis (default 1). */
+  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(ImageSampleDistance, double);
+  vtkSetClampMacro(MinimumImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(MinimumImageSampleDistance, double);
+  vtkSetClampMacro(MaximumImageSampleDistance, double, 1.0, 32.0);
+  vtkGetMacro(MaximumImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Interactive frames (allocated render time < 1 s) use InteractiveSampleDistance and adapt
+   * the image sample distance to the allocated time (default on, like VTK's CPU mapper).
+   * Still frames always use SampleDistance and ImageSampleDistance.
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /** Composite: stop a ray once its opacity reaches the threshold (default on, 0.99). */
+  vtkSetMacro(EarlyRayTermination, vtkTypeBool);
+  vtkGetMacro(EarlyRayTermination, vtkTypeBool);
+  vtkBooleanMacro(EarlyRayTermination, vtkTypeBool);
+  vtkSetClampMacro(EarlyRayTerminationThreshold, double, 0.5, 1.0);
+  vtkGetMacro(EarlyRayTerminationThreshold, double);
+  ///@}
+
+  ///@{
+  /** Threads for the tiles (0 = vtkSMPTools' default). The image does not depend on it. */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /** Raysum unit length in world units (0 = the smallest voxel spacing, the default). */
+  vtkSetClampMacro(AdditiveUnitDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(AdditiveUnitDistance, double);
+  ///@}
+
+  ///@{
+  /** Last frame: rays that met the volume, samples interpolated, and samples leaped. */
+  vtkGetMacro(LastNumberOfRays, vtkTypeInt64);
+  vtkGetMacro(LastNumberOfSamples, vtkTypeInt64);
+  vtkGetMacro(LastSamplesLeapedByOctree, vtkTypeInt64);
+  vtkGetMacro(LastSamplesLeapedByDistanceMap, vtkTypeInt64);
+  vtkGetMacro(LastSamplesLeapedByCellTable, vtkTypeInt64);
+  vtkGetMacro(LastSamplesInTransparentCells, vtkTypeInt64);
+  vtkGetMacro(LastNumberOfTerminatedRays, vtkTypeInt64);
+  /** Wall-clock seconds: the whole Render(), the ray casting alone, the structure rebuild. */
+  vtkGetMacro(LastRenderTime, double);
+  vtkGetMacro(LastCastTime, double);
+  vtkGetMacro(LastPrepareTime, double);
+  /** Image sample distance and sample distance the last frame used. */
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastSampleDistance, double);
+  ///@}
+
+  /**
+   * Renders the volume. Called by vtkVolume; not for direct use.
+   */
+  void Render(vtkRenderer* renderer, vtkVolume* volume) override;
+
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  /** Bounds of the input; a missing input is reported here (once per change of the mapper). */
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  using vtkVolumeMapper::GetBounds;
+
+protected:
+  vtkAccelVolumeRayCastMapper();
+  ~vtkAccelVolumeRayCastMapper() override;
+
+  /** The input is optional so a missing input gets this mapper's own clear error. */
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  int LeapMode = LEAP_OCTREE;
+  vtkTypeBool CellLeaping = 1;
+  int OctreeLeafSize = 4;
+  double SampleDistance = 1.0;
+  double InteractiveSampleDistance = 2.0;
+  double ImageSampleDistance = 1.0;
+  double MinimumImageSampleDistance = 1.0;
+  double MaximumImageSampleDistance = 10.0;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  vtkTypeBool EarlyRayTermination = 1;
+  double EarlyRayTerminationThreshold = 0.99;
+  int NumberOfThreads = 0;
+  double AdditiveUnitDistance = 0.0;
+
+  vtkTypeInt64 LastNumberOfRays = 0;
+  vtkTypeInt64 LastNumberOfSamples = 0;
+  vtkTypeInt64 LastSamplesLeapedByOctree = 0;
+  vtkTypeInt64 LastSamplesLeapedByDistanceMap = 0;
+  vtkTypeInt64 LastSamplesLeapedByCellTable = 0;
+  vtkTypeInt64 LastSamplesInTransparentCells = 0;
+  vtkTypeInt64 LastNumberOfTerminatedRays = 0;
+  double LastRenderTime = 0.0;
+  double LastCastTime = 0.0;
+  double LastPrepareTime = 0.0;
+  double LastImageSampleDistance = 1.0;
+  double LastSampleDistance = 1.0;
+  vtkTimeStamp MissingInputReportTime;
+
+private:
+  vtkAccelVolumeRayCastMapper(const vtkAccelVolumeRayCastMapper&) = delete;
+  void operator=(const vtkAccelVolumeRayCastMapper&) = delete;
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

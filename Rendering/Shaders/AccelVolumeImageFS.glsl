@@ -1,0 +1,19 @@
+//VTK::System::Dec
+// Shows the CPU ray caster's premultiplied RGBA image over the scene (the image already stops
+// at opaque geometry, so no depth test). With an image sample distance of 1 every fragment
+// reads its own texel centre exactly; larger distances interpolate bilinearly.
+//VTK::Output::Dec
+
+uniform sampler2D image;
+uniform vec2 viewportOrigin;
+uniform vec2 viewportSize;
+
+void main()
+{
+  vec4 colour = texture(image, (gl_FragCoord.xy - viewportOrigin) / viewportSize);
+  if (colour.a <= 0.0 && colour.r <= 0.0 && colour.g <= 0.0 && colour.b <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = colour;
+}

@@ -1,0 +1,465 @@
+// RayCastEngine: every leaping mode gives bit-identical images to plain ray casting, on random
+// volumes and transfer functions; results ignore the thread count; images agree with the CPU
+// reference oracles; bad arguments fail cleanly.
+#include "accelvolume/Phantoms.h"
+#include "accelvolume/RayCastEngine.h"
+#include "accelvolume/ReferenceComposite.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <thread>
+#include <vector>
+
+using namespace accelvolume;
+
+namespace
+{
+
+// Row-major 4x4 helpers to build VTK-like view and projection matrices.
+using Matrix = std::array<std::array<double, 4>, 4>;
+
+Matrix Multiply(const Matrix& a, const Matrix& b)
+{
+  Matrix m{};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      for (int k = 0; k < 4; ++k)
+        m[r][c] += a[r][k] * b[k][c];
+  return m;
+}
+
+Matrix Invert(const Matrix& m)
+{
+  // Gauss-Jordan with partial pivoting.
+  Matrix a = m;
+  Matrix inv{};
+  for (int i = 0; i < 4; ++i)
+    inv[i][i] = 1;
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[pivot][c]))
+        pivot = r;
+    std::swap(a[c], a[pivot]);
+    std::swap(inv[c], inv[pivot]);
+    const double d = a[c][c];
+    for (int k = 0; k < 4; ++k)
+    {
+      a[c][k] /= d;
+      inv[c][k] /= d;
+    }
+    for (int r = 0; r < 4; ++r)
+    {
+      if (r == c)
+        continue;
+      const double f = a[r][c];
+      for (int k = 0; k < 4; ++k)
+      {
+        a[r][k] -= f * a[c][k];
+        inv[r][k] -= f * inv[c][k];
+      }
+    }
+  }
+  return inv;
+}
+
+// A camera looking at `focal` from `position` (VTK conventions), as NDC -> world.
+RayCastView MakeView(const Camera& camera, int width, int height, double nearDistance,
+  double farDistance)
+{
+  const Vec3 forward = Normalize(camera.focalPoint - camera.position);
+  const Vec3 right = Normalize(Cross(forward, camera.viewUp));
+  const Vec3 up = Cross(right, forward);
+  Matrix view{};
+  const Vec3 rows[3] = { right, up, -forward };
+  for (int r = 0; r < 3; ++r)
+  {
+    view[r][0] = rows[r].x;
+    view[r][1] = rows[r].y;
+    view[r][2] = rows[r].z;
+    view[r][3] = -Dot(rows[r], camera.position);
+  }
+  view[3][3] = 1;
+  Matrix projection{};
+  const double aspect = static_cast<double>(width) / height;
+  const double n = nearDistance, f = farDistance;
+  if (camera.parallel)
+  {
+    const double s = camera.parallelScale;
+    projection[0][0] = 1.0 / (s * aspect);
+    projection[1][1] = 1.0 / s;
+    projection[2][2] = -2.0 / (f - n);
+    projection[2][3] = -(f + n) / (f - n);
+    projection[3][3] = 1;
+  }
+  else
+  {
+    const double t = 1.0 / std::tan(camera.viewAngleDegrees * 3.14159265358979 / 360.0);
+    projection[0][0] = t / aspect;
+    projection[1][1] = t;
+    projection[2][2] = -(f + n) / (f - n);
+    projection[2][3] = -2.0 * f * n / (f - n);
+    projection[3][2] = -1;
+  }
+  const Matrix clipToWorld = Invert(Multiply(projection, view));
+  RayCastView result;
+  result.width = width;
+  result.height = height;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      result.clipToWorld[r][c] = clipToWorld[r][c];
+  return result;
+}
+
+// Piecewise-linear transfer function with zero runs (so leaping has work to do).
+std::vector<float> RandomTable(std::mt19937& random, int size, bool opaqueStart)
+{
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> rgba(4 * size);
+  const int rampStart = opaqueStart ? 0 : static_cast<int>(size * (0.2f + 0.5f * unit(random)));
+  const int bandEnd = std::min(size, rampStart + static_cast<int>(size * (0.1f + 0.5f * unit(random))));
+  const float peak = 0.05f + 0.6f * unit(random);
+  for (int i = 0; i < size; ++i)
+  {
+    const float s = static_cast<float>(i) / (size - 1);
+    rgba[4 * i] = s;
+    rgba[4 * i + 1] = 1.0f - s;
+    rgba[4 * i + 2] = 0.5f + 0.5f * std::sin(9.0f * s);
+    float a = 0;
+    if (i >= rampStart && i < bandEnd)
+      a = peak * static_cast<float>(i - rampStart + 1) / (bandEnd - rampStart);
+    rgba[4 * i + 3] = a;
+  }
+  return rgba;
+}
+
+struct Scene
+{
+  std::vector<std::uint8_t> u8;
+  std::vector<std::uint16_t> u16;
+  std::vector<std::int16_t> s16;
+  std::vector<float> f32;
+  VolumeView view;
+  double range[2] = { 0, 1000 };
+};
+
+// The "blobs" phantom in the requested type, with range [0, 1000] scaled to the type.
+Scene MakeScene(ScalarType type, const int dims[3], double time)
+{
+  PhantomVolume phantom;
+  std::string error;
+  EXPECT_TRUE(GeneratePhantom("blobs", dims, time, phantom, error)) << error;
+  Scene scene;
+  scene.view.type = type;
+  std::copy(dims, dims + 3, scene.view.dims);
+  switch (type)
+  {
+    case ScalarType::UInt8:
+      for (float v : phantom.values)
+        scene.u8.push_back(static_cast<std::uint8_t>(std::lround(v * 0.255)));
+      scene.view.data = scene.u8.data();
+      scene.range[1] = 255;
+      break;
+    case ScalarType::UInt16:
+      for (float v : phantom.values)
+        scene.u16.push_back(static_cast<std::uint16_t>(std::lround(v * 4)));
+      scene.view.data = scene.u16.data();
+      scene.range[1] = 4000;
+      break;
+    case ScalarType::Int16:
+      for (float v : phantom.values)
+        scene.s16.push_back(static_cast<std::int16_t>(std::lround(v * 2) - 1000));
+      scene.view.data = scene.s16.data();
+      scene.range[0] = -1000;
+      scene.range[1] = 1000;
+      break;
+    default:
+      scene.f32 = phantom.values;
+      scene.view.data = scene.f32.data();
+      break;
+  }
+  return scene;
+}
+
+Camera RandomCamera(std::mt19937& random, const int dims[3], bool parallel)
+{
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307);
+  std::uniform_real_distribution<double> elevation(-1.2, 1.2);
+  const Vec3 centre{ (dims[0] - 1) / 2.0, (dims[1] - 1) / 2.0, (dims[2] - 1) / 2.0 };
+  const double radius = 2.2 * std::max({ dims[0], dims[1], dims[2] });
+  const double a = angle(random), e = elevation(random);
+  Camera camera;
+  camera.focalPoint = centre;
+  camera.position = centre +
+    Vec3{ radius * std::cos(e) * std::cos(a), radius * std::cos(e) * std::sin(a), radius * std::sin(e) };
+  camera.viewUp = { 0, 0, 1 };
+  camera.viewAngleDegrees = 30;
+  camera.parallel = parallel;
+  camera.parallelScale = 0.6 * std::max({ dims[0], dims[1], dims[2] });
+  return camera;
+}
+
+RayCastSettings BaseSettings(const int dims[3], RayCastBlend blend)
+{
+  RayCastSettings settings;
+  settings.blend = blend;
+  settings.sampleDistance = 0.7;
+  settings.octreeLeafSize = 4;
+  settings.tileSize = 8;
+  settings.regions.push_back({ { 0, 0, 0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 } });
+  return settings;
+}
+
+struct Result
+{
+  std::vector<float> rgba;
+  RayCastCounters counters;
+};
+
+Result Cast(const Scene& scene, const RayCastTransfer& transfer, const RayCastLighting& lighting,
+  const RayCastView& view, const RayCastSettings& settings,
+  const ParallelFor& parallel = SerialFor)
+{
+  RayCaster caster;
+  Result result;
+  std::string error;
+  EXPECT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+    view, settings, parallel, result.rgba, result.counters, error))
+    << error;
+  return result;
+}
+
+// Hands [0, count) out in chunks of `chunk` to `threads` threads.
+ParallelFor ThreadedFor(int threads, std::size_t chunk)
+{
+  return [threads, chunk](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
+    std::atomic<std::size_t> next{ 0 };
+    auto work = [&]()
+    {
+      for (std::size_t begin = next.fetch_add(chunk); begin < count; begin = next.fetch_add(chunk))
+        body(begin, std::min(count, begin + chunk));
+    };
+    std::vector<std::thread> workers;
+    for (int t = 1; t < threads; ++t)
+      workers.emplace_back(work);
+    work();
+    for (std::thread& w : workers)
+      w.join();
+  };
+}
+
+bool Identical(const std::vector<float>& a, const std::vector<float>& b)
+{
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+}
+
+} // namespace
+
+TEST(RayCastEngine, LeapingIsPixelIdenticalOnRandomVolumesAndTransferFunctions)
+{
+  std::mt19937 random(20261125);
+  const ScalarType types[] = { ScalarType::UInt8, ScalarType::UInt16, ScalarType::Int16,
+    ScalarType::Float32 };
+  std::uint64_t leapedOctree = 0, leapedDistance = 0, leapedCell = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const int dims[3] = { 20 + trial % 5 * 3, 17 + trial % 3 * 5, 15 + trial % 4 * 4 };
+    const Scene scene = MakeScene(types[trial % 4], dims, 0.1 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    transfer.opacityUnitDistance = 2.0;
+    RayCastLighting lighting;
+    const bool shaded = trial % 3 == 1;
+    if (shaded)
+    {
+      lighting.shade = true;
+      lighting.lightCount = 1;
+      lighting.directions[0][2] = 1;
+      lighting.colours[0][0] = lighting.colours[0][1] = lighting.colours[0][2] = 1;
+    }
+    const RayCastBlend blend = trial % 4 == 3 ? RayCastBlend::Additive : RayCastBlend::Composite;
+    RayCastSettings settings = BaseSettings(dims, blend);
+    settings.earlyTermination = trial % 2 == 0;
+    const RayCastView view = MakeView(RandomCamera(random, dims, trial % 5 == 2), 37, 29, 1.0, 500.0);
+    settings.leap = LeapMode::None;
+    settings.cellLeap = false;
+    const Result plain = Cast(scene, transfer, lighting, view, settings);
+    for (LeapMode leap : { LeapMode::None, LeapMode::Octree, LeapMode::DistanceMap })
+    {
+      for (bool cell : { false, true })
+      {
+        settings.leap = leap;
+        settings.cellLeap = cell;
+        const Result leaped = Cast(scene, transfer, lighting, view, settings);
+        EXPECT_TRUE(Identical(plain.rgba, leaped.rgba))
+          << "trial " << trial << " leap " << static_cast<int>(leap) << " cell " << cell;
+        EXPECT_LE(leaped.counters.samples, plain.counters.samples);
+        EXPECT_EQ(leaped.counters.rays, plain.counters.rays);
+        leapedOctree += leaped.counters.leapedOctree;
+        leapedDistance += leaped.counters.leapedDistance;
+        leapedCell += leaped.counters.leapedCell;
+      }
+    }
+  }
+  // The comparison above must have exercised every mechanism.
+  EXPECT_GT(leapedOctree, 1000u);
+  EXPECT_GT(leapedDistance, 1000u);
+  EXPECT_GT(leapedCell, 100u);
+}
+
+TEST(RayCastEngine, ExtremeLeapingIsExact)
+{
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    const int dims[3] = { 24, 21, 19 };
+    const Scene scene = MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::Float32, dims, 0.3 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 128, true);
+    RayCastSettings settings =
+      BaseSettings(dims, trial % 3 == 2 ? RayCastBlend::Minimum : RayCastBlend::Maximum);
+    const RayCastView view = MakeView(RandomCamera(random, dims, trial == 4), 31, 33, 1.0, 500.0);
+    settings.leap = LeapMode::None;
+    const Result plain = Cast(scene, transfer, RayCastLighting(), view, settings);
+    settings.leap = LeapMode::Octree;
+    const Result leaped = Cast(scene, transfer, RayCastLighting(), view, settings);
+    EXPECT_TRUE(Identical(plain.rgba, leaped.rgba)) << "trial " << trial;
+    if (settings.blend == RayCastBlend::Maximum)
+    {
+      EXPECT_GT(leaped.counters.leapedOctree, 0u);
+    }
+  }
+}
+
+TEST(RayCastEngine, ResultsIgnoreTheThreadCount)
+{
+  std::mt19937 random(3);
+  const int dims[3] = { 32, 28, 24 };
+  const Scene scene = MakeScene(ScalarType::UInt16, dims, 0.2);
+  RayCastTransfer transfer;
+  transfer.rgba = RandomTable(random, 512, false);
+  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  settings.leap = LeapMode::Octree;
+  const RayCastView view = MakeView(RandomCamera(random, dims, false), 61, 47, 1.0, 500.0);
+  const Result serial = Cast(scene, transfer, RayCastLighting(), view, settings);
+  for (int threads : { 2, 3, 7 })
+  {
+    for (std::size_t chunk : { std::size_t(1), std::size_t(5) })
+    {
+      const Result parallel =
+        Cast(scene, transfer, RayCastLighting(), view, settings, ThreadedFor(threads, chunk));
+      EXPECT_TRUE(Identical(serial.rgba, parallel.rgba)) << threads << " threads";
+      EXPECT_EQ(serial.counters.samples, parallel.counters.samples);
+      EXPECT_EQ(serial.counters.leapedOctree, parallel.counters.leapedOctree);
+    }
+  }
+}
+
+TEST(RayCastEngine, CompositeAgreesWithTheReferenceOracle)
+{
+  const int dims[3] = { 30, 26, 22 };
+  const Scene scene = MakeScene(ScalarType::Float32, dims, 0.0);
+  std::mt19937 random(11);
+  RayCastTransfer transfer;
+  transfer.rgba = RandomTable(random, 256, false);
+  transfer.opacityUnitDistance = 1.0;
+  Camera camera = RandomCamera(random, dims, false);
+  const int width = 40, height = 36;
+  RayCastView view = MakeView(camera, width, height, 1.0, 500.0);
+  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  settings.sampleDistance = 0.05;
+  settings.earlyTermination = false;
+  const Result ours = Cast(scene, transfer, RayCastLighting(), view, settings);
+
+  ScalarVolume volume;
+  std::copy(dims, dims + 3, volume.dims);
+  for (float v : scene.f32)
+    volume.values.push_back(v / 1000.0f);
+  std::vector<float> colours;
+  OpacityTable opacity;
+  for (int i = 0; i < 256; ++i)
+  {
+    colours.insert(colours.end(), &transfer.rgba[4 * i], &transfer.rgba[4 * i] + 3);
+    opacity.values.push_back(transfer.rgba[4 * i + 3]);
+  }
+  CompositeOptions options;
+  options.stepWorld = 0.05;
+  // The oracle's rays start at the camera; ours at the near plane (1 unit ahead): same rays.
+  const std::vector<CompositePixel> reference = RenderReferenceComposite(volume,
+    settings.regions, {}, colours, opacity, camera, width, height, options);
+  double total = 0;
+  double worst = 0;
+  for (std::size_t p = 0; p < reference.size(); ++p)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      const double d = std::abs(reference[p].rgba[c] - ours.rgba[4 * p + c]);
+      total += d;
+      worst = std::max(worst, d);
+    }
+  }
+  EXPECT_LT(total / (4.0 * reference.size()), 2.0e-3);
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST(RayCastEngine, DepthStopsTheRays)
+{
+  const int dims[3] = { 24, 24, 24 };
+  const Scene scene = MakeScene(ScalarType::UInt8, dims, 0.0);
+  RayCastTransfer transfer;
+  transfer.rgba.assign(4 * 4, 0.5f);
+  Camera camera;
+  camera.position = { 11.5, 11.5, 80 };
+  camera.focalPoint = { 11.5, 11.5, 11.5 };
+  RayCastView view = MakeView(camera, 16, 16, 1.0, 200.0);
+  std::vector<float> depth(16 * 16, 1.0f);
+  depth[0] = 0.0f; // geometry on the near plane hides the volume at pixel 0
+  view.depth = &depth;
+  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Maximum);
+  const Result result = Cast(scene, transfer, RayCastLighting(), view, settings);
+  EXPECT_EQ(result.rgba[3], 0.0f);
+  EXPECT_GT(result.rgba[4 * (8 * 16 + 8) + 3], 0.0f);
+}
+
+TEST(RayCastEngine, BadArgumentsFail)
+{
+  const int dims[3] = { 4, 4, 4 };
+  const Scene scene = MakeScene(ScalarType::UInt8, dims, 0.0);
+  RayCastTransfer transfer;
+  transfer.rgba.assign(8, 1.0f);
+  std::mt19937 random(1);
+  RayCastView view = MakeView(RandomCamera(random, dims, false), 8, 8, 1, 100);
+  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  RayCaster caster;
+  std::vector<float> rgba;
+  RayCastCounters counters;
+  std::string error;
+  VolumeView empty;
+  EXPECT_FALSE(caster.Render(empty, 0, 1, 1, transfer, 1, RayCastLighting(), view, settings,
+    SerialFor, rgba, counters, error));
+  EXPECT_FALSE(error.empty());
+  RayCastTransfer shortTable;
+  shortTable.rgba.assign(4, 1.0f);
+  EXPECT_FALSE(caster.Render(scene.view, 0, 255, 1, shortTable, 1, RayCastLighting(), view,
+    settings, SerialFor, rgba, counters, error));
+  settings.sampleDistance = 0;
+  EXPECT_FALSE(caster.Render(scene.view, 0, 255, 1, transfer, 1, RayCastLighting(), view, settings,
+    SerialFor, rgba, counters, error));
+  settings.sampleDistance = 1;
+  settings.octreeLeafSize = 3;
+  EXPECT_FALSE(caster.Render(scene.view, 0, 255, 1, transfer, 1, RayCastLighting(), view, settings,
+    SerialFor, rgba, counters, error));
+  std::vector<float> wrongDepth(3, 1.0f);
+  view.depth = &wrongDepth;
+  settings.octreeLeafSize = 4;
+  EXPECT_FALSE(caster.Render(scene.view, 0, 255, 1, transfer, 1, RayCastLighting(), view, settings,
+    SerialFor, rgba, counters, error));
+}
