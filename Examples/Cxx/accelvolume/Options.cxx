@@ -172,8 +172,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
       [&](const std::string& f)
       {
         options.mapper = ParseChoice<MapperKind>(f, reader.Value(f),
-          { { "slice", MapperKind::Slice }, { "vtk-gpu", MapperKind::VTKGPU },
-            { "vtk-fixed", MapperKind::VTKFixed } });
+          { { "slice", MapperKind::Slice }, { "raycast", MapperKind::RayCast },
+            { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed } });
       } },
     { "--blend",
       [&](const std::string& f)
@@ -286,22 +286,21 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         }
       } },
     { "--jitter",
-      [&](const std::string& f)
-      {
+      [&](const std::string& f) {
         options.jitter =
           ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
       } },
     { "--gradients",
       [&](const std::string& f)
       {
-        options.precomputeGradients = ParseChoice<bool>(
-          f, reader.Value(f), { { "texture", true }, { "on-the-fly", false } });
+        options.precomputeGradients =
+          ParseChoice<bool>(f, reader.Value(f), { { "texture", true }, { "on-the-fly", false } });
       } },
     { "--ess",
       [&](const std::string& f)
       {
-        options.emptySpaceSkipping = ParseChoice<int>(f, reader.Value(f),
-          { { "none", 0 }, { "fragment", 1 }, { "octree", 2 }, { "both", 3 } });
+        options.emptySpaceSkipping = ParseChoice<int>(
+          f, reader.Value(f), { { "none", 0 }, { "fragment", 1 }, { "octree", 2 }, { "both", 3 } });
       } },
     { "--slab-samples",
       [&](const std::string& f)
@@ -330,6 +329,41 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         {
           throw Usage("--slices must be between 2 and 65536");
         }
+      } },
+    { "--leap",
+      [&](const std::string& f)
+      {
+        options.leap = ParseChoice<LeapKind>(f, reader.Value(f),
+          { { "none", LeapKind::None }, { "octree", LeapKind::Octree },
+            { "distance", LeapKind::DistanceMap } });
+        options.haveLeap = true;
+      } },
+    { "--cell-leap",
+      [&](const std::string& f)
+      {
+        options.cellLeap =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+        options.haveCellLeap = true;
+      } },
+    { "--threads",
+      [&](const std::string& f)
+      {
+        options.threads = reader.Integers(f, 1)[0];
+        if (options.threads < 0 || options.threads > 1024)
+        {
+          throw Usage("--threads must be between 0 and 1024 (0 = the mapper's default)");
+        }
+        options.haveThreads = true;
+      } },
+    { "--image-sample-distance",
+      [&](const std::string& f)
+      {
+        options.imageSampleDistance = reader.Numbers(f, 1)[0];
+        if (options.imageSampleDistance < 1 || options.imageSampleDistance > 32)
+        {
+          throw Usage("--image-sample-distance must be between 1 and 32");
+        }
+        options.haveImageSampleDistance = true;
       } },
     { "--frames",
       [&](const std::string& f)
@@ -399,6 +433,22 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
     throw Usage("--mapper vtk-fixed does not support --blend average (VTK's fixed-point mapper "
                 "has composite, MIP, MinIP and additive only)");
   }
+  const bool rayCast = options.mapper == MapperKind::RayCast;
+  const bool cpu = rayCast || options.mapper == MapperKind::VTKFixed;
+  // Mapper-specific flags that would silently do nothing elsewhere are usage errors.
+  const auto onlyFor = [&](bool given, const char* flag, bool valid, const char* mappers)
+  {
+    if (given && !valid)
+    {
+      throw Usage(std::string(flag) + " applies only to " + mappers + ", not --mapper " +
+        MapperName(options.mapper));
+    }
+  };
+  onlyFor(options.haveLeap, "--leap", rayCast, "--mapper raycast");
+  onlyFor(options.haveCellLeap, "--cell-leap", rayCast, "--mapper raycast");
+  onlyFor(options.haveThreads, "--threads", cpu, "the CPU mappers (raycast, vtk-fixed)");
+  onlyFor(options.haveImageSampleDistance, "--image-sample-distance", cpu,
+    "the CPU mappers (raycast, vtk-fixed)");
   if (options.haveSampleDistance && options.slices > 0)
   {
     throw Usage("--sample-distance and --slices are mutually exclusive");
@@ -418,6 +468,8 @@ const char* MapperName(MapperKind mapper)
   {
     case MapperKind::Slice:
       return "slice";
+    case MapperKind::RayCast:
+      return "raycast";
     case MapperKind::VTKGPU:
       return "vtk-gpu";
     case MapperKind::VTKFixed:
@@ -440,6 +492,20 @@ const char* BlendName(BlendKind blend)
       return "average";
     case BlendKind::Composite:
       return "composite";
+  }
+  return "unknown";
+}
+
+const char* LeapName(LeapKind leap)
+{
+  switch (leap)
+  {
+    case LeapKind::None:
+      return "none";
+    case LeapKind::Octree:
+      return "octree";
+    case LeapKind::DistanceMap:
+      return "distance";
   }
   return "unknown";
 }

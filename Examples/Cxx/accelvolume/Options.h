@@ -30,8 +30,17 @@ public:
 enum class MapperKind
 {
   Slice,   // vtkAccelVolumeSliceMapper
+  RayCast, // vtkAccelVolumeRayCastMapper (CPU)
   VTKGPU,  // vtkGPUVolumeRayCastMapper
   VTKFixed // vtkFixedPointVolumeRayCastMapper
+};
+
+// vtkAccelVolumeRayCastMapper::LEAP_* (empty-space leaping of --mapper raycast).
+enum class LeapKind
+{
+  None,
+  Octree,
+  DistanceMap
 };
 
 enum class BlendKind
@@ -45,6 +54,7 @@ enum class BlendKind
 
 const char* MapperName(MapperKind mapper);
 const char* BlendName(BlendKind blend);
+const char* LeapName(LeapKind leap);
 
 struct Options
 {
@@ -77,7 +87,7 @@ struct Options
   bool boundaryRerender = true;
   int slabSamples = 0; // 0 = the mapper's default
   bool earlyRayTermination = true;
-  int ertInterval = 0; // 0 = the mapper's default
+  int ertInterval = 0;        // 0 = the mapper's default
   int emptySpaceSkipping = 3; // vtkAccelVolumeSliceMapper::SKIP_* (both by default)
   bool precomputeGradients = true;
   bool jitter = false;
@@ -85,6 +95,16 @@ struct Options
   double sampleDistance = 0;
   int slices = 0; // 0 = not given
   int frames = 1;
+  // --mapper raycast only (the have* flags let the parser reject them for other mappers).
+  bool haveLeap = false;
+  LeapKind leap = LeapKind::Octree;
+  bool haveCellLeap = false;
+  bool cellLeap = true;
+  // CPU mappers only (raycast, vtk-fixed): 0 = the mapper's default.
+  int threads = 0;
+  bool haveThreads = false;
+  double imageSampleDistance = 1; // pixels per ray along each image axis
+  bool haveImageSampleDistance = false;
   std::string outPath;
   std::string statsPath; // "-" = stdout
   std::string gl;        // as given ("" = automatic)

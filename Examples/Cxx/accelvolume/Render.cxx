@@ -2,6 +2,7 @@
 #include "Render.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
+#include <vtkAccelVolumeRayCastMapper.h>
 #include <vtkAccelVolumeSliceMapper.h>
 
 #include <vtkCamera.h>
@@ -194,6 +195,32 @@ double Milliseconds(std::chrono::steady_clock::duration duration)
   return std::chrono::duration<double, std::milli>(duration).count();
 }
 
+// The ray caster's settings as it holds them and its last frame's counters and timings.
+void ReadRayCastResult(vtkAccelVolumeRayCastMapper* mapper, RenderResult& result)
+{
+  RayCastResult& out = result.rayCast;
+  result.rayCastUsed = true;
+  const int leap = mapper->GetLeapMode();
+  out.leap = leap == vtkAccelVolumeRayCastMapper::LEAP_NONE  ? LeapKind::None
+    : leap == vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP ? LeapKind::DistanceMap
+                                                             : LeapKind::Octree;
+  out.cellLeap = mapper->GetCellLeaping() != 0;
+  out.threads = mapper->GetNumberOfThreads();
+  out.octreeLeafSize = mapper->GetOctreeLeafSize();
+  out.imageSampleDistance = mapper->GetLastImageSampleDistance();
+  out.rays = mapper->GetLastNumberOfRays();
+  out.samples = mapper->GetLastNumberOfSamples();
+  out.leapedOctree = mapper->GetLastSamplesLeapedByOctree();
+  out.leapedDistanceMap = mapper->GetLastSamplesLeapedByDistanceMap();
+  out.leapedCellTable = mapper->GetLastSamplesLeapedByCellTable();
+  out.transparentCellSamples = mapper->GetLastSamplesInTransparentCells();
+  out.terminatedRays = mapper->GetLastNumberOfTerminatedRays();
+  out.renderMs = 1000 * mapper->GetLastRenderTime();
+  out.castMs = 1000 * mapper->GetLastCastTime();
+  out.prepareMs = 1000 * mapper->GetLastPrepareTime();
+  result.sampleDistance = mapper->GetLastSampleDistance();
+}
+
 } // namespace
 
 void CheckCrop(const Options& options, vtkImageData* image)
@@ -265,6 +292,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
 
   vtkSmartPointer<vtkVolumeMapper> mapper;
   vtkAccelVolumeSliceMapper* sliceMapper = nullptr;
+  vtkAccelVolumeRayCastMapper* rayCastMapper = nullptr;
   switch (options.mapper)
   {
     case MapperKind::Slice:
@@ -291,6 +319,32 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       mapper = slice;
       break;
     }
+    case MapperKind::RayCast:
+    {
+      auto rayCast = vtkSmartPointer<vtkAccelVolumeRayCastMapper>::New();
+      // Deterministic frames: always the still-frame sample distances, whatever the frame time.
+      rayCast->SetAutoAdjustSampleDistances(0);
+      rayCast->SetSampleDistance(result.sampleDistance);
+      rayCast->SetInteractiveSampleDistance(result.sampleDistance);
+      rayCast->SetImageSampleDistance(options.imageSampleDistance);
+      rayCast->SetEarlyRayTermination(options.earlyRayTermination);
+      rayCast->SetAdditiveUnitDistance(result.raysumUnit);
+      rayCast->SetNumberOfThreads(options.threads);
+      // --leap and --cell-leap default to the mapper's own defaults (octree, on).
+      if (options.haveCellLeap)
+      {
+        rayCast->SetCellLeaping(options.cellLeap);
+      }
+      if (options.haveLeap)
+      {
+        rayCast->SetLeapMode(options.leap == LeapKind::None ? vtkAccelVolumeRayCastMapper::LEAP_NONE
+            : options.leap == LeapKind::Octree ? vtkAccelVolumeRayCastMapper::LEAP_OCTREE
+                                               : vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP);
+      }
+      rayCastMapper = rayCast;
+      mapper = rayCast;
+      break;
+    }
     case MapperKind::VTKGPU:
     {
       auto gpu = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
@@ -305,7 +359,11 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       fixed->SetAutoAdjustSampleDistances(0);
       fixed->SetSampleDistance(static_cast<float>(result.sampleDistance));
       fixed->SetInteractiveSampleDistance(static_cast<float>(result.sampleDistance));
-      fixed->SetImageSampleDistance(1.0f);
+      fixed->SetImageSampleDistance(static_cast<float>(options.imageSampleDistance));
+      if (options.threads > 0)
+      {
+        fixed->SetNumberOfThreads(options.threads);
+      }
       mapper = fixed;
       break;
     }
@@ -383,6 +441,10 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     return ms;
   };
   result.firstFrameMs = renderFrame();
+  if (rayCastMapper)
+  {
+    result.rayCast.firstPrepareMs = 1000 * rayCastMapper->GetLastPrepareTime();
+  }
   for (int frame = 0; frame < options.frames; ++frame)
   {
     if (frame > 0)
@@ -418,6 +480,10 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   else if (headless)
   {
     rendererName = headless->GetOpenGLRendererString();
+  }
+  if (rayCastMapper)
+  {
+    ReadRayCastResult(rayCastMapper, result);
   }
   result.glRenderer =
     rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);

@@ -38,6 +38,27 @@ private:
   State* Data;
 };
 
+// --mapper raycast: the mapper's settings and what it did in the last frame.
+struct RayCastResult
+{
+  LeapKind leap = LeapKind::Octree;
+  bool cellLeap = true;
+  int threads = 0; // 0 = vtkSMPTools' default
+  int octreeLeafSize = 0;
+  double imageSampleDistance = 1;
+  long long rays = 0;
+  long long samples = 0;
+  long long leapedOctree = 0;
+  long long leapedDistanceMap = 0;
+  long long leapedCellTable = 0;
+  long long transparentCellSamples = 0;
+  long long terminatedRays = 0;
+  double renderMs = 0;
+  double castMs = 0;
+  double prepareMs = 0;
+  double firstPrepareMs = 0; // the warm-up frame, which builds the leaping structures
+};
+
 struct RenderResult
 {
   double firstFrameMs = 0;
@@ -46,7 +67,7 @@ struct RenderResult
   std::string glBackend = "unknown";
   double window[2] = { 0, 1 }; // transfer-function window actually used
   double scalarRange[2] = { 0, 0 };
-  double raysumUnit = 0;            // slice mapper's AdditiveUnitDistance
+  double raysumUnit = 0;            // slice and raycast mappers' AdditiveUnitDistance
   double sampleDistance = 0;        // world distance between samples / slices actually used
   std::string sampleDistanceSource; // "min-spacing", "flag" or "slices"
   int slices = -1;                  // slice mapper's last slice count; -1 for other mappers
@@ -57,6 +78,8 @@ struct RenderResult
   double proxyAreaFraction = 1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping
   AppliedTransferFunction transferFunction;    // shading and lighting actually set
+  bool rayCastUsed = false;
+  RayCastResult rayCast; // when rayCastUsed
 };
 
 // Throws CliError(ExitUsage) when the crop box lies outside the volume or is inverted.

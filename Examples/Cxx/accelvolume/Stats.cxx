@@ -80,6 +80,31 @@ FrameStatistics Statistics(std::vector<double> ms)
   return statistics;
 }
 
+// The "raycast" object: the ray caster's settings and last-frame counters, or null.
+std::string RayCastObject(const RenderResult& result)
+{
+  if (!result.rayCastUsed)
+  {
+    return "null";
+  }
+  const RayCastResult& r = result.rayCast;
+  std::ostringstream text;
+  text << "{\"leap\": " << JsonString(LeapName(r.leap))
+       << ", \"cell_leap\": " << (r.cellLeap ? "true" : "false") << ", \"threads\": " << r.threads
+       << ", \"octree_leaf_size\": " << r.octreeLeafSize
+       << ", \"image_sample_distance\": " << Number(r.imageSampleDistance)
+       << ",\n    \"rays\": " << r.rays << ", \"samples\": " << r.samples
+       << ", \"leaped_octree\": " << r.leapedOctree
+       << ", \"leaped_distance_map\": " << r.leapedDistanceMap
+       << ", \"leaped_cell_table\": " << r.leapedCellTable
+       << ", \"transparent_cell_samples\": " << r.transparentCellSamples
+       << ", \"terminated_rays\": " << r.terminatedRays
+       << ",\n    \"render_ms\": " << Number(r.renderMs) << ", \"cast_ms\": " << Number(r.castMs)
+       << ", \"prepare_ms\": " << Number(r.prepareMs)
+       << ", \"first_prepare_ms\": " << Number(r.firstPrepareMs) << "}";
+  return text.str();
+}
+
 std::string TypeName(vtkImageData* image)
 {
   // DescribeVolume gives "XxYxZ type"; the type is the part after the space.
@@ -137,6 +162,7 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
   const double dimsDouble[3] = { double(dims[0]), double(dims[1]), double(dims[2]) };
   const bool phantom = options.volume.inputPath.empty();
   const std::string input = phantom ? options.volume.phantom : options.volume.inputPath;
+  const bool cpu = options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed;
   std::string frameList;
   for (std::size_t i = 0; i < result.frameMs.size() && i < 10000; ++i)
   {
@@ -166,7 +192,10 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"scalar_range\": " << Array(result.scalarRange, 2) << ",\n"
          << "  \"window\": " << Array(result.window, 2) << ",\n"
          << "  \"raysum_unit\": "
-         << (options.mapper == MapperKind::Slice ? Number(result.raysumUnit) : "null") << ",\n"
+         << (options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast
+                ? Number(result.raysumUnit)
+                : "null")
+         << ",\n"
          << "  \"sample_distance\": " << Number(result.sampleDistance) << ",\n"
          << "  \"sample_distance_source\": " << JsonString(result.sampleDistanceSource) << ",\n"
          << "  \"slices\": " << (result.slices >= 0 ? std::to_string(result.slices) : "null")
@@ -203,6 +232,10 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"background\": " << Array(options.background, 3) << ",\n"
          << "  \"out\": " << (options.outPath.empty() ? "null" : JsonString(options.outPath))
          << ",\n"
+         << "  \"threads\": " << (cpu ? std::to_string(options.threads) : "null") << ",\n"
+         << "  \"image_sample_distance\": " << (cpu ? Number(options.imageSampleDistance) : "null")
+         << ",\n"
+         << "  \"raycast\": " << RayCastObject(result) << ",\n"
          << "  \"vtk_warnings\": " << warnings << "\n"
          << "}\n";
 }
@@ -222,6 +255,12 @@ std::string Summary(const Options& options, vtkImageData* image, const RenderRes
   if (result.slices >= 0)
   {
     text << ", " << result.slices << " slices";
+  }
+  if (result.rayCastUsed)
+  {
+    text << ", leap " << LeapName(result.rayCast.leap) << ", cell leap "
+         << (result.rayCast.cellLeap ? "on" : "off") << ", " << result.rayCast.samples
+         << " samples";
   }
   text << ", " << result.glBackend << " / " << result.glRenderer;
   if (!options.outPath.empty())
