@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -384,9 +385,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
       internals.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
       error);
   };
+  // More threads than cores only adds contention (and TBB refuses them with a warning).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (this->NumberOfThreads > 0)
   {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads }, cast);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ std::min(this->NumberOfThreads, cores) }, cast);
   }
   else
   {

@@ -126,7 +126,10 @@ public:
   ///@}
 
   ///@{
-  /** Threads for the tiles (0 = vtkSMPTools' default). The image does not depend on it. */
+  /**
+   * Threads for the tiles (0 = vtkSMPTools' default; more than the machine's cores are capped).
+   * The image does not depend on it.
+   */
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
   ///@}

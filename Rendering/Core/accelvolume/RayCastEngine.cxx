@@ -263,6 +263,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     counters.leapedCell += c.leapedCell;
     counters.leapedEmptyCell += c.leapedEmptyCell;
     counters.terminatedRays += c.terminatedRays;
+    counters.octreeLeaps += c.octreeLeaps;
+    counters.distanceLeaps += c.distanceLeaps;
   }
   return true;
 }

@@ -104,6 +104,8 @@ struct RayCastCounters
   std::uint64_t leapedCell = 0;      // semi-transparent cell samples skipped by the MC table
   std::uint64_t leapedEmptyCell = 0; // samples in all-transparent cells skipped by the table
   std::uint64_t terminatedRays = 0;  // rays closed by early ray termination
+  std::uint64_t octreeLeaps = 0;     // octree leaps taken (each skips >= 1 sample)
+  std::uint64_t distanceLeaps = 0;   // distance-map leaps taken
 };
 
 class RayCaster

@@ -240,6 +240,10 @@ public:
     if (this->Frame.useOctree)
     {
       const MinMaxOctree& octree = *this->Frame.octree;
+      while ((1 << this->LeafShift) < octree.GetLeafSize())
+      {
+        ++this->LeafShift;
+      }
       this->Template.Build(maximumStep, octree.GetLeafSize() << octree.GetDepth());
     }
     std::size_t at = 0;
@@ -272,37 +276,55 @@ private:
   }
 
   // Samples after the current one that stay in the largest node around p that the predicate
-  // accepts, or -1 when the leaf itself is not accepted.
+  // accepts, or -1 when the leaf itself is not accepted. Inline integer arithmetic (no Morton
+  // decode, no bounds-checked queries): this runs once per sample while the ray is in
+  // non-empty leaves.
   template <typename Accept>
   std::int64_t OctreeLeap(const double p[3], const Vec3& step, Accept&& accept)
   {
     const MinMaxOctree& octree = *this->Frame.octree;
-    const int leaf = octree.GetLeafSize();
     const int* grid = octree.GetLevel(0).gridSize;
-    std::uint32_t c[3];
+    int c[3];
     for (int a = 0; a < 3; ++a)
     {
-      const double q = std::floor(p[a] / leaf);
-      c[a] = static_cast<std::uint32_t>(q > 0 ? (q < grid[a] - 1 ? q : grid[a] - 1) : 0);
+      const int voxel = p[a] > 0 ? static_cast<int>(p[a]) : 0;
+      c[a] = std::min(voxel >> this->LeafShift, grid[a] - 1);
     }
-    const std::uint64_t code = MortonEncode(c[0], c[1], c[2]);
-    if (code == this->LastRejectedLeaf)
+    if (c[0] == this->RejectedLeaf[0] && c[1] == this->RejectedLeaf[1] &&
+      c[2] == this->RejectedLeaf[2])
     {
       return -1;
     }
+    const std::uint64_t code = MortonEncode(static_cast<std::uint32_t>(c[0]),
+      static_cast<std::uint32_t>(c[1]), static_cast<std::uint32_t>(c[2]));
     if (!accept(0, code))
     {
-      this->LastRejectedLeaf = code;
+      std::copy(c, c + 3, this->RejectedLeaf);
       return -1;
     }
     int level = 0;
-    while (level < octree.GetDepth() && accept(level + 1, code >> (3 * (level + 1))))
+    const int depth = octree.GetDepth();
+    while (level < depth && accept(level + 1, code >> (3 * (level + 1))))
     {
       ++level;
     }
-    const Box box = octree.NodeBox(level, code >> (3 * level));
+    // The node's index-space box [i * span, (i + 1) * span] clamped to the volume.
+    const int* dims = this->Frame.volume.dims;
+    const int shift = this->LeafShift + level;
+    Box box;
+    double* lower[3] = { &box.lower.x, &box.lower.y, &box.lower.z };
+    double* upper[3] = { &box.upper.x, &box.upper.y, &box.upper.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int64_t first = (static_cast<std::int64_t>(c[a] >> level)) << shift;
+      *lower[a] = static_cast<double>(first);
+      *upper[a] = static_cast<double>(
+        std::min<std::int64_t>(first + (std::int64_t(1) << shift), std::max(dims[a] - 1, 0)));
+    }
     return this->Template.StepsInside(box, Vec3{ p[0], p[1], p[2] }, step);
   }
+
+  void ForgetRejectedLeaf() { this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1; }
 
   void CastRay(const PixelRay& pixel, float* out)
   {
@@ -342,7 +364,7 @@ private:
     const bool distance = leapTransparent && this->Frame.useDistance;
     const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
     const MinMaxOctree* tree = this->Frame.octree;
-    this->LastRejectedLeaf = ~std::uint64_t(0);
+    this->ForgetRejectedLeaf();
     SampleCell cell;
     for (const Interval& interval : this->RayIntervals)
     {
@@ -356,11 +378,13 @@ private:
         if (octree)
         {
           const std::int64_t more = this->OctreeLeap(p, step,
-            [tree](int level, std::uint64_t index) { return tree->IsTransparent(level, index); });
+            [tree](int level, std::uint64_t index)
+            { return tree->GetTransparentFlags(level)[index] != 0; });
           if (more >= 0)
           {
             const std::int64_t skipped = std::min(more + 1, count - k);
             this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+            ++this->Counters.octreeLeaps;
             k += skipped - 1;
             continue;
           }
@@ -374,6 +398,7 @@ private:
             const auto more = static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
             const std::int64_t skipped = std::min(more + 1, count - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
+            ++this->Counters.distanceLeaps;
             k += skipped - 1;
             continue;
           }
@@ -484,7 +509,7 @@ private:
     const IndexRay& ray = pixel.index;
     const double h = this->Settings.sampleDistance;
     const Vec3 step = ray.direction * h;
-    this->LastRejectedLeaf = ~std::uint64_t(0);
+    this->ForgetRejectedLeaf();
     for (const Interval& interval : this->RayIntervals)
     {
       const std::int64_t count =
@@ -521,7 +546,7 @@ private:
         if (!hit || (maximum ? value > extreme : value < extreme))
         {
           extreme = value;
-          this->LastRejectedLeaf = ~std::uint64_t(0);
+          this->ForgetRejectedLeaf();
         }
         hit = true;
       }
@@ -666,7 +691,8 @@ private:
   const std::array<CellLeapCase, 256>& Table;
   DistanceTemplate Template;
   std::vector<Interval> RayIntervals;
-  std::uint64_t LastRejectedLeaf = ~std::uint64_t(0);
+  int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
+  int LeafShift = 0;                     // log2 of the octree leaf size
 };
 
 template <typename T>
