@@ -23,12 +23,15 @@ struct RayCaster::Internals
   bool OctreeClassified = false;
   std::uint64_t OctreeTransfer = 0;
 
-  CellClassification Cells;
+  int CellDims[3] = { 0, 0, 0 };
   bool CellsBuilt = false;
   std::uint64_t CellsVolume = 0, CellsTransfer = 0;
 
-  std::vector<std::uint8_t> Distance;
-  bool DistanceBuilt = false;
+  // Per cell: distance-map value (low byte, 0 without a distance map) and Marching Cubes
+  // configuration (high byte), packed so one load serves both leaps. The sources are freed
+  // once packed.
+  std::vector<std::uint16_t> CellInfo;
+  bool CellInfoHasDistance = false;
 
   std::vector<float> CorrectedAlpha;
   double PrepareSeconds = 0;
@@ -49,8 +52,7 @@ double RayCaster::GetLastPrepareSeconds() const
 std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
-  std::size_t bytes = impl.Cells.configuration.size() + impl.Cells.nonEmpty.size() +
-    impl.Distance.size();
+  std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t);
   if (impl.OctreeBuilt)
   {
     bytes += impl.Octree.GetNumberOfNodes() * (2 * sizeof(float) + 1);
@@ -176,19 +178,33 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   if (useCellLeap || useDistance)
   {
     const bool stale = !impl.CellsBuilt || impl.CellsVolume != volumeVersion ||
-      impl.CellsTransfer != transferVersion;
+      impl.CellsTransfer != transferVersion || (useDistance && !impl.CellInfoHasDistance);
     if (stale)
     {
-      impl.Cells = ClassifyCells(volume, opacityRange, leapThreshold, parallel);
+      CellClassification cells = ClassifyCells(volume, opacityRange, leapThreshold, parallel);
+      std::vector<std::uint8_t> distance;
+      if (useDistance)
+      {
+        distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
+      }
+      impl.CellInfo.resize(cells.configuration.size());
+      const std::uint8_t* configuration = cells.configuration.data();
+      const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
+      std::uint16_t* info = impl.CellInfo.data();
+      parallel(cells.configuration.size(),
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t i = begin; i < end; ++i)
+          {
+            info[i] = static_cast<std::uint16_t>(
+              (configuration[i] << 8) | (distances ? distances[i] : 0));
+          }
+        });
+      std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
+      impl.CellInfoHasDistance = useDistance;
       impl.CellsBuilt = true;
       impl.CellsVolume = volumeVersion;
       impl.CellsTransfer = transferVersion;
-      impl.DistanceBuilt = false;
-    }
-    if (useDistance && !impl.DistanceBuilt)
-    {
-      impl.Distance = ComputeDistanceMap(impl.Cells.cellDims, impl.Cells.nonEmpty, parallel);
-      impl.DistanceBuilt = true;
     }
   }
 
@@ -229,8 +245,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   frame.view = &view;
   frame.settings = &settings;
   frame.octree = useOctree ? &impl.Octree : nullptr;
-  frame.cells = (useCellLeap || useDistance) ? &impl.Cells : nullptr;
-  frame.distance = useDistance ? impl.Distance.data() : nullptr;
+  frame.cellInfo = (useCellLeap || useDistance) ? impl.CellInfo.data() : nullptr;
   frame.leapThreshold = static_cast<float>(leapThreshold);
   frame.useOctree = useOctree;
   frame.useDistance = useDistance;

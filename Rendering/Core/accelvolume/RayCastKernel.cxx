@@ -363,6 +363,7 @@ private:
     const bool octree = leapTransparent && this->Frame.useOctree;
     const bool distance = leapTransparent && this->Frame.useDistance;
     const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
+    const bool cellInfo = distance || cellLeap;
     const MinMaxOctree* tree = this->Frame.octree;
     this->ForgetRejectedLeaf();
     SampleCell cell;
@@ -390,9 +391,10 @@ private:
           }
         }
         this->Sampling.Locate(p, cell);
+        const std::uint16_t info = cellInfo ? this->Frame.cellInfo[cell.cell] : 0;
         if (distance)
         {
-          const int d = this->Frame.distance[cell.cell];
+          const int d = info & 0xff;
           if (d > 0)
           {
             const auto more = static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
@@ -405,7 +407,7 @@ private:
         }
         if (cellLeap)
         {
-          const std::uint8_t configuration = this->Frame.cells->configuration[cell.cell];
+          const int configuration = info >> 8;
           if (configuration == 0)
           {
             ++this->Counters.leapedEmptyCell;

@@ -33,8 +33,8 @@ struct KernelFrame
   const RayCastView* view = nullptr;
   const RayCastSettings* settings = nullptr;
   const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
-  const CellClassification* cells = nullptr;
-  const std::uint8_t* distance = nullptr;
+  // Per cell: distance map (low byte) and Marching Cubes configuration (high byte).
+  const std::uint16_t* cellInfo = nullptr;
   float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
   bool useOctree = false, useDistance = false, useCellLeap = false;
 };
