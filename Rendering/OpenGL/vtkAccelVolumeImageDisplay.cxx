@@ -23,7 +23,8 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   state->Push();
   this->Image->SetContext(window);
   state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  bool ok = this->Image->GetHandle() && this->Image->GetWidth() == static_cast<unsigned>(imageWidth) &&
+  bool ok = this->Image->GetHandle() &&
+      this->Image->GetWidth() == static_cast<unsigned>(imageWidth) &&
       this->Image->GetHeight() == static_cast<unsigned>(imageHeight)
     ? true
     : this->Image->Create2D(imageWidth, imageHeight, 4, VTK_FLOAT, false);
@@ -46,8 +47,7 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
       state->vtkglDepthMask(GL_FALSE);
       state->vtkglEnable(GL_BLEND);
       state->vtkglBlendEquation(GL_FUNC_ADD);
-      state->vtkglBlendFuncSeparate(
-        GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
       program->SetUniformi("image", this->Image->GetTextureUnit());
       const float origin[2] = { static_cast<float>(lowerLeft[0]),
         static_cast<float>(lowerLeft[1]) };

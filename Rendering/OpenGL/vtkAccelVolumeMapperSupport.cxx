@@ -145,8 +145,7 @@ std::vector<accelvolume::Box> vtkAccelVolumeRegions(
     const int axis = i / 2;
     indexPlanes[i] = (planes[i] - origin[axis]) / spacing[axis];
   }
-  return accelvolume::CroppingRegionBoxes(
-    volumeBox, indexPlanes, mapper->GetCroppingRegionFlags());
+  return accelvolume::CroppingRegionBoxes(volumeBox, indexPlanes, mapper->GetCroppingRegionFlags());
 }
 
 std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
@@ -186,9 +185,10 @@ double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[
   {
     if (dims[c] > 1)
     {
-      const double length = std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
-        indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
-        indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
+      const double length =
+        std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
+          indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
+          indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
       spacing = std::min(spacing, length);
     }
   }

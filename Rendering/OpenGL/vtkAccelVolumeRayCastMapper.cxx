@@ -267,7 +267,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   if (interactive)
   {
     const double previous = std::max(this->LastImageSampleDistance, 1.0);
-    const double ratio = this->LastRenderTime > 0 ? std::sqrt(this->LastRenderTime / allotted) : 1.0;
+    const double ratio =
+      this->LastRenderTime > 0 ? std::sqrt(this->LastRenderTime / allotted) : 1.0;
     imageSampleDistance = std::min(std::max(previous * ratio, this->MinimumImageSampleDistance),
       std::max(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance));
   }
@@ -296,7 +297,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   if (renderer->VisibleActorCount() > 0)
   {
     internals.Depth.resize(static_cast<std::size_t>(width) * height);
-    if (vtkAccelVolumeImageDisplay::ReadDepth(window, lowerLeft, width, height, internals.Depth.data()))
+    if (vtkAccelVolumeImageDisplay::ReadDepth(
+          window, lowerLeft, width, height, internals.Depth.data()))
     {
       internals.RayDepth.resize(static_cast<std::size_t>(imageWidth) * imageHeight);
       for (int j = 0; j < imageHeight; ++j)

@@ -1,6 +1,7 @@
 // Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeSlicePasses.h"
@@ -9,15 +10,12 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
-#include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
@@ -56,71 +54,18 @@ bool IsSupportedBlend(int blendMode)
 void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
   vtkVolumeProperty* property, vtkMatrix4x4* indexToEye, vtkMatrix4x4* view)
 {
-  frame.Lighting[0] = static_cast<float>(property->GetAmbient(0));
-  frame.Lighting[1] = static_cast<float>(property->GetDiffuse(0));
-  frame.Lighting[2] = static_cast<float>(property->GetSpecular(0));
-  frame.Lighting[3] = static_cast<float>(property->GetSpecularPower(0));
-  frame.LightCount = 0;
-  vtkLightCollection* lights = renderer->GetLights();
-  vtkCollectionSimpleIterator iterator;
-  lights->InitTraversal(iterator);
-  while (vtkLight* light = lights->GetNextLight(iterator))
-  {
-    if (!light->GetSwitch() || frame.LightCount >= 4)
-    {
-      continue;
-    }
-    double position[3];
-    double focal[3];
-    light->GetPosition(position);
-    light->GetFocalPoint(focal);
-    double direction[3] = { position[0] - focal[0], position[1] - focal[1],
-      position[2] - focal[2] };
-    if (light->LightTypeIsHeadlight())
-    {
-      direction[0] = direction[1] = 0.0;
-      direction[2] = 1.0;
-    }
-    else if (light->LightTypeIsSceneLight())
-    {
-      double eye[3] = { 0, 0, 0 };
-      for (int r = 0; r < 3; ++r)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          eye[r] += view->GetElement(r, c) * direction[c];
-        }
-      }
-      std::copy(eye, eye + 3, direction);
-    }
-    vtkMath::Normalize(direction);
-    double colour[3];
-    light->GetDiffuseColor(colour);
-    for (int c = 0; c < 3; ++c)
-    {
-      frame.LightDirections[frame.LightCount][c] = static_cast<float>(direction[c]);
-      frame.LightColors[frame.LightCount][c] =
-        static_cast<float>(colour[c] * light->GetIntensity());
-    }
-    ++frame.LightCount;
-  }
-  double linear[3][3];
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      linear[r][c] = indexToEye->GetElement(r, c);
-    }
-  }
-  double inverse[3][3];
-  vtkMath::Invert3x3(linear, inverse);
-  // normal = inverse^T * gradient; GLSL mat3 is column-major, so column c of inverse^T
-  // (= row c of inverse) goes to elements 3c .. 3c+2.
+  vtkAccelVolumeLights lights;
+  vtkAccelVolumeGetLights(renderer, property, indexToEye, view, lights);
+  std::copy(lights.Lighting, lights.Lighting + 4, frame.Lighting);
+  frame.LightCount = lights.Count;
+  std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &frame.LightDirections[0][0]);
+  std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &frame.LightColors[0][0]);
+  // GLSL mat3 is column-major: column c goes to elements 3c .. 3c+2.
   for (int c = 0; c < 3; ++c)
   {
     for (int r = 0; r < 3; ++r)
     {
-      frame.NormalMatrix[3 * c + r] = static_cast<float>(inverse[c][r]);
+      frame.NormalMatrix[3 * c + r] = static_cast<float>(lights.NormalMatrix[r][c]);
     }
   }
 }
@@ -277,58 +222,15 @@ void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
 
 bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* volume)
 {
-  if (!input)
-  {
-    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
-    return false;
-  }
-  int dims[3];
-  input->GetDimensions(dims);
-  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || input->GetNumberOfPoints() < 1)
-  {
-    vtkErrorMacro(
-      "Empty input image (dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2] << ")");
-    return false;
-  }
   int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-  if (!scalars)
+  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  std::string error;
+  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
   {
-    vtkErrorMacro("Input has no point scalars to render");
+    vtkErrorMacro(<< error);
     return false;
-  }
-  if (cellFlag)
-  {
-    vtkErrorMacro("Cell scalars are not supported; use point scalars");
-    return false;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro("Only single-component scalars are supported (input has "
-      << scalars->GetNumberOfComponents() << " components)");
-    return false;
-  }
-  if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
-  {
-    vtkErrorMacro("Scalar array size does not match the image dimensions");
-    return false;
-  }
-  switch (scalars->GetDataType())
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-    case VTK_UNSIGNED_CHAR:
-    case VTK_SHORT:
-    case VTK_UNSIGNED_SHORT:
-    case VTK_INT:
-    case VTK_FLOAT:
-    case VTK_DOUBLE:
-      break;
-    default:
-      vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
-                                               << " (use char, short, int, float or double)");
-      return false;
   }
   if (!IsSupportedBlend(this->BlendMode))
   {
@@ -375,13 +277,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
     input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   double range[2];
-  scalars->GetFiniteRange(range, 0); // NaN and +/-Inf must not stretch the range
-  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
-  {
-    // All-NaN or infinite data: render the finite part against a unit range.
-    range[0] = std::isfinite(range[0]) ? range[0] : 0.0;
-    range[1] = std::isfinite(range[1]) ? range[1] : range[0] + 1.0;
-  }
+  vtkAccelVolumeScalarRange(scalars, range);
 
   vtkVolumeProperty* property = volume->GetProperty();
   const bool linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
@@ -421,66 +317,18 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkNew<vtkMatrix4x4> inverseProjection;
   vtkMatrix4x4::Invert(projection, inverseProjection);
 
-  // Volume box in index space; a one-voxel axis becomes a slab one voxel thick.
-  accelvolume::Box volumeBox;
-  volumeBox.lower =
-    MakeVec3(dims[0] > 1 ? 0.0 : -0.5, dims[1] > 1 ? 0.0 : -0.5, dims[2] > 1 ? 0.0 : -0.5);
-  volumeBox.upper = MakeVec3(dims[0] > 1 ? dims[0] - 1.0 : 0.5, dims[1] > 1 ? dims[1] - 1.0 : 0.5,
-    dims[2] > 1 ? dims[2] - 1.0 : 0.5);
+  const accelvolume::Box volumeBox = vtkAccelVolumeIndexBox(dims);
+  const std::vector<accelvolume::Box> regions = vtkAccelVolumeRegions(this, input, volumeBox);
 
-  std::vector<accelvolume::Box> regions;
-  if (this->Cropping)
-  {
-    // Cropping planes are in data (physical) coordinates along the image axes.
-    double origin[3];
-    double spacing[3];
-    input->GetOrigin(origin);
-    input->GetSpacing(spacing);
-    double indexPlanes[6];
-    for (int i = 0; i < 6; ++i)
-    {
-      const int axis = i / 2;
-      indexPlanes[i] = (this->CroppingRegionPlanes[i] - origin[axis]) / spacing[axis];
-    }
-    regions = accelvolume::CroppingRegionBoxes(volumeBox, indexPlanes, this->CroppingRegionFlags);
-  }
-  else
-  {
-    regions.push_back(volumeBox);
-  }
-
-  std::vector<accelvolume::HalfSpace> clip;
+  const std::vector<accelvolume::HalfSpace> clip =
+    vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
   float clipUniforms[MaximumClipPlanes][4] = {};
-  if (this->ClippingPlanes)
+  for (size_t i = 0; i < clip.size(); ++i)
   {
-    for (int i = 0; i < this->ClippingPlanes->GetNumberOfItems(); ++i)
-    {
-      vtkPlane* plane = this->ClippingPlanes->GetItem(i);
-      double normal[3];
-      double origin[3];
-      plane->GetNormal(normal);
-      plane->GetOrigin(origin);
-      // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
-      accelvolume::HalfSpace halfSpace;
-      double indexNormal[3] = { 0, 0, 0 };
-      double offset = 0;
-      for (int r = 0; r < 3; ++r)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          indexNormal[c] += indexToWorld->GetElement(r, c) * normal[r];
-        }
-        offset += normal[r] * (indexToWorld->GetElement(r, 3) - origin[r]);
-      }
-      halfSpace.normal = MakeVec3(indexNormal[0], indexNormal[1], indexNormal[2]);
-      halfSpace.offset = offset;
-      clip.push_back(halfSpace);
-      for (int c = 0; c < 3; ++c)
-      {
-        clipUniforms[i][c] = static_cast<float>(indexNormal[c]);
-      }
-      clipUniforms[i][3] = static_cast<float>(offset);
-    }
+    clipUniforms[i][0] = static_cast<float>(clip[i].normal.x);
+    clipUniforms[i][1] = static_cast<float>(clip[i].normal.y);
+    clipUniforms[i][2] = static_cast<float>(clip[i].normal.z);
+    clipUniforms[i][3] = static_cast<float>(clip[i].offset);
   }
 
   // Eye depth (distance in front of the camera plane) as a function of the index point.
@@ -489,22 +337,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const double depthOffset = -indexToEye->GetElement(2, 3);
 
   // Slice spacing in world units.
-  double voxelSpacing = VTK_DOUBLE_MAX;
-  for (int c = 0; c < 3; ++c)
-  {
-    if (dims[c] > 1)
-    {
-      const double length =
-        std::sqrt(indexToWorld->GetElement(0, c) * indexToWorld->GetElement(0, c) +
-          indexToWorld->GetElement(1, c) * indexToWorld->GetElement(1, c) +
-          indexToWorld->GetElement(2, c) * indexToWorld->GetElement(2, c));
-      voxelSpacing = std::min(voxelSpacing, length);
-    }
-  }
-  if (voxelSpacing == VTK_DOUBLE_MAX || voxelSpacing <= 0)
-  {
-    voxelSpacing = 1.0;
-  }
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
   double depthMinimum = VTK_DOUBLE_MAX;
   double depthMaximum = -VTK_DOUBLE_MAX;
   for (int corner = 0; corner < 8; ++corner)

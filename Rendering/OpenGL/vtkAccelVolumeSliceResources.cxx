@@ -1,6 +1,8 @@
 // GPU resources of the slice mapper: texture upload with exact integer encodings.
 #include "vtkAccelVolumeSliceResources.h"
 
+#include "vtkAccelVolumeMapperSupport.h"
+
 #include "vtkAccelVolumeScalarEncoding.h"
 
 #include "vtkColorTransferFunction.h"
@@ -106,32 +108,7 @@ void vtkAccelVolumeSliceResources::UpdateTransferTable(
   {
     return;
   }
-  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  std::vector<float> opacities(TableSize);
-  std::vector<float> colours(3 * TableSize);
-  opacity->GetTable(range[0], high, TableSize, opacities.data());
-  if (gray)
-  {
-    std::vector<float> grays(TableSize);
-    property->GetGrayTransferFunction(0)->GetTable(range[0], high, TableSize, grays.data());
-    for (int i = 0; i < TableSize; ++i)
-    {
-      colours[3 * i] = colours[3 * i + 1] = colours[3 * i + 2] = grays[i];
-    }
-  }
-  else
-  {
-    property->GetRGBTransferFunction(0)->GetTable(range[0], high, TableSize, colours.data());
-  }
-  std::vector<float> table(4 * TableSize);
-  for (int i = 0; i < TableSize; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      table[4 * i + c] = colours[3 * i + c];
-    }
-    table[4 * i + 3] = opacities[i];
-  }
+  std::vector<float> table = vtkAccelVolumeTransferTable(property, range, TableSize);
   this->TransferTable->SetContext(window);
   this->TransferTable->Create2DFromRaw(TableSize, 1, 4, VTK_FLOAT, table.data());
   this->TransferTable->SetWrapS(vtkTextureObject::ClampToEdge);

@@ -127,7 +127,8 @@ bool AgainstOtherMappers()
     ok = Report((std::string("ray cast vs slice mapper, ") + c.Name).c_str(),
            CompareImages(ourImage, sliceImage, 16.0 / 255.0), 3.0 / 255.0, 0.03) &&
       ok;
-    if (c.Blend == vtkVolumeMapper::COMPOSITE_BLEND || c.Blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
+    if (c.Blend == vtkVolumeMapper::COMPOSITE_BLEND ||
+      c.Blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
     {
       vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
       fixed->SetAutoAdjustSampleDistances(0);

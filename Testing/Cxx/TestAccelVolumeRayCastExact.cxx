@@ -36,8 +36,8 @@ bool CheckScene(const char* name, RayCastScene& scene, bool expectLeaps)
   bool ok = true;
   const Frame plain = Render(scene, vtkAccelVolumeRayCastMapper::LEAP_NONE, false, 0);
   vtkTypeInt64 octree = 0, distance = 0, cell = 0;
-  for (int leap : { vtkAccelVolumeRayCastMapper::LEAP_NONE, vtkAccelVolumeRayCastMapper::LEAP_OCTREE,
-         vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP })
+  for (int leap : { vtkAccelVolumeRayCastMapper::LEAP_NONE,
+         vtkAccelVolumeRayCastMapper::LEAP_OCTREE, vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP })
   {
     for (bool cellLeap : { false, true })
     {
@@ -45,8 +45,8 @@ bool CheckScene(const char* name, RayCastScene& scene, bool expectLeaps)
       const bool same = f.Pixels == plain.Pixels;
       std::cout << name << ": leap " << leap << " cell " << cellLeap << ": samples " << f.Samples
                 << " (plain " << plain.Samples << "), leaped octree " << f.Octree << ", distance "
-                << f.Distance << ", cell table " << f.Cell << ", transparent cells "
-                << f.EmptyCell << (same ? "" : "  IMAGE DIFFERS") << "\n";
+                << f.Distance << ", cell table " << f.Cell << ", transparent cells " << f.EmptyCell
+                << (same ? "" : "  IMAGE DIFFERS") << "\n";
       ok = ok && same && f.Samples <= plain.Samples;
       octree += f.Octree;
       distance += f.Distance;

@@ -3,7 +3,6 @@
 // the flat sphere or the background.
 #include "AccelVolumeTestScene.h"
 
-
 int TestAccelVolumeRayCastMixedGeometry(int, char*[])
 {
   using namespace accelvolume_test;

@@ -59,8 +59,8 @@ int TestAccelVolumeRayCastSampleDistances(int, char*[])
   }
   else
   {
-    ok = Report("still frame after an interactive one", CompareImages(ReadPixels(scene.Window), full,
-           1.0 / 255.0), 0.0, 0.0) &&
+    ok = Report("still frame after an interactive one",
+           CompareImages(ReadPixels(scene.Window), full, 1.0 / 255.0), 0.0, 0.0) &&
       ok;
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -71,8 +71,8 @@ Matrix Invert(const Matrix& m)
 }
 
 // A camera looking at `focal` from `position` (VTK conventions), as NDC -> world.
-RayCastView MakeView(const Camera& camera, int width, int height, double nearDistance,
-  double farDistance)
+RayCastView MakeView(
+  const Camera& camera, int width, int height, double nearDistance, double farDistance)
 {
   const Vec3 forward = Normalize(camera.focalPoint - camera.position);
   const Vec3 right = Normalize(Cross(forward, camera.viewUp));
@@ -124,7 +124,8 @@ std::vector<float> RandomTable(std::mt19937& random, int size, bool opaqueStart)
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::vector<float> rgba(4 * size);
   const int rampStart = opaqueStart ? 0 : static_cast<int>(size * (0.2f + 0.5f * unit(random)));
-  const int bandEnd = std::min(size, rampStart + static_cast<int>(size * (0.1f + 0.5f * unit(random))));
+  const int bandEnd =
+    std::min(size, rampStart + static_cast<int>(size * (0.1f + 0.5f * unit(random))));
   const float peak = 0.05f + 0.6f * unit(random);
   for (int i = 0; i < size; ++i)
   {
@@ -198,7 +199,8 @@ Camera RandomCamera(std::mt19937& random, const int dims[3], bool parallel)
   Camera camera;
   camera.focalPoint = centre;
   camera.position = centre +
-    Vec3{ radius * std::cos(e) * std::cos(a), radius * std::cos(e) * std::sin(a), radius * std::sin(e) };
+    Vec3{ radius * std::cos(e) * std::cos(a), radius * std::cos(e) * std::sin(a),
+      radius * std::sin(e) };
   camera.viewUp = { 0, 0, 1 };
   camera.viewAngleDegrees = 30;
   camera.parallel = parallel;
@@ -224,8 +226,7 @@ struct Result
 };
 
 Result Cast(const Scene& scene, const RayCastTransfer& transfer, const RayCastLighting& lighting,
-  const RayCastView& view, const RayCastSettings& settings,
-  const ParallelFor& parallel = SerialFor)
+  const RayCastView& view, const RayCastSettings& settings, const ParallelFor& parallel = SerialFor)
 {
   RayCaster caster;
   Result result;
@@ -239,7 +240,8 @@ Result Cast(const Scene& scene, const RayCastTransfer& transfer, const RayCastLi
 // Hands [0, count) out in chunks of `chunk` to `threads` threads.
 ParallelFor ThreadedFor(int threads, std::size_t chunk)
 {
-  return [threads, chunk](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  return
+    [threads, chunk](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
   {
     std::atomic<std::size_t> next{ 0 };
     auto work = [&]()
@@ -288,7 +290,8 @@ TEST(RayCastEngine, LeapingIsPixelIdenticalOnRandomVolumesAndTransferFunctions)
     const RayCastBlend blend = trial % 4 == 3 ? RayCastBlend::Additive : RayCastBlend::Composite;
     RayCastSettings settings = BaseSettings(dims, blend);
     settings.earlyTermination = trial % 2 == 0;
-    const RayCastView view = MakeView(RandomCamera(random, dims, trial % 5 == 2), 37, 29, 1.0, 500.0);
+    const RayCastView view =
+      MakeView(RandomCamera(random, dims, trial % 5 == 2), 37, 29, 1.0, 500.0);
     settings.leap = LeapMode::None;
     settings.cellLeap = false;
     const Result plain = Cast(scene, transfer, lighting, view, settings);
@@ -321,7 +324,8 @@ TEST(RayCastEngine, ExtremeLeapingIsExact)
   for (int trial = 0; trial < 6; ++trial)
   {
     const int dims[3] = { 24, 21, 19 };
-    const Scene scene = MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::Float32, dims, 0.3 * trial);
+    const Scene scene =
+      MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::Float32, dims, 0.3 * trial);
     RayCastTransfer transfer;
     transfer.rgba = RandomTable(random, 128, true);
     RayCastSettings settings =
@@ -393,8 +397,8 @@ TEST(RayCastEngine, CompositeAgreesWithTheReferenceOracle)
   CompositeOptions options;
   options.stepWorld = 0.05;
   // The oracle's rays start at the camera; ours at the near plane (1 unit ahead): same rays.
-  const std::vector<CompositePixel> reference = RenderReferenceComposite(volume,
-    settings.regions, {}, colours, opacity, camera, width, height, options);
+  const std::vector<CompositePixel> reference = RenderReferenceComposite(
+    volume, settings.regions, {}, colours, opacity, camera, width, height, options);
   double total = 0;
   double worst = 0;
   for (std::size_t p = 0; p < reference.size(); ++p)

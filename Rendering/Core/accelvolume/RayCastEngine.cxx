@@ -82,7 +82,8 @@ bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
     return false;
   }
   if (view.depth &&
-    view.depth->size() != static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height))
+    view.depth->size() !=
+      static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height))
   {
     error = "depth buffer size does not match the image";
     return false;
@@ -139,8 +140,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     settings.blend == RayCastBlend::Composite || settings.blend == RayCastBlend::Additive;
   const bool extremum =
     settings.blend == RayCastBlend::Maximum || settings.blend == RayCastBlend::Minimum;
-  const bool useOctree =
-    settings.leap == LeapMode::Octree && (zeroOpacityAddsNothing || extremum);
+  const bool useOctree = settings.leap == LeapMode::Octree && (zeroOpacityAddsNothing || extremum);
   const bool useDistance = settings.leap == LeapMode::DistanceMap && zeroOpacityAddsNothing;
   const OpacityRange opacityRange(alphas, rangeMin, rangeMax);
   const double transparentBelow = opacityRange.TransparentBelow();
@@ -168,7 +168,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       impl.OctreeVolume = volumeVersion;
       impl.OctreeLeafSize = settings.octreeLeafSize;
     }
-    if (zeroOpacityAddsNothing && (!impl.OctreeClassified || impl.OctreeTransfer != transferVersion))
+    if (zeroOpacityAddsNothing &&
+      (!impl.OctreeClassified || impl.OctreeTransfer != transferVersion))
     {
       impl.Octree.Classify(alphas, rangeMin, rangeMax);
       impl.OctreeClassified = true;
@@ -196,8 +197,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
         {
           for (std::size_t i = begin; i < end; ++i)
           {
-            info[i] = static_cast<std::uint16_t>(
-              (configuration[i] << 8) | (distances ? distances[i] : 0));
+            info[i] =
+              static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
           }
         });
       std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
@@ -237,8 +238,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   {
     frame.gradientOpacity = transfer.gradientOpacity.data();
     frame.gradientOpacitySize = static_cast<int>(transfer.gradientOpacity.size());
-    frame.gradientOpacityMaximum =
-      static_cast<float>(transfer.gradientOpacityMaximum > 0 ? transfer.gradientOpacityMaximum : 1.0);
+    frame.gradientOpacityMaximum = static_cast<float>(
+      transfer.gradientOpacityMaximum > 0 ? transfer.gradientOpacityMaximum : 1.0);
   }
   frame.opacityExponent = static_cast<float>(exponent);
   frame.lighting = &lighting;

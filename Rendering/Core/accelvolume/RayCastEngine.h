@@ -91,8 +91,8 @@ struct RayCastSettings
   double averageRange[2] = { 0, 1 }; // raw scalar range counted by Average
   int octreeLeafSize = 8;
   int tileSize = 16;
-  std::vector<Box> regions;     // index space, non-overlapping
-  std::vector<HalfSpace> clip;  // index space
+  std::vector<Box> regions;    // index space, non-overlapping
+  std::vector<HalfSpace> clip; // index space
 };
 
 struct RayCastCounters

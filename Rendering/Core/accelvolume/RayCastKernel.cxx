@@ -161,8 +161,8 @@ PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
   Unproject(view.clipToWorld, x, y, -1.0, nearPoint);
   Unproject(view.clipToWorld, x, y, 1.0, farPoint);
   const Vec3 origin{ nearPoint[0], nearPoint[1], nearPoint[2] };
-  const Vec3 direction =
-    Normalize(Vec3{ farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] });
+  const Vec3 direction = Normalize(
+    Vec3{ farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] });
   double end = std::numeric_limits<double>::infinity();
   if (view.depth)
   {
@@ -324,7 +324,10 @@ private:
     return this->Template.StepsInside(box, Vec3{ p[0], p[1], p[2] }, step);
   }
 
-  void ForgetRejectedLeaf() { this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1; }
+  void ForgetRejectedLeaf()
+  {
+    this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1;
+  }
 
   void CastRay(const PixelRay& pixel, float* out)
   {
@@ -397,7 +400,8 @@ private:
           const int d = info & 0xff;
           if (d > 0)
           {
-            const auto more = static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
+            const auto more =
+              static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
             const std::int64_t skipped = std::min(more + 1, count - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
             ++this->Counters.distanceLeaps;
@@ -423,8 +427,8 @@ private:
           }
         }
         ++this->Counters.samples;
-        const float value = this->Settings.nearest ? this->Sampling.Nearest(p)
-                                                   : this->Sampling.Trilinear(cell);
+        const float value =
+          this->Settings.nearest ? this->Sampling.Nearest(p) : this->Sampling.Trilinear(cell);
         if (!visit(p, value))
         {
           return;
@@ -468,10 +472,12 @@ private:
           this->Gradient(p, eyeGradient);
           if (gradientOpacity)
           {
-            const float magnitude = std::sqrt(eyeGradient[0] * eyeGradient[0] +
-                                      eyeGradient[1] * eyeGradient[1] + eyeGradient[2] * eyeGradient[2]) *
+            const float magnitude =
+              std::sqrt(eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
+                eyeGradient[2] * eyeGradient[2]) *
               frame.rangeWidth;
-            const float tableAlpha = Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
+            const float tableAlpha =
+              Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
             a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
             if (a <= 0.0f)
             {
@@ -504,8 +510,8 @@ private:
   void Extreme(const PixelRay& pixel, float* out)
   {
     const bool maximum = this->Settings.blend == RayCastBlend::Maximum;
-    float extreme = maximum ? -std::numeric_limits<float>::infinity()
-                            : std::numeric_limits<float>::infinity();
+    float extreme =
+      maximum ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
     bool hit = false;
     const MinMaxOctree* tree = this->Frame.useOctree ? this->Frame.octree : nullptr;
     const IndexRay& ray = pixel.index;
@@ -634,9 +640,8 @@ private:
     const RayCastLighting& l = *this->Frame.lighting;
     for (int r = 0; r < 3; ++r)
     {
-      eyeGradient[r] =
-        static_cast<float>(l.normalMatrix[r][0] * g[0] + l.normalMatrix[r][1] * g[1] +
-          l.normalMatrix[r][2] * g[2]);
+      eyeGradient[r] = static_cast<float>(
+        l.normalMatrix[r][0] * g[0] + l.normalMatrix[r][1] * g[1] + l.normalMatrix[r][2] * g[2]);
     }
   }
 
@@ -694,12 +699,12 @@ private:
   DistanceTemplate Template;
   std::vector<Interval> RayIntervals;
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
-  int LeafShift = 0;                     // log2 of the octree leaf size
+  int LeafShift = 0;                    // log2 of the octree leaf size
 };
 
 template <typename T>
-void CastTileTyped(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
-  RayCastCounters& counters)
+void CastTileTyped(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters)
 {
   RayCasterTile<T> tile(frame, counters);
   tile.Cast(x0, y0, x1, y1, rgba);
@@ -707,8 +712,8 @@ void CastTileTyped(const KernelFrame& frame, int x0, int y0, int x1, int y1, flo
 
 }
 
-void CastTile(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
-  RayCastCounters& counters)
+void CastTile(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters)
 {
   switch (frame.volume.type)
   {

@@ -40,8 +40,8 @@ struct KernelFrame
 };
 
 // Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
-void CastTile(const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba,
-  RayCastCounters& counters);
+void CastTile(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters);
 
 }
 }
