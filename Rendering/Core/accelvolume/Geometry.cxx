@@ -479,7 +479,11 @@ bool IntersectRayRegion(const Vec3& origin, const Vec3& direction, const Box& bo
     }
     return enter <= leave;
   };
-  for (const HalfSpace& halfSpace : BoxHalfSpaces(box))
+  // The box's six half-spaces (BoxHalfSpaces' order), without allocating: this runs per ray.
+  const HalfSpace faces[6] = { { { 1, 0, 0 }, -box.lower.x }, { { -1, 0, 0 }, box.upper.x },
+    { { 0, 1, 0 }, -box.lower.y }, { { 0, -1, 0 }, box.upper.y },
+    { { 0, 0, 1 }, -box.lower.z }, { { 0, 0, -1 }, box.upper.z } };
+  for (const HalfSpace& halfSpace : faces)
   {
     if (!narrow(halfSpace))
     {

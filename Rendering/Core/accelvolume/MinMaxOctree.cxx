@@ -244,35 +244,6 @@ void BuildLeaves(
     });
 }
 
-// Calls f(typed pointer) for the volume's scalar type.
-template <typename Function>
-void DispatchScalarType(const VolumeView& volume, Function&& f)
-{
-  switch (volume.type)
-  {
-    case ScalarType::Int8:
-      f(static_cast<const std::int8_t*>(volume.data));
-      break;
-    case ScalarType::UInt8:
-      f(static_cast<const std::uint8_t*>(volume.data));
-      break;
-    case ScalarType::Int16:
-      f(static_cast<const std::int16_t*>(volume.data));
-      break;
-    case ScalarType::UInt16:
-      f(static_cast<const std::uint16_t*>(volume.data));
-      break;
-    case ScalarType::Int32:
-      f(static_cast<const std::int32_t*>(volume.data));
-      break;
-    case ScalarType::Float32:
-      f(static_cast<const float*>(volume.data));
-      break;
-    case ScalarType::Float64:
-      f(static_cast<const double*>(volume.data));
-      break;
-  }
-}
 }
 
 std::uint64_t MortonEncode(std::uint32_t x, std::uint32_t y, std::uint32_t z)

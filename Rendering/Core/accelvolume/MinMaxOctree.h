@@ -52,6 +52,36 @@ struct VolumeView
   int dims[3] = { 0, 0, 0 };
 };
 
+// Calls f(typed pointer) for the volume's scalar type (f takes `const auto*`).
+template <typename Function>
+void DispatchScalarType(const VolumeView& volume, Function&& f)
+{
+  switch (volume.type)
+  {
+    case ScalarType::Int8:
+      f(static_cast<const std::int8_t*>(volume.data));
+      break;
+    case ScalarType::UInt8:
+      f(static_cast<const std::uint8_t*>(volume.data));
+      break;
+    case ScalarType::Int16:
+      f(static_cast<const std::int16_t*>(volume.data));
+      break;
+    case ScalarType::UInt16:
+      f(static_cast<const std::uint16_t*>(volume.data));
+      break;
+    case ScalarType::Int32:
+      f(static_cast<const std::int32_t*>(volume.data));
+      break;
+    case ScalarType::Float32:
+      f(static_cast<const float*>(volume.data));
+      break;
+    case ScalarType::Float64:
+      f(static_cast<const double*>(volume.data));
+      break;
+  }
+}
+
 // Runs body(begin, end) over sub-ranges covering [0, count) (possibly concurrently).
 // The VTK face passes vtkSMPTools::For; the default runs serially.
 using ParallelFor =

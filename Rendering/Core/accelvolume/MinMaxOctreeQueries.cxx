@@ -1,5 +1,6 @@
 // MinMaxOctreeQueries: transfer-function classification of octree nodes and empty-space queries.
 #include "accelvolume/MinMaxOctree.h"
+#include "accelvolume/OpacityRange.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,25 +30,10 @@ double Component(const Vec3& v, int axis)
 void MinMaxOctree::Classify(
   const std::vector<float>& opacity, double rangeMin, double rangeMax, float threshold)
 {
-  const int depth = this->GetDepth();
+  // OpacityRange holds the rule documented in the header, shared with the ray caster's cells.
+  const OpacityRange range(opacity, rangeMin, rangeMax, threshold);
   this->Transparent.resize(this->Levels.size());
-  const std::size_t entries = opacity.size();
-  // aboveBefore[m]: number of table entries with index < m whose opacity exceeds the threshold.
-  std::vector<std::uint32_t> aboveBefore(entries + 1, 0);
-  for (std::size_t m = 0; m < entries; ++m)
-  {
-    aboveBefore[m + 1] = aboveBefore[m] + (opacity[m] > threshold ? 1 : 0);
-  }
-  const double last = entries > 0 ? static_cast<double>(entries - 1) : 0.0;
-  const double range = rangeMax - rangeMin;
-  // A non-finite range (NaN or overflowing bounds) has no usable map: every node sees the whole
-  // table, which is conservative.
-  const bool unmapped = !std::isfinite(range);
-  // Table positions per scalar unit. One multiply per bound (not a divide): faster, and exact
-  // when values land on table entries with N - 1 == rangeMax - rangeMin (e.g. 8-bit tables).
-  const double scale = range != 0.0 ? last / range : 0.0;
-
-  for (int level = 0; level <= depth; ++level)
+  for (std::size_t level = 0; level < this->Levels.size(); ++level)
   {
     const OctreeLevel& nodes = this->Levels[level];
     std::vector<std::uint8_t>& flags = this->Transparent[level];
@@ -56,51 +42,8 @@ void MinMaxOctree::Classify(
     const float* maximum = nodes.maximum.data();
     for (std::size_t n = 0; n < flags.size(); ++n)
     {
-      const double low = minimum[n];
-      const double high = maximum[n];
-      // Padding and all-NaN nodes are empty (min > max); the negated test also catches NaN.
-      if (!(low <= high) || entries == 0)
-      {
-        flags[n] = 1;
-        continue;
-      }
-      std::size_t first = 0;
-      std::size_t lastIndex = entries - 1;
-      if (entries == 1 || unmapped)
-      {
-        // One entry is a constant opacity; the whole table applies.
-      }
-      else if (range == 0.0)
-      {
-        // A step at rangeMin: below -> entry 0, above -> entry N-1, on it -> either (whole table).
-        if (high < rangeMin)
-        {
-          lastIndex = 0;
-        }
-        else if (low > rangeMin)
-        {
-          first = entries - 1;
-        }
-      }
-      else
-      {
-        double a = (low - rangeMin) * scale;
-        double b = (high - rangeMin) * scale;
-        if (a > b)
-        {
-          std::swap(a, b); // decreasing map (rangeMin > rangeMax)
-        }
-        // Clamp before converting, so +-inf node bounds stay well defined.
-        a = std::min(std::max(a, 0.0), last);
-        b = std::min(std::max(b, 0.0), last);
-        // Non-negative now, so truncation is floor; avoids libm floor/ceil calls (Classify runs
-        // on every transfer-function edit).
-        // (Through a signed type: double to unsigned conversion is branchy on x86-64.)
-        first = static_cast<std::size_t>(static_cast<std::int64_t>(a));
-        lastIndex = static_cast<std::size_t>(static_cast<std::int64_t>(b));
-        lastIndex += static_cast<double>(lastIndex) < b ? 1 : 0;
-      }
-      flags[n] = aboveBefore[lastIndex + 1] - aboveBefore[first] > 0 ? 0 : 1;
+      // Padding and all-NaN nodes (min > max) come out transparent.
+      flags[n] = range.MayBeOpaque(minimum[n], maximum[n]) ? 0 : 1;
     }
   }
 }

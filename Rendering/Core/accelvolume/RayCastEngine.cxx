@@ -25,6 +25,8 @@ struct RayCaster::Internals
 
   int CellDims[3] = { 0, 0, 0 };
   bool CellsBuilt = false;
+  Box CellsOpaqueBox;  // index-space box of the cells that may be opaque
+  Box OctreeOpaqueBox; // index-space box of the non-transparent leaves
   std::uint64_t CellsVolume = 0, CellsTransfer = 0;
 
   // Per cell: distance-map value (low byte, 0 without a distance map) and Marching Cubes
@@ -32,6 +34,11 @@ struct RayCaster::Internals
   // once packed.
   std::vector<std::uint16_t> CellInfo;
   bool CellInfoHasDistance = false;
+
+  std::vector<std::int16_t> Gradients;
+  bool GradientsBuilt = false;
+  std::uint64_t GradientsVolume = 0;
+  float GradientScale = 1;
 
   std::vector<float> CorrectedAlpha;
   double PrepareSeconds = 0;
@@ -52,7 +59,8 @@ double RayCaster::GetLastPrepareSeconds() const
 std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
-  std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t);
+  std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) +
+    impl.Gradients.size() * sizeof(std::int16_t);
   if (impl.OctreeBuilt)
   {
     bytes += impl.Octree.GetNumberOfNodes() * (2 * sizeof(float) + 1);
@@ -62,6 +70,144 @@ std::size_t RayCaster::GetAccelerationBytes() const
 
 namespace
 {
+
+// Grows [lower, upper] (per axis, integer grid coordinates) to hold (i, j, k).
+struct GridBounds
+{
+  int lower[3] = { std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
+    std::numeric_limits<int>::max() };
+  int upper[3] = { -1, -1, -1 };
+  void Add(int i, int j, int k)
+  {
+    const int c[3] = { i, j, k };
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::min(lower[a], c[a]);
+      upper[a] = std::max(upper[a], c[a]);
+    }
+  }
+  void Merge(const GridBounds& other)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::min(lower[a], other.lower[a]);
+      upper[a] = std::max(upper[a], other.upper[a]);
+    }
+  }
+  bool Empty() const { return upper[0] < lower[0]; }
+};
+
+// Index-space box covering grid cells [lower, upper] of `size` voxels each (cell i spans
+// [i * size, (i + 1) * size]), clamped to the volume box; empty when no cell was added.
+Box GridBox(const GridBounds& bounds, int size, const int dims[3])
+{
+  Box box;
+  if (bounds.Empty())
+  {
+    box.lower = { 1, 1, 1 };
+    box.upper = { 0, 0, 0 };
+    return box;
+  }
+  double* lower[3] = { &box.lower.x, &box.lower.y, &box.lower.z };
+  double* upper[3] = { &box.upper.x, &box.upper.y, &box.upper.z };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] > 1)
+    {
+      *lower[a] = static_cast<double>(bounds.lower[a]) * size;
+      *upper[a] = std::min(static_cast<double>(bounds.upper[a] + 1) * size, dims[a] - 1.0);
+    }
+    else
+    {
+      *lower[a] = -0.5; // a one-voxel axis is a slab one voxel thick
+      *upper[a] = 0.5;
+    }
+  }
+  return box;
+}
+
+Box NonEmptyCellBox(const CellClassification& cells, const int dims[3], const ParallelFor& parallel)
+{
+  const int* n = cells.cellDims;
+  std::vector<GridBounds> slabs(static_cast<std::size_t>(n[2]));
+  parallel(slabs.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        const std::uint8_t* flags = cells.nonEmpty.data() + k * n[0] * n[1];
+        for (int j = 0; j < n[1]; ++j)
+        {
+          for (int i = 0; i < n[0]; ++i)
+          {
+            if (flags[static_cast<std::size_t>(j) * n[0] + i])
+            {
+              slabs[k].Add(i, j, static_cast<int>(k));
+            }
+          }
+        }
+      }
+    });
+  GridBounds all;
+  for (const GridBounds& slab : slabs)
+  {
+    all.Merge(slab);
+  }
+  return GridBox(all, 1, dims);
+}
+
+Box NonTransparentLeafBox(const MinMaxOctree& octree, const int dims[3])
+{
+  const int* grid = octree.GetLevel(0).gridSize;
+  const std::vector<std::uint8_t>& transparent = octree.GetTransparentFlags(0);
+  GridBounds all;
+  for (int k = 0; k < grid[2]; ++k)
+  {
+    for (int j = 0; j < grid[1]; ++j)
+    {
+      for (int i = 0; i < grid[0]; ++i)
+      {
+        if (!transparent[MortonEncode(i, j, k)])
+        {
+          all.Add(i, j, k);
+        }
+      }
+    }
+  }
+  return GridBox(all, octree.GetLeafSize(), dims);
+}
+
+// Per-voxel central differences (neighbours clamped to the volume, NaN as 0) quantised to
+// int16 with step `scale` raw units.
+template <typename T>
+void ComputeGradients(const T* data, const int dims[3], float scale, std::int16_t* out,
+  const ParallelFor& parallel)
+{
+  const std::ptrdiff_t stride[3] = { 1, dims[0], static_cast<std::ptrdiff_t>(dims[0]) * dims[1] };
+  parallel(static_cast<std::size_t>(dims[2]),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        for (int j = 0; j < dims[1]; ++j)
+        {
+          for (int i = 0; i < dims[0]; ++i)
+          {
+            const int c[3] = { i, j, static_cast<int>(k) };
+            const std::ptrdiff_t at = i + j * stride[1] + static_cast<std::ptrdiff_t>(k) * stride[2];
+            for (int a = 0; a < 3; ++a)
+            {
+              const std::ptrdiff_t up = c[a] + 1 < dims[a] ? stride[a] : 0;
+              const std::ptrdiff_t down = c[a] > 0 ? stride[a] : 0;
+              double g = 0.5 * (static_cast<double>(data[at + up]) - static_cast<double>(data[at - down]));
+              g = std::isfinite(g) ? std::min(std::max(g / scale, -32767.0), 32767.0) : 0.0;
+              out[3 * at + a] = static_cast<std::int16_t>(std::lround(g));
+            }
+          }
+        }
+      }
+    });
+}
 
 bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
   const RayCastView& view, const RayCastSettings& settings, std::string& error)
@@ -172,6 +318,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       (!impl.OctreeClassified || impl.OctreeTransfer != transferVersion))
     {
       impl.Octree.Classify(alphas, rangeMin, rangeMax);
+      impl.OctreeOpaqueBox = NonTransparentLeafBox(impl.Octree, volume.dims);
       impl.OctreeClassified = true;
       impl.OctreeTransfer = transferVersion;
     }
@@ -202,11 +349,30 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
           }
         });
       std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
+      impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
       impl.CellInfoHasDistance = useDistance;
       impl.CellsBuilt = true;
       impl.CellsVolume = volumeVersion;
       impl.CellsTransfer = transferVersion;
     }
+  }
+
+  const bool needGradients = settings.blend == RayCastBlend::Composite &&
+    (lighting.shade || transfer.gradientOpacity.size() >= 2);
+  const std::size_t voxels =
+    static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
+  constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
+  const bool useGradients = needGradients && settings.precomputeGradients &&
+    6 * voxels <= GradientBudget;
+  if (useGradients && (!impl.GradientsBuilt || impl.GradientsVolume != volumeVersion))
+  {
+    // |central difference| <= the range width, so this step keeps every value in int16.
+    impl.GradientScale = static_cast<float>(width / 32767.0);
+    impl.Gradients.resize(3 * voxels);
+    DispatchScalarType(volume, [&](const auto* data)
+      { ComputeGradients(data, volume.dims, impl.GradientScale, impl.Gradients.data(), parallel); });
+    impl.GradientsBuilt = true;
+    impl.GradientsVolume = volumeVersion;
   }
 
   // The table opacities hold for the unit distance; samples stand for sampleDistance.
@@ -243,6 +409,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   }
   frame.opacityExponent = static_cast<float>(exponent);
   frame.lighting = &lighting;
+  frame.gradients = useGradients ? impl.Gradients.data() : nullptr;
+  frame.gradientScale = impl.GradientScale;
   frame.view = &view;
   frame.settings = &settings;
   frame.octree = useOctree ? &impl.Octree : nullptr;
@@ -251,6 +419,9 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   frame.useOctree = useOctree;
   frame.useDistance = useDistance;
   frame.useCellLeap = useCellLeap;
+  // Composite / additive only: there transparent samples add nothing.
+  frame.useOpaqueBox = zeroOpacityAddsNothing && (useOctree || useDistance);
+  frame.opaqueBox = useDistance ? impl.CellsOpaqueBox : impl.OctreeOpaqueBox;
 
   const int tile = settings.tileSize;
   const int tilesX = (view.width + tile - 1) / tile;

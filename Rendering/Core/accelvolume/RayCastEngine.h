@@ -91,6 +91,10 @@ struct RayCastSettings
   double averageRange[2] = { 0, 1 }; // raw scalar range counted by Average
   int octreeLeafSize = 8;
   int tileSize = 16;
+  // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
+  // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
+  // per shaded sample).
+  bool precomputeGradients = true;
   std::vector<Box> regions;    // index space, non-overlapping
   std::vector<HalfSpace> clip; // index space
 };

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 namespace accelvolume
 {
@@ -353,7 +354,7 @@ private:
     }
   }
 
-  // Walks the samples of every interval; visit(p, cell) returns false to stop the ray.
+  // Walks the samples of every interval; visit(p, cell, value) returns false to stop the ray.
   // Zero-opacity leaping (octree, distance map, cell table) happens here when `leapTransparent`.
   template <typename Visit>
   void Walk(const PixelRay& pixel, bool leapTransparent, Visit&& visit)
@@ -370,11 +371,37 @@ private:
     const MinMaxOctree* tree = this->Frame.octree;
     this->ForgetRejectedLeaf();
     SampleCell cell;
+    std::uint64_t& leapCounter =
+      octree ? this->Counters.leapedOctree : this->Counters.leapedDistance;
+    const bool opaqueBox = leapTransparent && this->Frame.useOpaqueBox && (octree || distance);
     for (const Interval& interval : this->RayIntervals)
     {
       const std::int64_t count =
         static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
-      for (std::int64_t k = 0; k < count; ++k)
+      std::int64_t first = 0;
+      std::int64_t last = count;
+      if (opaqueBox)
+      {
+        // Only samples inside the box of possibly opaque cells need a visit; one sample of
+        // slack on each side keeps rounding from cutting a visible one.
+        static const std::vector<HalfSpace> noClip;
+        double enter, leave;
+        if (!IntersectRayRegion(ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
+        {
+          first = last = count;
+        }
+        else
+        {
+          first = std::max<std::int64_t>(0,
+            static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
+          last = std::min<std::int64_t>(count,
+            static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
+          first = std::min(first, count);
+          last = std::max(last, first);
+        }
+        leapCounter += static_cast<std::uint64_t>(first + (count - last));
+      }
+      for (std::int64_t k = first; k < last; ++k)
       {
         const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
         const double p[3] = { ray.origin.x + t * ray.direction.x,
@@ -386,7 +413,7 @@ private:
             { return tree->GetTransparentFlags(level)[index] != 0; });
           if (more >= 0)
           {
-            const std::int64_t skipped = std::min(more + 1, count - k);
+            const std::int64_t skipped = std::min(more + 1, last - k);
             this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
             ++this->Counters.octreeLeaps;
             k += skipped - 1;
@@ -402,7 +429,7 @@ private:
           {
             const auto more =
               static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
-            const std::int64_t skipped = std::min(more + 1, count - k);
+            const std::int64_t skipped = std::min(more + 1, last - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
             ++this->Counters.distanceLeaps;
             k += skipped - 1;
@@ -429,7 +456,7 @@ private:
         ++this->Counters.samples;
         const float value =
           this->Settings.nearest ? this->Sampling.Nearest(p) : this->Sampling.Trilinear(cell);
-        if (!visit(p, value))
+        if (!visit(p, cell, value))
         {
           return;
         }
@@ -448,7 +475,7 @@ private:
     float colour[3] = { 0, 0, 0 };
     float alpha = 0;
     this->Walk(pixel, true,
-      [&](const double p[3], float value)
+      [&](const double p[3], const SampleCell& cell, float value)
       {
         if (value != value)
         {
@@ -469,7 +496,7 @@ private:
         if (needGradient)
         {
           float eyeGradient[3];
-          this->Gradient(p, eyeGradient);
+          this->Gradient(p, cell, eyeGradient);
           if (gradientOpacity)
           {
             const float magnitude =
@@ -587,7 +614,7 @@ private:
     // Zero-opacity samples add nothing to the raysum; the average counts them, so it never
     // leaps.
     this->Walk(pixel, additive,
-      [&](const double*, float value)
+      [&](const double*, const SampleCell&, float value)
       {
         if (value != value || (!additive && !(value >= lower && value <= upper)))
         {
@@ -622,20 +649,40 @@ private:
   }
 
   // Central differences of trilinear samples one voxel apart (what the slice mapper's gradient
-  // texture holds), in normalised units, taken to eye space.
-  void Gradient(const double p[3], float eyeGradient[3]) const
+  // texture holds), in normalised units, taken to eye space. With precomputed per-voxel
+  // differences this is one trilinear interpolation of them (equal inside the volume, as
+  // interpolation is linear); without, six extra samples.
+  void Gradient(const double p[3], const SampleCell& cell, float eyeGradient[3]) const
   {
     double g[3];
-    for (int a = 0; a < 3; ++a)
+    if (const std::int16_t* gradients = this->Frame.gradients)
     {
-      double forward[3] = { p[0], p[1], p[2] };
-      double backward[3] = { p[0], p[1], p[2] };
-      forward[a] += 1.0;
-      backward[a] -= 1.0;
-      g[a] = 0.5 *
-        (this->Sampling.Sample(forward, this->Settings.nearest) -
-          this->Sampling.Sample(backward, this->Settings.nearest)) *
-        this->Frame.normalScale;
+      const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1], oz = 3 * cell.offset[2];
+      const std::int16_t* d = gradients + 3 * cell.base;
+      const float scale = this->Frame.gradientScale * this->Frame.normalScale;
+      for (int a = 0; a < 3; ++a)
+      {
+        const std::int16_t* v = d + a;
+        const float c00 = Lerp(v[0], v[ox], cell.f[0]);
+        const float c10 = Lerp(v[oy], v[oy + ox], cell.f[0]);
+        const float c01 = Lerp(v[oz], v[oz + ox], cell.f[0]);
+        const float c11 = Lerp(v[oz + oy], v[oz + oy + ox], cell.f[0]);
+        g[a] = Lerp(Lerp(c00, c10, cell.f[1]), Lerp(c01, c11, cell.f[1]), cell.f[2]) * scale;
+      }
+    }
+    else
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        double forward[3] = { p[0], p[1], p[2] };
+        double backward[3] = { p[0], p[1], p[2] };
+        forward[a] += 1.0;
+        backward[a] -= 1.0;
+        g[a] = 0.5 *
+          (this->Sampling.Sample(forward, this->Settings.nearest) -
+            this->Sampling.Sample(backward, this->Settings.nearest)) *
+          this->Frame.normalScale;
+      }
     }
     const RayCastLighting& l = *this->Frame.lighting;
     for (int r = 0; r < 3; ++r)
@@ -702,43 +749,18 @@ private:
   int LeafShift = 0;                    // log2 of the octree leaf size
 };
 
-template <typename T>
-void CastTileTyped(
-  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters)
-{
-  RayCasterTile<T> tile(frame, counters);
-  tile.Cast(x0, y0, x1, y1, rgba);
-}
-
 }
 
 void CastTile(
   const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters)
 {
-  switch (frame.volume.type)
-  {
-    case ScalarType::Int8:
-      CastTileTyped<std::int8_t>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::UInt8:
-      CastTileTyped<std::uint8_t>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::Int16:
-      CastTileTyped<std::int16_t>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::UInt16:
-      CastTileTyped<std::uint16_t>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::Int32:
-      CastTileTyped<std::int32_t>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::Float32:
-      CastTileTyped<float>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-    case ScalarType::Float64:
-      CastTileTyped<double>(frame, x0, y0, x1, y1, rgba, counters);
-      break;
-  }
+  DispatchScalarType(frame.volume,
+    [&](const auto* data)
+    {
+      using T = std::remove_const_t<std::remove_pointer_t<decltype(data)>>;
+      RayCasterTile<T> tile(frame, counters);
+      tile.Cast(x0, y0, x1, y1, rgba);
+    });
 }
 
 }

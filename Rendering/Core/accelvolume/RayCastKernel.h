@@ -30,6 +30,10 @@ struct KernelFrame
   float gradientOpacityMaximum = 1;
   float opacityExponent = 1; // sample distance / opacity unit distance
   const RayCastLighting* lighting = nullptr;
+  // Optional per-voxel central differences (x, y, z interleaved, raw units times
+  // 1 / gradientScale), interpolated trilinearly instead of six extra samples per shaded one.
+  const std::int16_t* gradients = nullptr;
+  float gradientScale = 1;
   const RayCastView* view = nullptr;
   const RayCastSettings* settings = nullptr;
   const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
@@ -37,6 +41,10 @@ struct KernelFrame
   const std::uint16_t* cellInfo = nullptr;
   float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
   bool useOctree = false, useDistance = false, useCellLeap = false;
+  // With octree or distance-map leaping: the index-space box of everything that may be
+  // opaque; samples outside it are leaped without visiting them. Empty box: nothing visible.
+  bool useOpaqueBox = false;
+  Box opaqueBox;
 };
 
 // Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
