@@ -69,7 +69,11 @@ public:
   };
 
   ///@{
-  /** Empty-space leaping (default LEAP_OCTREE). */
+  /**
+   * Empty-space leaping (default LEAP_DISTANCE_MAP: the fastest frames; its rebuild after a
+   * transfer-function change costs about 50-250 ms on 256^3..512^2x275 volumes, against a
+   * few ms for LEAP_OCTREE, which suits interactive transfer-function editing better).
+   */
   vtkSetClampMacro(LeapMode, int, LEAP_NONE, LEAP_DISTANCE_MAP);
   vtkGetMacro(LeapMode, int);
   ///@}
@@ -176,7 +180,7 @@ protected:
   /** The input is optional so a missing input gets this mapper's own clear error. */
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
-  int LeapMode = LEAP_OCTREE;
+  int LeapMode = LEAP_DISTANCE_MAP;
   vtkTypeBool CellLeaping = 1;
   int OctreeLeafSize = 4;
   double SampleDistance = 1.0;

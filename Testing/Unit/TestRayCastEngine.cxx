@@ -305,7 +305,7 @@ TEST(RayCastEngine, LeapingIsPixelIdenticalOnRandomVolumesAndTransferFunctions)
         EXPECT_TRUE(Identical(plain.rgba, leaped.rgba))
           << "trial " << trial << " leap " << static_cast<int>(leap) << " cell " << cell;
         EXPECT_LE(leaped.counters.samples, plain.counters.samples);
-        EXPECT_EQ(leaped.counters.rays, plain.counters.rays);
+        EXPECT_LE(leaped.counters.rays, plain.counters.rays); // leaping culls rays in image space
         leapedOctree += leaped.counters.leapedOctree;
         leapedDistance += leaped.counters.leapedDistance;
         leapedCell += leaped.counters.leapedCell;

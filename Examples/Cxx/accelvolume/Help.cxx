@@ -93,7 +93,7 @@ std::string RenderHelp()
     "  --leap none|octree|distance\n"
     "                             raycast only: empty-space leaping over a min-max octree\n"
     "                             (every blend but average) or a per-cell distance map\n"
-    "                             (composite, additive); default octree\n"
+    "                             (composite, additive); default distance\n"
     "  --cell-leap on|off         raycast only: semi-transparent cell leaping through the\n"
     "                             Marching Cubes table (composite, additive; default on).\n"
     "                             Every leap is exact: the image stays the same\n"

@@ -330,7 +330,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       rayCast->SetEarlyRayTermination(options.earlyRayTermination);
       rayCast->SetAdditiveUnitDistance(result.raysumUnit);
       rayCast->SetNumberOfThreads(options.threads);
-      // --leap and --cell-leap default to the mapper's own defaults (octree, on).
+      // --leap and --cell-leap default to the mapper's own defaults (distance map, on).
       if (options.haveCellLeap)
       {
         rayCast->SetCellLeaping(options.cellLeap);

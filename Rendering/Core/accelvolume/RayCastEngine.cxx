@@ -209,6 +209,119 @@ void ComputeGradients(const T* data, const int dims[3], float scale, std::int16_
     });
 }
 
+// Inverse of a 4x4 matrix by Gauss-Jordan elimination; false when singular.
+bool Invert4x4(const double in[4][4], double out[4][4])
+{
+  double a[4][8];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      a[r][c] = in[r][c];
+      a[r][c + 4] = r == c ? 1.0 : 0.0;
+    }
+  }
+  for (int c = 0; c < 4; ++c)
+  {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+    {
+      pivot = std::abs(a[r][c]) > std::abs(a[pivot][c]) ? r : pivot;
+    }
+    if (!(std::abs(a[pivot][c]) > 0))
+    {
+      return false;
+    }
+    std::swap(a[c], a[pivot]);
+    const double scale = 1.0 / a[c][c];
+    for (double& v : a[c])
+    {
+      v *= scale;
+    }
+    for (int r = 0; r < 4; ++r)
+    {
+      if (r != c)
+      {
+        const double f = a[r][c];
+        for (int k = 0; k < 8; ++k)
+        {
+          a[r][k] -= f * a[c][k];
+        }
+      }
+    }
+  }
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      out[r][c] = a[r][c + 4];
+    }
+  }
+  return true;
+}
+
+// Pixels whose centres the index-space box projects over (inclusive, clamped to the image);
+// the whole image when a corner is not in front of the camera (the projection of the box
+// is then not bounded by its corners'). An empty box gives an empty rectangle.
+void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
+{
+  visible[0] = 0;
+  visible[1] = view.width - 1;
+  visible[2] = 0;
+  visible[3] = view.height - 1;
+  if (box.IsEmpty())
+  {
+    visible[1] = visible[3] = -1;
+    return;
+  }
+  double worldToClip[4][4];
+  if (!Invert4x4(view.clipToWorld, worldToClip))
+  {
+    return;
+  }
+  const Affine indexToWorld = view.worldToIndex.Inverse();
+  double lower[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double upper[2] = { -lower[0], -lower[1] };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const Vec3 world = indexToWorld.Apply({ corner & 1 ? box.upper.x : box.lower.x,
+      corner & 2 ? box.upper.y : box.lower.y, corner & 4 ? box.upper.z : box.lower.z });
+    double clip[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      clip[r] = worldToClip[r][0] * world.x + worldToClip[r][1] * world.y +
+        worldToClip[r][2] * world.z + worldToClip[r][3];
+    }
+    if (!(clip[3] > 1.0e-12))
+    {
+      return;
+    }
+    const int size[2] = { view.width, view.height };
+    for (int a = 0; a < 2; ++a)
+    {
+      // Pixel i has its centre at NDC 2 (i + 0.5) / size - 1.
+      const double pixel = (clip[a] / clip[3] + 1.0) * 0.5 * size[a] - 0.5;
+      lower[a] = std::min(lower[a], pixel);
+      upper[a] = std::max(upper[a], pixel);
+    }
+  }
+  // One pixel of slack on each side absorbs rounding.
+  const int size[2] = { view.width, view.height };
+  for (int a = 0; a < 2; ++a)
+  {
+    const double first = std::floor(lower[a]) - 1.0;
+    const double last = std::ceil(upper[a]) + 1.0;
+    visible[2 * a] = static_cast<int>(std::max(0.0, std::min(first, size[a] - 1.0)));
+    visible[2 * a + 1] = static_cast<int>(std::max(-1.0, std::min(last, size[a] - 1.0)));
+    if (last < 0 || first > size[a] - 1.0)
+    {
+      visible[0] = visible[2] = 0;
+      visible[1] = visible[3] = -1;
+      return;
+    }
+  }
+}
+
 bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
   const RayCastView& view, const RayCastSettings& settings, std::string& error)
 {
@@ -422,6 +535,33 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   // Composite / additive only: there transparent samples add nothing.
   frame.useOpaqueBox = zeroOpacityAddsNothing && (useOctree || useDistance);
   frame.opaqueBox = useDistance ? impl.CellsOpaqueBox : impl.OctreeOpaqueBox;
+  // Rays outside the projection of what can show (the opaque box, or the regions' bounds) are
+  // not cast at all.
+  Box shown;
+  shown.lower = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  shown.upper = -shown.lower;
+  for (const Box& region : settings.regions)
+  {
+    if (!region.IsEmpty())
+    {
+      shown.lower = { std::min(shown.lower.x, region.lower.x), std::min(shown.lower.y, region.lower.y),
+        std::min(shown.lower.z, region.lower.z) };
+      shown.upper = { std::max(shown.upper.x, region.upper.x), std::max(shown.upper.y, region.upper.y),
+        std::max(shown.upper.z, region.upper.z) };
+    }
+  }
+  // Composite only: a raysum / average pixel is drawn (alpha 1) wherever its ray meets the
+  // volume, even where nothing in it is opaque.
+  if (frame.useOpaqueBox && settings.blend == RayCastBlend::Composite && !shown.IsEmpty())
+  {
+    const Box& o = frame.opaqueBox;
+    shown.lower = { std::max(shown.lower.x, o.lower.x), std::max(shown.lower.y, o.lower.y),
+      std::max(shown.lower.z, o.lower.z) };
+    shown.upper = { std::min(shown.upper.x, o.upper.x), std::min(shown.upper.y, o.upper.y),
+      std::min(shown.upper.z, o.upper.z) };
+  }
+  VisiblePixels(shown, view, frame.visible);
 
   const int tile = settings.tileSize;
   const int tilesX = (view.width + tile - 1) / tile;

@@ -101,7 +101,8 @@ struct RayCastSettings
 
 struct RayCastCounters
 {
-  std::uint64_t rays = 0;            // rays that met the volume
+  std::uint64_t rays = 0;            // rays cast that met a region (leaping culls rays that
+                                     // cannot meet a possibly opaque cell)
   std::uint64_t samples = 0;         // samples resampled (interpolated)
   std::uint64_t leapedOctree = 0;    // samples skipped by octree leaps
   std::uint64_t leapedDistance = 0;  // samples skipped by distance-map leaps

@@ -177,8 +177,12 @@ PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
   }
   PixelRay ray;
   ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
-  const Vec3& d = ray.index.direction;
   const RayCastLighting& l = *frame.lighting;
+  if (!l.shade)
+  {
+    return ray; // the eye-space direction only serves specular lighting
+  }
+  const Vec3& d = ray.index.direction;
   double eye[3];
   for (int r = 0; r < 3; ++r)
   {
@@ -223,8 +227,18 @@ public:
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
   {
     const int width = this->Frame.view->width;
-    std::vector<PixelRay> rays;
-    rays.reserve(static_cast<std::size_t>(x1 - x0) * (y1 - y0));
+    // Only the pixels whose rays can meet the projected box.
+    const int* visible = this->Frame.visible;
+    x0 = std::max(x0, visible[0]);
+    x1 = std::min(x1, visible[1] + 1);
+    y0 = std::max(y0, visible[2]);
+    y1 = std::min(y1, visible[3] + 1);
+    if (x0 >= x1 || y0 >= y1)
+    {
+      return;
+    }
+    std::vector<PixelRay>& rays = this->Rays;
+    rays.clear();
     double maximumStep[3] = { 0, 0, 0 };
     const double h = this->Settings.sampleDistance;
     for (int j = y0; j < y1; ++j)
@@ -745,6 +759,7 @@ private:
   const std::array<CellLeapCase, 256>& Table;
   DistanceTemplate Template;
   std::vector<Interval> RayIntervals;
+  std::vector<PixelRay> Rays;
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
 };

@@ -45,6 +45,9 @@ struct KernelFrame
   // opaque; samples outside it are leaped without visiting them. Empty box: nothing visible.
   bool useOpaqueBox = false;
   Box opaqueBox;
+  // Pixels [visible[0], visible[1]] x [visible[2], visible[3]] (inclusive) hold every ray that
+  // can meet what is drawn (the projected box); the others stay empty without a ray.
+  int visible[4] = { 0, -1, 0, -1 };
 };
 
 // Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
