@@ -24,8 +24,8 @@
 //   count and on load from other processes).
 // - Images at the fixed view: our six configurations must be byte-identical (exit code 3 when
 //   not); quality is the grey-level RMS, over pixels non-black in either image, of ours (the
-//   default: distance map, cell leaping on) and of vtkFixedPoint against a fine reference: ours with leap none, cell leaping
-//   off, at 1/4 of the sample distance (--reference-factor).
+//   default: distance map, cell leaping on) and of vtkFixedPoint against a fine reference: ours
+//   with leap none, cell leaping off, at 1/4 of the sample distance (--reference-factor).
 //
 // Transfer functions: the presets of `accelvolume render --tf` (TransferFunctions.cxx) laid over
 // each volume's data range, shading on. tf2 (default first) is the paper's kind of rendering

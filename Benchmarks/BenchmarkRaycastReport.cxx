@@ -196,7 +196,8 @@ void PrintCase(const CaseResult& c)
   std::cout << "  quality vs fine reference (ours, leap none, cell off, sample distance "
             << c.ReferenceSampleDistance << " = 1/"
             << Num(c.SampleDistance / c.ReferenceSampleDistance, 0) << " of " << c.SampleDistance
-            << "; " << Num(c.ReferenceMs, 0) << " ms): grey-level RMS ours (dist. map, cell on: the default) "
+            << "; " << Num(c.ReferenceMs, 0)
+            << " ms): grey-level RMS ours (dist. map, cell on: the default) "
             << Num(c.OursVsReference.Rms(), 2) << ", vtkFixedPoint "
             << Num(c.VtkVsReference.Rms(), 2) << " over " << c.OursVsReference.Pixels << " / "
             << c.VtkVsReference.Pixels << " non-black pixels; ours vs vtkFixedPoint "

@@ -9,6 +9,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+
 #include "AccelVolumeImageFS.h"
 #include "AccelVolumeResolveVS.h"
 

@@ -5,6 +5,8 @@
 
 #include "vtkNew.h" // For vtkNew
 
+#include <vector> // For std::vector
+
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkTextureObject;
@@ -32,6 +34,7 @@ private:
   void operator=(const vtkAccelVolumeImageDisplay&) = delete;
 
   vtkNew<vtkTextureObject> Image;
+  std::vector<unsigned short> Pixels;
   vtkNew<vtkOpenGLVertexArrayObject> Array;
 };
 

@@ -59,8 +59,8 @@ double RayCaster::GetLastPrepareSeconds() const
 std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
-  std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) +
-    impl.Gradients.size() * sizeof(std::int16_t);
+  std::size_t bytes =
+    impl.CellInfo.size() * sizeof(std::uint16_t) + impl.Gradients.size() * sizeof(std::int16_t);
   if (impl.OctreeBuilt)
   {
     bytes += impl.Octree.GetNumberOfNodes() * (2 * sizeof(float) + 1);
@@ -180,8 +180,8 @@ Box NonTransparentLeafBox(const MinMaxOctree& octree, const int dims[3])
 // Per-voxel central differences (neighbours clamped to the volume, NaN as 0) quantised to
 // int16 with step `scale` raw units.
 template <typename T>
-void ComputeGradients(const T* data, const int dims[3], float scale, std::int16_t* out,
-  const ParallelFor& parallel)
+void ComputeGradients(
+  const T* data, const int dims[3], float scale, std::int16_t* out, const ParallelFor& parallel)
 {
   const std::ptrdiff_t stride[3] = { 1, dims[0], static_cast<std::ptrdiff_t>(dims[0]) * dims[1] };
   parallel(static_cast<std::size_t>(dims[2]),
@@ -194,12 +194,14 @@ void ComputeGradients(const T* data, const int dims[3], float scale, std::int16_
           for (int i = 0; i < dims[0]; ++i)
           {
             const int c[3] = { i, j, static_cast<int>(k) };
-            const std::ptrdiff_t at = i + j * stride[1] + static_cast<std::ptrdiff_t>(k) * stride[2];
+            const std::ptrdiff_t at =
+              i + j * stride[1] + static_cast<std::ptrdiff_t>(k) * stride[2];
             for (int a = 0; a < 3; ++a)
             {
               const std::ptrdiff_t up = c[a] + 1 < dims[a] ? stride[a] : 0;
               const std::ptrdiff_t down = c[a] > 0 ? stride[a] : 0;
-              double g = 0.5 * (static_cast<double>(data[at + up]) - static_cast<double>(data[at - down]));
+              double g =
+                0.5 * (static_cast<double>(data[at + up]) - static_cast<double>(data[at - down]));
               g = std::isfinite(g) ? std::min(std::max(g / scale, -32767.0), 32767.0) : 0.0;
               out[3 * at + a] = static_cast<std::int16_t>(std::lround(g));
             }
@@ -280,7 +282,8 @@ void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
     return;
   }
   const Affine indexToWorld = view.worldToIndex.Inverse();
-  double lower[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double lower[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
   double upper[2] = { -lower[0], -lower[1] };
   for (int corner = 0; corner < 8; ++corner)
   {
@@ -475,15 +478,17 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   const std::size_t voxels =
     static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
   constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
-  const bool useGradients = needGradients && settings.precomputeGradients &&
-    6 * voxels <= GradientBudget;
+  const bool useGradients =
+    needGradients && settings.precomputeGradients && 6 * voxels <= GradientBudget;
   if (useGradients && (!impl.GradientsBuilt || impl.GradientsVolume != volumeVersion))
   {
     // |central difference| <= the range width, so this step keeps every value in int16.
     impl.GradientScale = static_cast<float>(width / 32767.0);
     impl.Gradients.resize(3 * voxels);
-    DispatchScalarType(volume, [&](const auto* data)
-      { ComputeGradients(data, volume.dims, impl.GradientScale, impl.Gradients.data(), parallel); });
+    DispatchScalarType(volume,
+      [&](const auto* data) {
+        ComputeGradients(data, volume.dims, impl.GradientScale, impl.Gradients.data(), parallel);
+      });
     impl.GradientsBuilt = true;
     impl.GradientsVolume = volumeVersion;
   }
@@ -545,10 +550,10 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   {
     if (!region.IsEmpty())
     {
-      shown.lower = { std::min(shown.lower.x, region.lower.x), std::min(shown.lower.y, region.lower.y),
-        std::min(shown.lower.z, region.lower.z) };
-      shown.upper = { std::max(shown.upper.x, region.upper.x), std::max(shown.upper.y, region.upper.y),
-        std::max(shown.upper.z, region.upper.z) };
+      shown.lower = { std::min(shown.lower.x, region.lower.x),
+        std::min(shown.lower.y, region.lower.y), std::min(shown.lower.z, region.lower.z) };
+      shown.upper = { std::max(shown.upper.x, region.upper.x),
+        std::max(shown.upper.y, region.upper.y), std::max(shown.upper.z, region.upper.z) };
     }
   }
   // Composite only: a raysum / average pixel is drawn (alpha 1) wherever its ray meets the

@@ -376,8 +376,13 @@ private:
     const IndexRay& ray = pixel.index;
     const double h = this->Settings.sampleDistance;
     const Vec3 step = ray.direction * h;
-    const double largestStep = std::max({ std::abs(step.x), std::abs(step.y), std::abs(step.z) });
-    const double inverseLargestStep = largestStep > 0 ? 1.0 / largestStep : 1.0e30;
+    // Distance-map leaps: per axis, 1 / |step| (0 for axes the ray does not move along).
+    const double stepAlong[3] = { step.x, step.y, step.z };
+    double inverseStep[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
+    }
     const bool octree = leapTransparent && this->Frame.useOctree;
     const bool distance = leapTransparent && this->Frame.useDistance;
     const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
@@ -400,16 +405,17 @@ private:
         // slack on each side keeps rounding from cutting a visible one.
         static const std::vector<HalfSpace> noClip;
         double enter, leave;
-        if (!IntersectRayRegion(ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
+        if (!IntersectRayRegion(
+              ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
         {
           first = last = count;
         }
         else
         {
-          first = std::max<std::int64_t>(0,
-            static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
-          last = std::min<std::int64_t>(count,
-            static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
+          first = std::max<std::int64_t>(
+            0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
+          last = std::min<std::int64_t>(
+            count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
           first = std::min(first, count);
           last = std::max(last, first);
         }
@@ -441,8 +447,20 @@ private:
           const int d = info & 0xff;
           if (d > 0)
           {
-            const auto more =
-              static_cast<std::int64_t>((d - 1) * inverseLargestStep * (1.0 - 1e-9));
+            // Every cell within chessboard distance d - 1 is empty: from the sample's place in
+            // its cell, along axis a the ray may go d - f (forward) or d - 1 + f (backward)
+            // cells before it can reach a non-empty one. A small safety margin absorbs the
+            // float fraction; one-voxel axes never change cell.
+            double room = 1.0e30;
+            for (int a = 0; a < 3; ++a)
+            {
+              if (inverseStep[a] > 0 && cell.offset[a] != 0)
+              {
+                const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
+                room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
+              }
+            }
+            const auto more = static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
             const std::int64_t skipped = std::min(more + 1, last - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
             ++this->Counters.distanceLeaps;
@@ -671,7 +689,8 @@ private:
     double g[3];
     if (const std::int16_t* gradients = this->Frame.gradients)
     {
-      const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1], oz = 3 * cell.offset[2];
+      const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1],
+                           oz = 3 * cell.offset[2];
       const std::int16_t* d = gradients + 3 * cell.base;
       const float scale = this->Frame.gradientScale * this->Frame.normalScale;
       for (int a = 0; a < 3; ++a)
