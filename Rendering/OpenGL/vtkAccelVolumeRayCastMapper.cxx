@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 #include <thread>
 #include <vector>
@@ -383,9 +384,19 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   castTimer->StartTimer();
   auto cast = [&]()
   {
-    ok = internals.Caster.Render(view, range[0], high, internals.VolumeVersion, transfer,
-      internals.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
-      error);
+    try
+    {
+      ok = internals.Caster.Render(view, range[0], high, internals.VolumeVersion, transfer,
+        internals.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
+        error);
+    }
+    catch (const std::bad_alloc&)
+    {
+      // The acceleration structures need up to 2 bytes per cell (+6 per voxel for shading).
+      ok = false;
+      error = "out of memory for the acceleration structures or the image (try LEAP_OCTREE, "
+              "shading off or a smaller volume)";
+    }
   };
   // More threads than cores only adds contention (and TBB refuses them with a warning).
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -95,7 +95,7 @@ std::string RenderHelp()
     "                             (every blend but average) or a per-cell distance map\n"
     "                             (composite, additive); default distance\n"
     "  --cell-leap on|off         raycast only: semi-transparent cell leaping through the\n"
-    "                             Marching Cubes table (composite, additive; default on).\n"
+    "                             Marching Cubes table (composite, additive; default off).\n"
     "                             Every leap is exact: the image stays the same\n"
     "\n"
     "View and output:\n"
