@@ -11,6 +11,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace accelvolume
 {
 
@@ -325,6 +329,29 @@ void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
   }
 }
 
+// Resizes v to n elements, asking Linux for transparent huge pages first: the ray caster reads
+// these arrays at random along rays, and 2 MiB pages cut its TLB misses (a hint only).
+template <typename T>
+void ResizeWithHugePages(std::vector<T>& v, std::size_t n)
+{
+  if (v.capacity() < n)
+  {
+    std::vector<T>().swap(v);
+    v.reserve(n);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::uintptr_t Huge = std::uintptr_t(1) << 21;
+    const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+    const std::uintptr_t first = (begin + Huge - 1) & ~(Huge - 1);
+    const std::uintptr_t end = begin + n * sizeof(T);
+    if (end > first + Huge)
+    {
+      madvise(reinterpret_cast<void*>(first), (end - first) & ~(Huge - 1), MADV_HUGEPAGE);
+    }
+#endif
+  }
+  v.resize(n);
+}
+
 bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
   const RayCastView& view, const RayCastSettings& settings, std::string& error)
 {
@@ -451,7 +478,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       {
         distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
       }
-      impl.CellInfo.resize(cells.configuration.size());
+      ResizeWithHugePages(impl.CellInfo, cells.configuration.size());
       const std::uint8_t* configuration = cells.configuration.data();
       const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
       std::uint16_t* info = impl.CellInfo.data();
@@ -484,7 +511,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   {
     // |central difference| <= the range width, so this step keeps every value in int16.
     impl.GradientScale = static_cast<float>(width / 32767.0);
-    impl.Gradients.resize(3 * voxels);
+    ResizeWithHugePages(impl.Gradients, 3 * voxels);
     DispatchScalarType(volume,
       [&](const auto* data) {
         ComputeGradients(data, volume.dims, impl.GradientScale, impl.Gradients.data(), parallel);
