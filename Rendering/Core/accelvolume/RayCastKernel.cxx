@@ -701,14 +701,23 @@ private:
                            oz = 3 * cell.offset[2];
       const std::int16_t* d = gradients + 3 * cell.base;
       const float scale = this->Frame.gradientScale * this->Frame.normalScale;
+      // The 8 trilinear weights once for the three components.
+      const float fx = cell.f[0], fy = cell.f[1], fz = cell.f[2];
+      const float wy[2] = { (1 - fy), fy };
+      const float wz[2] = { (1 - fz), fz };
+      const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
+      float sum[3] = { 0, 0, 0 };
+      for (int c = 0; c < 8; ++c)
+      {
+        const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
+        const std::int16_t* v = d + at[c];
+        sum[0] += w * v[0];
+        sum[1] += w * v[1];
+        sum[2] += w * v[2];
+      }
       for (int a = 0; a < 3; ++a)
       {
-        const std::int16_t* v = d + a;
-        const float c00 = Lerp(v[0], v[ox], cell.f[0]);
-        const float c10 = Lerp(v[oy], v[oy + ox], cell.f[0]);
-        const float c01 = Lerp(v[oz], v[oz + ox], cell.f[0]);
-        const float c11 = Lerp(v[oz + oy], v[oz + oy + ox], cell.f[0]);
-        g[a] = Lerp(Lerp(c00, c10, cell.f[1]), Lerp(c01, c11, cell.f[1]), cell.f[2]) * scale;
+        g[a] = sum[a] * scale;
       }
     }
     else
