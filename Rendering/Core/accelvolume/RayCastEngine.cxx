@@ -182,33 +182,45 @@ Box NonTransparentLeafBox(const MinMaxOctree& octree, const int dims[3])
 }
 
 // Per-voxel central differences (neighbours clamped to the volume, NaN as 0) quantised to
-// int16 with step `scale` raw units.
+// int16 with step `scale` raw units. Rows are handled with clamped neighbour rows and a
+// branch-free interior, since this runs over every voxel when the scalars change.
 template <typename T>
 void ComputeGradients(
   const T* data, const int dims[3], float scale, std::int16_t* out, const ParallelFor& parallel)
 {
-  const std::ptrdiff_t stride[3] = { 1, dims[0], static_cast<std::ptrdiff_t>(dims[0]) * dims[1] };
-  parallel(static_cast<std::size_t>(dims[2]),
+  const std::ptrdiff_t nx = dims[0], ny = dims[1], nz = dims[2];
+  const float inverse = 0.5f / scale;
+  auto quantise = [](float g) -> std::int16_t
+  {
+    // NaN fails both comparisons and becomes 0; round half away from zero.
+    g = g > -32767.0f ? (g < 32767.0f ? g : 32767.0f) : (g <= -32767.0f ? -32767.0f : 0.0f);
+    return static_cast<std::int16_t>(g + (g >= 0 ? 0.5f : -0.5f));
+  };
+  parallel(static_cast<std::size_t>(nz),
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t k = begin; k < end; ++k)
       {
-        for (int j = 0; j < dims[1]; ++j)
+        const std::ptrdiff_t z = static_cast<std::ptrdiff_t>(k);
+        const std::ptrdiff_t zDown = z > 0 ? z - 1 : z, zUp = z + 1 < nz ? z + 1 : z;
+        for (std::ptrdiff_t y = 0; y < ny; ++y)
         {
-          for (int i = 0; i < dims[0]; ++i)
+          const std::ptrdiff_t yDown = y > 0 ? y - 1 : y, yUp = y + 1 < ny ? y + 1 : y;
+          const T* row = data + (z * ny + y) * nx;
+          const T* rowYDown = data + (z * ny + yDown) * nx;
+          const T* rowYUp = data + (z * ny + yUp) * nx;
+          const T* rowZDown = data + (zDown * ny + y) * nx;
+          const T* rowZUp = data + (zUp * ny + y) * nx;
+          std::int16_t* o = out + 3 * (z * ny + y) * nx;
+          for (std::ptrdiff_t x = 0; x < nx; ++x)
           {
-            const int c[3] = { i, j, static_cast<int>(k) };
-            const std::ptrdiff_t at =
-              i + j * stride[1] + static_cast<std::ptrdiff_t>(k) * stride[2];
-            for (int a = 0; a < 3; ++a)
-            {
-              const std::ptrdiff_t up = c[a] + 1 < dims[a] ? stride[a] : 0;
-              const std::ptrdiff_t down = c[a] > 0 ? stride[a] : 0;
-              double g =
-                0.5 * (static_cast<double>(data[at + up]) - static_cast<double>(data[at - down]));
-              g = std::isfinite(g) ? std::min(std::max(g / scale, -32767.0), 32767.0) : 0.0;
-              out[3 * at + a] = static_cast<std::int16_t>(std::lround(g));
-            }
+            const std::ptrdiff_t xDown = x > 0 ? x - 1 : x, xUp = x + 1 < nx ? x + 1 : x;
+            o[3 * x] =
+              quantise((static_cast<float>(row[xUp]) - static_cast<float>(row[xDown])) * inverse);
+            o[3 * x + 1] =
+              quantise((static_cast<float>(rowYUp[x]) - static_cast<float>(rowYDown[x])) * inverse);
+            o[3 * x + 2] =
+              quantise((static_cast<float>(rowZUp[x]) - static_cast<float>(rowZDown[x])) * inverse);
           }
         }
       }
