@@ -45,6 +45,7 @@ struct RayCaster::Internals
   float GradientScale = 1;
 
   std::vector<float> CorrectedAlpha;
+  std::vector<float> SpecularTable;
   double PrepareSeconds = 0;
 };
 
@@ -568,6 +569,26 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   frame.lighting = &lighting;
   frame.gradients = useGradients ? impl.Gradients.data() : nullptr;
   frame.gradientScale = impl.GradientScale;
+  // Normal matrix with the gradient's units folded in: per-voxel differences are stored in
+  // steps of GradientScale raw units, on-the-fly ones are raw; both become normalised units.
+  const double gradientUnits = (useGradients ? impl.GradientScale : 1.0) / width;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      frame.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c] * gradientUnits);
+    }
+  }
+  // pow(x, power) over x in [0, 1], linearly interpolated (errors ~1e-5 for power 10).
+  constexpr int SpecularTableSize = 2048;
+  impl.SpecularTable.resize(SpecularTableSize);
+  for (int i = 0; i < SpecularTableSize; ++i)
+  {
+    impl.SpecularTable[i] = static_cast<float>(
+      std::pow(static_cast<double>(i) / (SpecularTableSize - 1), lighting.specularPower));
+  }
+  frame.specularTable = impl.SpecularTable.data();
+  frame.specularTableSize = SpecularTableSize;
   frame.view = &view;
   frame.settings = &settings;
   frame.octree = useOctree ? &impl.Octree : nullptr;

@@ -137,7 +137,7 @@ private:
 struct PixelRay
 {
   IndexRay index;
-  double eyeDirection[3];
+  float toViewer[3]; // eye space, unit length (shading only)
 };
 
 void Unproject(const double m[4][4], double x, double y, double z, double out[3])
@@ -191,7 +191,7 @@ PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
   const double length = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
   for (int r = 0; r < 3; ++r)
   {
-    ray.eyeDirection[r] = length > 0 ? eye[r] / length : 0.0;
+    ray.toViewer[r] = static_cast<float>(length > 0 ? -eye[r] / length : 0.0);
   }
   return ray;
 }
@@ -694,30 +694,26 @@ private:
   // interpolation is linear); without, six extra samples.
   void Gradient(const double p[3], const SampleCell& cell, float eyeGradient[3]) const
   {
-    double g[3];
+    float g[3];
     if (const std::int16_t* gradients = this->Frame.gradients)
     {
+      // Interpolated per-voxel differences; their scale is folded into the normal matrix.
       const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1],
                            oz = 3 * cell.offset[2];
       const std::int16_t* d = gradients + 3 * cell.base;
-      const float scale = this->Frame.gradientScale * this->Frame.normalScale;
       // The 8 trilinear weights once for the three components.
       const float fx = cell.f[0], fy = cell.f[1], fz = cell.f[2];
       const float wy[2] = { (1 - fy), fy };
       const float wz[2] = { (1 - fz), fz };
       const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
-      float sum[3] = { 0, 0, 0 };
+      g[0] = g[1] = g[2] = 0;
       for (int c = 0; c < 8; ++c)
       {
         const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
         const std::int16_t* v = d + at[c];
-        sum[0] += w * v[0];
-        sum[1] += w * v[1];
-        sum[2] += w * v[2];
-      }
-      for (int a = 0; a < 3; ++a)
-      {
-        g[a] = sum[a] * scale;
+        g[0] += w * v[0];
+        g[1] += w * v[1];
+        g[2] += w * v[2];
       }
     }
     else
@@ -728,17 +724,15 @@ private:
         double backward[3] = { p[0], p[1], p[2] };
         forward[a] += 1.0;
         backward[a] -= 1.0;
-        g[a] = 0.5 *
+        g[a] = 0.5f *
           (this->Sampling.Sample(forward, this->Settings.nearest) -
-            this->Sampling.Sample(backward, this->Settings.nearest)) *
-          this->Frame.normalScale;
+            this->Sampling.Sample(backward, this->Settings.nearest));
       }
     }
-    const RayCastLighting& l = *this->Frame.lighting;
+    const float(*m)[3] = this->Frame.normalMatrix;
     for (int r = 0; r < 3; ++r)
     {
-      eyeGradient[r] = static_cast<float>(
-        l.normalMatrix[r][0] * g[0] + l.normalMatrix[r][1] * g[1] + l.normalMatrix[r][2] * g[2]);
+      eyeGradient[r] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
     }
   }
 
@@ -756,26 +750,34 @@ private:
   {
     const RayCastLighting& l = *this->Frame.lighting;
     float shaded[3] = { l.ambient * rgb[0], l.ambient * rgb[1], l.ambient * rgb[2] };
-    const float length = std::sqrt(eyeGradient[0] * eyeGradient[0] +
-      eyeGradient[1] * eyeGradient[1] + eyeGradient[2] * eyeGradient[2]);
-    if (length > 1.0e-8f)
+    const float squared = eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
+      eyeGradient[2] * eyeGradient[2];
+    if (squared > 1.0e-16f)
     {
-      const float normal[3] = { -eyeGradient[0] / length, -eyeGradient[1] / length,
-        -eyeGradient[2] / length };
-      const float toViewer[3] = { static_cast<float>(-pixel.eyeDirection[0]),
-        static_cast<float>(-pixel.eyeDirection[1]), static_cast<float>(-pixel.eyeDirection[2]) };
+      const float inverse = -1.0f / std::sqrt(squared);
+      const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
+        eyeGradient[2] * inverse };
+      const float* toViewer = pixel.toViewer;
+      const float* table = this->Frame.specularTable;
+      const float last = static_cast<float>(this->Frame.specularTableSize - 1);
       for (int i = 0; i < l.lightCount; ++i)
       {
         const float* light = l.directions[i];
         float nDotL = normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2];
-        const float sign = nDotL < 0 ? -1.0f : 1.0f;
+        const float twice = 2.0f * nDotL; // = 2 |n.l| times the facing normal's sign
         nDotL = std::abs(nDotL);
         float rDotV = 0;
         for (int c = 0; c < 3; ++c)
         {
-          rDotV += (2.0f * nDotL * sign * normal[c] - light[c]) * toViewer[c];
+          rDotV += (twice * normal[c] - light[c]) * toViewer[c];
         }
-        const float specular = rDotV > 0 ? l.specular * std::pow(rDotV, l.specularPower) : 0.0f;
+        float specular = 0;
+        if (rDotV > 0)
+        {
+          const float u = std::min(rDotV, 1.0f) * last;
+          const int k = std::min(static_cast<int>(u), this->Frame.specularTableSize - 2);
+          specular = l.specular * Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+        }
         for (int c = 0; c < 3; ++c)
         {
           shaded[c] += (l.diffuse * nDotL * rgb[c] + specular) * l.colours[i][c];

@@ -34,6 +34,11 @@ struct KernelFrame
   // 1 / gradientScale), interpolated trilinearly instead of six extra samples per shaded one.
   const std::int16_t* gradients = nullptr;
   float gradientScale = 1;
+  // Shading, prepared once per frame: the gradient-to-eye matrix in float with the gradient
+  // scale folded in, and the specular term pow(x, power) tabulated over x in [0, 1].
+  float normalMatrix[3][3] = {};
+  const float* specularTable = nullptr;
+  int specularTableSize = 0;
   const RayCastView* view = nullptr;
   const RayCastSettings* settings = nullptr;
   const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
