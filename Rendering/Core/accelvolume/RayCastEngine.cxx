@@ -38,6 +38,10 @@ struct RayCaster::Internals
   // once packed.
   std::vector<std::uint16_t> CellInfo;
   bool CellInfoHasDistance = false;
+  // Without cell leaping only the distance map is read: one byte per cell halves the memory
+  // the rays pull through the caches.
+  std::vector<std::uint8_t> DistanceOnly;
+  bool Packed = false; // which of the two layouts is built
 
   std::vector<std::int16_t> Gradients;
   bool GradientsBuilt = false;
@@ -64,8 +68,8 @@ double RayCaster::GetLastPrepareSeconds() const
 std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
-  std::size_t bytes =
-    impl.CellInfo.size() * sizeof(std::uint16_t) + impl.Gradients.size() * sizeof(std::int16_t);
+  std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) + impl.DistanceOnly.size() +
+    impl.Gradients.size() * sizeof(std::int16_t);
   if (impl.OctreeBuilt)
   {
     bytes += impl.Octree.GetNumberOfNodes() * (2 * sizeof(float) + 1);
@@ -482,28 +486,40 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   if (useCellLeap || useDistance)
   {
     const bool stale = !impl.CellsBuilt || impl.CellsVolume != volumeVersion ||
-      impl.CellsTransfer != transferVersion || (useDistance && !impl.CellInfoHasDistance);
+      impl.CellsTransfer != transferVersion || impl.Packed != useCellLeap ||
+      (useDistance && useCellLeap && !impl.CellInfoHasDistance);
     if (stale)
     {
       CellClassification cells = ClassifyCells(volume, opacityRange, leapThreshold, parallel);
-      std::vector<std::uint8_t> distance;
-      if (useDistance)
+      if (!useCellLeap)
       {
-        distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
+        std::vector<std::uint16_t>().swap(impl.CellInfo);
+        ResizeWithHugePages(impl.DistanceOnly, cells.nonEmpty.size());
+        ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, impl.DistanceOnly);
       }
-      ResizeWithHugePages(impl.CellInfo, cells.configuration.size());
-      const std::uint8_t* configuration = cells.configuration.data();
-      const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
-      std::uint16_t* info = impl.CellInfo.data();
-      parallel(cells.configuration.size(),
-        [&](std::size_t begin, std::size_t end)
+      else
+      {
+        std::vector<std::uint8_t>().swap(impl.DistanceOnly);
+        std::vector<std::uint8_t> distance;
+        if (useDistance)
         {
-          for (std::size_t i = begin; i < end; ++i)
+          distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
+        }
+        ResizeWithHugePages(impl.CellInfo, cells.configuration.size());
+        const std::uint8_t* configuration = cells.configuration.data();
+        const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
+        std::uint16_t* info = impl.CellInfo.data();
+        parallel(cells.configuration.size(),
+          [&](std::size_t begin, std::size_t end)
           {
-            info[i] =
-              static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
-          }
-        });
+            for (std::size_t i = begin; i < end; ++i)
+            {
+              info[i] = static_cast<std::uint16_t>(
+                (configuration[i] << 8) | (distances ? distances[i] : 0));
+            }
+          });
+      }
+      impl.Packed = useCellLeap;
       std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
       impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
       impl.CellInfoHasDistance = useDistance;
@@ -592,7 +608,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   frame.view = &view;
   frame.settings = &settings;
   frame.octree = useOctree ? &impl.Octree : nullptr;
-  frame.cellInfo = (useCellLeap || useDistance) ? impl.CellInfo.data() : nullptr;
+  frame.cellInfo = useCellLeap ? impl.CellInfo.data() : nullptr;
+  frame.distanceOnly = useDistance && !useCellLeap ? impl.DistanceOnly.data() : nullptr;
   frame.leapThreshold = static_cast<float>(leapThreshold);
   frame.useOctree = useOctree;
   frame.useDistance = useDistance;

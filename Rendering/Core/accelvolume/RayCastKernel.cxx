@@ -332,7 +332,10 @@ private:
         // cell leaping the distance map is not read there (sampling an empty cell adds
         // nothing, so this is exact and saves a cache miss per sample in dense matter).
         const bool lookUp = cellLeap || (distance && !this->LastContributed);
-        const std::uint16_t info = lookUp ? this->Frame.cellInfo[cell.cell] : 0;
+        const std::uint16_t info = !lookUp
+          ? 0
+          : (this->Frame.distanceOnly ? this->Frame.distanceOnly[cell.cell]
+                                      : this->Frame.cellInfo[cell.cell]);
         if (distance && lookUp)
         {
           const int d = info & 0xff;

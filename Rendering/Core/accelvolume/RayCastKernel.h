@@ -43,7 +43,8 @@ struct KernelFrame
   const RayCastSettings* settings = nullptr;
   const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
   // Per cell: distance map (low byte) and Marching Cubes configuration (high byte).
-  const std::uint16_t* cellInfo = nullptr;
+  const std::uint16_t* cellInfo = nullptr;    // with cell leaping
+  const std::uint8_t* distanceOnly = nullptr; // distance map alone, without cell leaping
   float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
   bool useOctree = false, useDistance = false, useCellLeap = false;
   // With octree or distance-map leaping: the index-space box of everything that may be
