@@ -10,6 +10,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "AccelVolumeImageFS.h"
 #include "AccelVolumeResolveVS.h"
@@ -19,21 +20,42 @@ vtkAccelVolumeImageDisplay::vtkAccelVolumeImageDisplay() = default;
 vtkAccelVolumeImageDisplay::~vtkAccelVolumeImageDisplay() = default;
 
 bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
-  int width, int height, int imageWidth, int imageHeight, const float* rgba)
+  int width, int height, int imageWidth, int imageHeight, const float* rgba, const int rectangle[4])
 {
+  const int x0 = std::max(rectangle[0], 0), x1 = std::min(rectangle[1], imageWidth - 1);
+  const int y0 = std::max(rectangle[2], 0), y1 = std::min(rectangle[3], imageHeight - 1);
+  if (x1 < x0 || y1 < y0)
+  {
+    return true; // nothing visible
+  }
+  const int rectangleWidth = x1 - x0 + 1, rectangleHeight = y1 - y0 + 1;
+  // 16-bit normalised channels (as VTK's CPU mapper uses): a quarter of the float upload, in
+  // 1/65535 steps, far below the 8-bit framebuffer's; only the rectangle the rays covered.
+  this->Pixels.resize(4 * static_cast<std::size_t>(rectangleWidth) * rectangleHeight);
+  unsigned short* out = this->Pixels.data();
+  for (int y = y0; y <= y1; ++y)
+  {
+    const float* in = rgba + 4 * (static_cast<std::size_t>(y) * imageWidth + x0);
+    for (int i = 0; i < 4 * rectangleWidth; ++i)
+    {
+      const float v = std::min(std::max(in[i], 0.0f), 1.0f);
+      *out++ = static_cast<unsigned short>(v * 65535.0f + 0.5f);
+    }
+  }
   vtkOpenGLState* state = window->GetState();
   state->Push();
   this->Image->SetContext(window);
-  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
   bool ok = this->Image->GetHandle() &&
-      this->Image->GetWidth() == static_cast<unsigned>(imageWidth) &&
-      this->Image->GetHeight() == static_cast<unsigned>(imageHeight)
+      this->Image->GetWidth() == static_cast<unsigned>(rectangleWidth) &&
+      this->Image->GetHeight() == static_cast<unsigned>(rectangleHeight)
     ? true
-    : this->Image->Create2D(imageWidth, imageHeight, 4, VTK_FLOAT, false);
+    : this->Image->Create2D(rectangleWidth, rectangleHeight, 4, VTK_UNSIGNED_SHORT, false);
   if (ok)
   {
     this->Image->Activate();
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, imageWidth, imageHeight, GL_RGBA, GL_FLOAT, rgba);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rectangleWidth, rectangleHeight, GL_RGBA,
+      GL_UNSIGNED_SHORT, this->Pixels.data());
     this->Image->SetWrapS(vtkTextureObject::ClampToEdge);
     this->Image->SetWrapT(vtkTextureObject::ClampToEdge);
     this->Image->SetMinificationFilter(vtkTextureObject::Linear);
@@ -45,6 +67,15 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
     if (ok)
     {
       state->vtkglViewport(lowerLeft[0], lowerLeft[1], width, height);
+      // Only fragments over the rectangle (one image pixel of margin for the magnification).
+      const double scaleX = static_cast<double>(width) / imageWidth;
+      const double scaleY = static_cast<double>(height) / imageHeight;
+      const int left = lowerLeft[0] + static_cast<int>(std::floor((x0 - 1) * scaleX));
+      const int bottom = lowerLeft[1] + static_cast<int>(std::floor((y0 - 1) * scaleY));
+      const int right = lowerLeft[0] + static_cast<int>(std::ceil((x1 + 2) * scaleX));
+      const int top = lowerLeft[1] + static_cast<int>(std::ceil((y1 + 2) * scaleY));
+      state->vtkglEnable(GL_SCISSOR_TEST);
+      state->vtkglScissor(left, bottom, right - left, top - bottom);
       state->vtkglDisable(GL_DEPTH_TEST);
       state->vtkglDepthMask(GL_FALSE);
       state->vtkglEnable(GL_BLEND);
@@ -54,8 +85,15 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
       const float origin[2] = { static_cast<float>(lowerLeft[0]),
         static_cast<float>(lowerLeft[1]) };
       const float size[2] = { static_cast<float>(width), static_cast<float>(height) };
+      const float image[2] = { static_cast<float>(imageWidth), static_cast<float>(imageHeight) };
+      const float rectangleOrigin[2] = { static_cast<float>(x0), static_cast<float>(y0) };
+      const float rectangleSize[2] = { static_cast<float>(rectangleWidth),
+        static_cast<float>(rectangleHeight) };
       program->SetUniform2f("viewportOrigin", origin);
       program->SetUniform2f("viewportSize", size);
+      program->SetUniform2f("imageSize", image);
+      program->SetUniform2f("rectangleOrigin", rectangleOrigin);
+      program->SetUniform2f("rectangleSize", rectangleSize);
       this->Array->Bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
       this->Array->Release();

@@ -424,8 +424,10 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   this->LastSamplesInTransparentCells = static_cast<vtkTypeInt64>(counters.leapedEmptyCell);
   this->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
 
-  if (!internals.Display.Draw(
-        window, lowerLeft, width, height, imageWidth, imageHeight, internals.Image.data()))
+  int castRectangle[4];
+  internals.Caster.GetLastCastRectangle(castRectangle);
+  if (!internals.Display.Draw(window, lowerLeft, width, height, imageWidth, imageHeight,
+        internals.Image.data(), castRectangle))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

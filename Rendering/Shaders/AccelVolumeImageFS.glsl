@@ -4,13 +4,17 @@
 // reads its own texel centre exactly; larger distances interpolate bilinearly.
 //VTK::Output::Dec
 
-uniform sampler2D image;
+uniform sampler2D image;       // the cast rectangle of the image
 uniform vec2 viewportOrigin;
 uniform vec2 viewportSize;
+uniform vec2 imageSize;        // rays per row / column of the whole image
+uniform vec2 rectangleOrigin;  // the rectangle's first pixel in the image
+uniform vec2 rectangleSize;
 
 void main()
 {
-  vec4 colour = texture(image, (gl_FragCoord.xy - viewportOrigin) / viewportSize);
+  vec2 imagePosition = (gl_FragCoord.xy - viewportOrigin) / viewportSize * imageSize;
+  vec4 colour = texture(image, (imagePosition - rectangleOrigin) / rectangleSize);
   if (colour.a <= 0.0 && colour.r <= 0.0 && colour.g <= 0.0 && colour.b <= 0.0)
   {
     discard;

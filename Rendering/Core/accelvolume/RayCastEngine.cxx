@@ -50,6 +50,7 @@ struct RayCaster::Internals
 
   std::vector<float> CorrectedAlpha;
   std::vector<float> SpecularTable;
+  int CastRectangle[4] = { 0, -1, 0, -1 };
   double PrepareSeconds = 0;
 };
 
@@ -59,6 +60,11 @@ RayCaster::RayCaster()
 }
 
 RayCaster::~RayCaster() = default;
+
+void RayCaster::GetLastCastRectangle(int rectangle[4]) const
+{
+  std::copy(this->Impl->CastRectangle, this->Impl->CastRectangle + 4, rectangle);
+}
 
 double RayCaster::GetLastPrepareSeconds() const
 {
@@ -644,6 +650,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       std::min(shown.upper.z, o.upper.z) };
   }
   VisiblePixels(shown, view, frame.visible);
+  std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
 
   const int tile = settings.tileSize;
   const int tilesX = (view.width + tile - 1) / tile;

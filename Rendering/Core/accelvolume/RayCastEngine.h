@@ -131,6 +131,10 @@ public:
     const ParallelFor& parallel, std::vector<float>& rgba, RayCastCounters& counters,
     std::string& error);
 
+  // Image pixels [x0, x1] x [y0, y1] (inclusive; x1 < x0 when none) whose rays the last frame
+  // cast: every pixel outside it is transparent.
+  void GetLastCastRectangle(int rectangle[4]) const;
+
   // Seconds spent on the last (re)build of the acceleration structures (0 when reused).
   double GetLastPrepareSeconds() const;
   // Bytes held by the acceleration structures.
