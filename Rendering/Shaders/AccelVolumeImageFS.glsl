@@ -14,7 +14,22 @@ uniform vec2 rectangleSize;
 void main()
 {
   vec2 imagePosition = (gl_FragCoord.xy - viewportOrigin) / viewportSize * imageSize;
-  vec4 colour = texture(image, (imagePosition - rectangleOrigin) / rectangleSize);
+  vec4 colour;
+  if (imageSize == viewportSize)
+  {
+    // One ray per pixel: fetch the texel itself (a filtered lookup could mix in a trace of its
+    // neighbours through rounding, so images would depend on the rectangle's size).
+    ivec2 texel = ivec2(floor(imagePosition - rectangleOrigin));
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(rectangleSize))))
+    {
+      discard;
+    }
+    colour = texelFetch(image, texel, 0);
+  }
+  else
+  {
+    colour = texture(image, (imagePosition - rectangleOrigin) / rectangleSize);
+  }
   if (colour.a <= 0.0 && colour.r <= 0.0 && colour.g <= 0.0 && colour.b <= 0.0)
   {
     discard;
