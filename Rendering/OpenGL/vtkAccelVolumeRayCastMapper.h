@@ -82,8 +82,8 @@ public:
   /**
    * Semi-transparent cell leaping through the modified Marching Cubes table (default off).
    * Exact. Measured on 2-core EPYC, 512^2, six volumes x two transfer functions
-   * (accelvolume_benchmark_raycast, three runs): +15..54% without empty-space leaping, but
-   * -15..+6% on top of the distance map and -16..+15% on top of the octree, as those leave few
+   * (accelvolume_benchmark_raycast, four runs): +15..54% without empty-space leaping, but
+   * -15..+6% on top of the distance map and -16..+17% on top of the octree, as those leave few
    * semi-transparent samples and the test costs about what it saves; hence off by default.
    */
   vtkSetMacro(CellLeaping, vtkTypeBool);
