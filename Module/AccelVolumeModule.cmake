@@ -7,6 +7,7 @@ set(_av_classes
   OpenGL/vtkAccelVolumeHeadlessRenderWindow
   OpenGL/vtkAccelVolumeMinMaxOctree
   OpenGL/vtkAccelVolumeRayCastMapper
+  OpenGL/vtkAccelVolumeShearWarpMapper
   OpenGL/vtkAccelVolumeSliceMapper)
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.
@@ -24,6 +25,11 @@ set(_av_core_sources
   Core/accelvolume/RayCastEngine
   Core/accelvolume/RayCastKernel
   Core/accelvolume/ReferenceRenderer
+  Core/accelvolume/RunLengthVolume
+  Core/accelvolume/ShearWarpCompositor
+  Core/accelvolume/ShearWarpEngine
+  Core/accelvolume/ShearWarpFactorization
+  Core/accelvolume/ShearWarpPartition
   Core/accelvolume/SlabProxy)
 
 # Thin OpenGL helpers, excluded from wrapping and installation.

@@ -13,6 +13,8 @@ packages=(
   libgl-dev libgl1-mesa-dri         # OpenGL headers, Mesa llvmpipe driver
   libgtest-dev libbenchmark-dev     # GoogleTest unit tests, Google Benchmark
   zlib1g-dev                        # gzipped volumes
+  libvolpack1-dev                   # VolPack (Lacroute's shear-warp), the shear-warp benchmark's anchor
+  openmpi-bin                       # mpirun for the MPI shear-warp tests
   xvfb xauth                        # X-window tests under xvfb-run
 )
 

@@ -1,0 +1,380 @@
+// Front-to-back compositing of sheared slices into one intermediate scanline, walking voxel runs
+// and skip links over saturated pixels together.
+#include "accelvolume/ShearWarpCompositor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace accelvolume
+{
+namespace
+{
+
+// Skip links: next[u] == u for a pixel still open, else a link towards the next open pixel
+// (path-compressed as it is followed); next[width] == width closes the scanline.
+inline int FindOpen(std::int32_t* next, int u)
+{
+  int open = u;
+  while (next[open] != open)
+  {
+    open = next[open];
+  }
+  while (next[u] != open)
+  {
+    const int link = next[u];
+    next[u] = open;
+    u = link;
+  }
+  return open;
+}
+
+// Premultiplied colour of a classified voxel with the frame's tables.
+inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float out[4])
+{
+  const float opacity = voxel ? t.opacity[voxel->opacity] : 0.0f;
+  if (opacity <= 0)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0;
+    return;
+  }
+  constexpr float toUnit = 1.0f / 255.0f;
+  float rgb[3] = { voxel->colour[0] * toUnit, voxel->colour[1] * toUnit,
+    voxel->colour[2] * toUnit };
+  if (t.shade && !t.phong)
+  {
+    const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
+    const float* s = &t.shading[6 * row];
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+    }
+  }
+  else if (t.shade)
+  {
+    // Phong per voxel, two-sided, as the ray caster (eye space, parallel view: V = +z).
+    float factor[3] = { t.ambient, t.ambient, t.ambient };
+    float specular[3] = { 0, 0, 0 };
+    if (voxel->normal != NoNormal)
+    {
+      float g[3];
+      DecodeNormal(voxel->normal, g);
+      float n[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        n[r] = t.normalMatrix[r][0] * g[0] + t.normalMatrix[r][1] * g[1] +
+          t.normalMatrix[r][2] * g[2];
+      }
+      const float inverse = -1.0f / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (float& value : n)
+      {
+        value *= inverse;
+      }
+      for (int i = 0; i < t.lightCount; ++i)
+      {
+        const float* l = t.lightDirections[i];
+        const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        const float rDotV = 2.0f * nDotL * n[2] - l[2];
+        const float highlight =
+          rDotV > 0 ? t.specular * std::pow(std::min(rDotV, 1.0f), t.specularPower) : 0.0f;
+        for (int c = 0; c < 3; ++c)
+        {
+          factor[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
+          specular[c] += highlight * t.lightColours[i][c];
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = std::min(rgb[c] * factor[c] + specular[c], 1.0f);
+    }
+  }
+  out[0] = rgb[0] * opacity;
+  out[1] = rgb[1] * opacity;
+  out[2] = rgb[2] * opacity;
+  out[3] = opacity;
+}
+
+
+// Compositing of one blend, as a policy for the band loop below.
+struct CompositePolicy
+{
+  using Voxel = ShadedVoxel;
+  static constexpr int Channels = 4;
+  const CompositeTables& tables;
+  float Empty() const { return 0.0f; }
+  void Load(const ShadedVoxel& voxel, float* cell) const { ShadeVoxel(this->tables, &voxel, cell); }
+  // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
+  // the pixel; true once the pixel is saturated.
+  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
+  {
+    float sample[4];
+    for (int c = 0; c < 4; ++c)
+    {
+      sample[c] = w[0] * a[c] + w[1] * a[4 + c] + w[2] * b[c] + w[3] * b[4 + c];
+    }
+    const float transmit = 1.0f - pixel[3];
+    for (int c = 0; c < 4; ++c)
+    {
+      pixel[c] += transmit * sample[c];
+    }
+    return pixel[3] >= this->tables.terminationThreshold;
+  }
+};
+
+struct ExtremePolicy
+{
+  using Voxel = ScalarVoxel;
+  static constexpr int Channels = 1;
+  bool maximum;
+  float saturation;
+  // A corner that is not stored is +-inf, which drops every sample it weighs.
+  float Empty() const
+  {
+    return this->maximum ? -std::numeric_limits<float>::infinity()
+                         : std::numeric_limits<float>::infinity();
+  }
+  void Load(ScalarVoxel voxel, float* cell) const { *cell = static_cast<float>(voxel); }
+  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
+  {
+    float sample = 0;
+    sample += w[0] > 0 ? w[0] * a[0] : 0.0f;
+    sample += w[1] > 0 ? w[1] * a[1] : 0.0f;
+    sample += w[2] > 0 ? w[2] * b[0] : 0.0f;
+    sample += w[3] > 0 ? w[3] * b[1] : 0.0f;
+    if (this->maximum)
+    {
+      *pixel = std::max(*pixel, sample);
+      return *pixel >= this->saturation;
+    }
+    *pixel = std::min(*pixel, sample);
+    return *pixel <= this->saturation;
+  }
+};
+
+// The band loop shared by every blend: slices front to back (the encoding streams in order);
+// in each, the scanlines of the band, each resampling two voxel scanlines shaded once into
+// dense buffers (padded by one cell on each side), walking the pixels their runs cover with
+// skip links over saturated pixels.
+// Marks a row buffer that holds no voxel scanline of the current slice (-1 is a real row: the
+// empty one above the slice).
+constexpr int NoRow = std::numeric_limits<int>::min();
+
+template <typename Policy>
+void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWarpFactorization& f,
+  const Policy& policy, bool skip, int v0, int v1, float* pixels, ScanlineWorkspace& ws,
+  ScanlineCounters& counters, double* work)
+{
+  constexpr int C = Policy::Channels;
+  const int width = f.intermediateSize[0];
+  const int ni = f.sliceDims[0];
+  const int nj = f.sliceDims[1];
+  const int nk = f.sliceDims[2];
+  const int rows = v1 - v0;
+  if (rows <= 0)
+  {
+    return;
+  }
+  const std::size_t stride = static_cast<std::size_t>(width) + 1;
+  ws.next.resize(stride * rows);
+  for (int r = 0; r < rows; ++r)
+  {
+    std::int32_t* links = ws.next.data() + stride * r;
+    for (int u = 0; u <= width; ++u)
+    {
+      links[u] = u;
+    }
+  }
+  ws.open.assign(static_cast<std::size_t>(rows), width);
+  const float empty = policy.Empty();
+  for (int b = 0; b < 2; ++b)
+  {
+    ws.rows[b].assign(static_cast<std::size_t>(C) * (ni + 2), empty);
+    ws.written[b].clear();
+    ws.rowIndex[b] = NoRow;
+  }
+  if (work)
+  {
+    std::fill(work, work + rows, 0.0);
+  }
+  int openRows = rows;
+  const typename Policy::Voxel* voxels = encoded.voxels.data();
+
+  for (int s = 0; s < nk && openRows > 0; ++s)
+  {
+    const int k = f.firstSlice + s * f.sliceStep;
+    double offset[2];
+    f.SliceOffset(k, offset);
+    const double floorI = std::floor(offset[0]);
+    const double floorJ = std::floor(offset[1]);
+    const int shiftI = static_cast<int>(floorI);
+    const int shiftJ = static_cast<int>(floorJ);
+    const float aI = static_cast<float>(offset[0] - floorI);
+    const float aJ = static_cast<float>(offset[1] - floorJ);
+    // Corners (j0, i0), (j0, i0 + 1), (j0 + 1, i0), (j0 + 1, i0 + 1) of pixel u: i0 = u - shiftI - 1.
+    const float w[4] = { aJ * aI, aJ * (1.0f - aI), (1.0f - aJ) * aI, (1.0f - aJ) * (1.0f - aI) };
+    ws.rowIndex[0] = ws.rowIndex[1] = NoRow; // last slice's scanlines
+
+    // Buffer holding voxel scanline j of this slice, loaded on demand (never evicting `keep`).
+    auto ensure = [&](int j, int keep, std::uint64_t& loaded) -> int
+    {
+      for (int b = 0; b < 2; ++b)
+      {
+        if (ws.rowIndex[b] == j)
+        {
+          return b;
+        }
+      }
+      const int b = keep == 0 ? 1 : 0;
+      float* cells = ws.rows[b].data();
+      std::vector<std::int32_t>& written = ws.written[b];
+      for (std::size_t q = 0; q < written.size(); q += 2)
+      {
+        std::fill(cells + C * written[q], cells + C * written[q + 1], empty);
+      }
+      written.clear();
+      ws.rowIndex[b] = j;
+      if (j < 0 || j >= nj)
+      {
+        return b;
+      }
+      // Row j serves scanline j + shiftJ (as its second row) and j + shiftJ + 1 (as its first);
+      // a run whose pixels are saturated in both is never read, so it is not shaded.
+      const int users[2] = { j + shiftJ - v0, j + shiftJ + 1 - v0 };
+      for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+      {
+        const int uBegin = static_cast<int>(run->begin) + shiftI;
+        const int uEnd = static_cast<int>(run->end) + shiftI + 1;
+        bool needed = !skip;
+        for (int q = 0; q < 2 && !needed; ++q)
+        {
+          if (users[q] >= 0 && users[q] < rows && ws.open[users[q]] > 0)
+          {
+            needed = FindOpen(ws.next.data() + stride * users[q], std::max(uBegin, 0)) <
+              std::min(uEnd, width);
+          }
+        }
+        if (!needed)
+        {
+          continue;
+        }
+        const int cellBegin = static_cast<int>(run->begin) + 1;
+        const typename Policy::Voxel* voxel = voxels + run->offset;
+        for (std::uint32_t i = run->begin; i < run->end; ++i, ++voxel)
+        {
+          policy.Load(*voxel, cells + C * (i + 1));
+        }
+        loaded += run->end - run->begin;
+        written.push_back(cellBegin);
+        written.push_back(static_cast<std::int32_t>(run->end) + 1);
+      }
+      return b;
+    };
+
+    const int vBegin = std::max(v0, shiftJ);
+    const int vEnd = std::min(v1, shiftJ + nj + 1);
+    for (int v = vBegin; v < vEnd; ++v)
+    {
+      const int r = v - v0;
+      if (ws.open[r] == 0)
+      {
+        continue;
+      }
+      const int j0 = v - shiftJ - 1;
+      std::uint64_t loaded = 0;
+      const int bufferA = ensure(j0, -1, loaded);
+      const int bufferB = ensure(j0 + 1, bufferA, loaded);
+      counters.voxels += loaded;
+      // Pixels the two scanlines' runs cover, merged: voxel run [b, e) reaches pixels u whose
+      // i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1).
+      std::vector<std::int32_t>& spans = ws.spans;
+      spans.clear();
+      const VoxelRun* runs[2] = { nullptr, nullptr };
+      const VoxelRun* ends[2] = { nullptr, nullptr };
+      for (int q = 0; q < 2; ++q)
+      {
+        const int j = j0 + q;
+        if (j >= 0 && j < nj)
+        {
+          runs[q] = encoded.RunsBegin(j, k);
+          ends[q] = encoded.RunsEnd(j, k);
+        }
+      }
+      while (runs[0] != ends[0] || runs[1] != ends[1])
+      {
+        const int q = (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
+        const VoxelRun* run = runs[q]++;
+        const int begin = static_cast<int>(run->begin) + shiftI;
+        const int end = static_cast<int>(run->end) + shiftI + 1;
+        if (!spans.empty() && begin <= spans.back())
+        {
+          spans.back() = std::max(spans.back(), end);
+        }
+        else
+        {
+          spans.push_back(begin);
+          spans.push_back(end);
+        }
+      }
+      const float* cellsA = ws.rows[bufferA].data();
+      const float* cellsB = ws.rows[bufferB].data();
+      std::int32_t* links = ws.next.data() + stride * r;
+      float* row = pixels + static_cast<std::size_t>(C) * width * r;
+      std::uint64_t samples = 0;
+      for (std::size_t p = 0; p < spans.size(); p += 2)
+      {
+        const int spanEnd = std::min(spans[p + 1], width);
+        for (int u = std::max(spans[p], 0);; ++u)
+        {
+          if (skip)
+          {
+            const int found = FindOpen(links, u);
+            counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
+            u = found;
+          }
+          if (u >= spanEnd)
+          {
+            break;
+          }
+          // Cell i sits at i + 1: pixel u's corner i0 = u - shiftI - 1 is cell u - shiftI.
+          const int cell = u - shiftI;
+          ++samples;
+          if (policy.Sample(cellsA + C * cell, cellsB + C * cell, w, row + C * u) && skip)
+          {
+            links[u] = u + 1;
+            if (--ws.open[r] == 0)
+            {
+              --openRows;
+            }
+          }
+        }
+      }
+      counters.samples += samples;
+      if (work)
+      {
+        work[r] += 4.0 + static_cast<double>(samples) + static_cast<double>(loaded);
+      }
+    }
+  }
+}
+
+}
+
+void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpFactorization& f,
+  const CompositeTables& tables, int v0, int v1, float* rgba, ScanlineWorkspace& workspace,
+  ScanlineCounters& counters, double* work)
+{
+  const CompositePolicy policy{ tables };
+  Band(encoded, f, policy, tables.skipLinks && tables.earlyTermination, v0, v1, rgba, workspace,
+    counters, work);
+}
+
+void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded, const ShearWarpFactorization& f,
+  bool maximum, float saturation, bool skipLinks, int v0, int v1, float* value,
+  ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work)
+{
+  const ExtremePolicy policy{ maximum, saturation };
+  Band(encoded, f, policy, skipLinks, v0, v1, value, workspace, counters, work);
+}
+
+}

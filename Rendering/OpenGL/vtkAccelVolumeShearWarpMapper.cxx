@@ -1,0 +1,476 @@
+// Shear-warp volume mapper: run-length encoded volume, skip links, balanced scanline bands on
+// threads and MPI ranks.
+#include "vtkAccelVolumeShearWarpMapper.h"
+
+#include "vtkAccelVolumeImageDisplay.h"
+#include "vtkAccelVolumeMapperSupport.h"
+#include "vtkCamera.h"
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "accelvolume/ShearWarpEngine.h"
+#include "accelvolume/ShearWarpPartition.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <new>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+constexpr int TableSize = 1024; // as the other mappers, so all classify alike
+constexpr int BandRowsTag = 78231;
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+    .count();
+}
+}
+
+class vtkAccelVolumeShearWarpMapper::vtkInternals
+{
+public:
+  accelvolume::ShearWarpRenderer Renderer;
+  vtkAccelVolumeImageDisplay Display;
+  std::vector<float> Image;
+  std::vector<double> BandTimes;
+  // What the encodings were built from: versions bump when these change.
+  vtkDataArray* Scalars = nullptr;
+  vtkMTimeType ScalarsTime = 0;
+  vtkMTimeType InputTime = 0;
+  std::uint64_t VolumeVersion = 0;
+  std::vector<float> Table;
+  std::vector<float> GradientTable;
+  double TableRange[2] = { 0, 0 };
+  std::uint64_t TransferVersion = 0;
+  bool WarnedUnsupported = false;
+};
+
+vtkStandardNewMacro(vtkAccelVolumeShearWarpMapper);
+vtkCxxSetObjectMacro(vtkAccelVolumeShearWarpMapper, Controller, vtkMultiProcessController);
+
+vtkAccelVolumeShearWarpMapper::vtkAccelVolumeShearWarpMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkAccelVolumeShearWarpMapper::~vtkAccelVolumeShearWarpMapper()
+{
+  this->SetController(nullptr);
+}
+
+void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RunLengthEncoding: " << this->RunLengthEncoding << "\n";
+  os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
+  os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
+  os << indent << "ShadingMode: " << this->ShadingMode << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "LoadBalancing: " << this->LoadBalancing << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+  os << indent << "LastImbalance: " << this->LastImbalance << "\n";
+  os << indent << "EncodedBytes: " << this->EncodedBytes << "\n";
+}
+
+double vtkAccelVolumeShearWarpMapper::GetLastBandTime(int band) const
+{
+  const auto& times = this->Internals->BandTimes;
+  return band >= 0 && band < static_cast<int>(times.size()) ? times[band] : 0.0;
+}
+
+double* vtkAccelVolumeShearWarpMapper::GetBounds()
+{
+  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
+  {
+    this->MissingInputReportTime.Modified();
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+  }
+  return this->Superclass::GetBounds();
+}
+
+int vtkAccelVolumeShearWarpMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+void vtkAccelVolumeShearWarpMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Display.ReleaseGraphicsResources(window);
+}
+
+void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  const double start = Now();
+  vtkInternals& internals = *this->Internals;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkAccelVolumeShearWarpMapper needs an OpenGL render window to show its image");
+    return;
+  }
+  vtkImageData* input = nullptr;
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+    input = vtkImageData::SafeDownCast(this->GetInput());
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  std::string error;
+  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
+  {
+    vtkErrorMacro(<< error);
+    return;
+  }
+  vtkVolumeProperty* property = volume->GetProperty();
+  if (!property)
+  {
+    vtkErrorMacro("The volume has no property");
+    return;
+  }
+  accelvolume::ShearWarpSettings settings;
+  switch (this->BlendMode)
+  {
+    case COMPOSITE_BLEND:
+      settings.blend = accelvolume::ShearWarpBlend::Composite;
+      break;
+    case MAXIMUM_INTENSITY_BLEND:
+      settings.blend = accelvolume::ShearWarpBlend::Maximum;
+      break;
+    case MINIMUM_INTENSITY_BLEND:
+      settings.blend = accelvolume::ShearWarpBlend::Minimum;
+      break;
+    default:
+      vtkErrorMacro("Blend mode " << this->BlendMode
+                                  << " is not supported by the shear-warp mapper (use composite, "
+                                     "maximum or minimum intensity)");
+      return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (!camera->GetParallelProjection())
+  {
+    vtkErrorMacro("The shear-warp mapper needs a parallel projection "
+                  "(vtkCamera::ParallelProjectionOn)");
+    return;
+  }
+  if (!internals.WarnedUnsupported &&
+    (this->Cropping || (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0) ||
+      property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D))
+  {
+    internals.WarnedUnsupported = true;
+    vtkWarningMacro("The shear-warp mapper ignores cropping, clipping planes and 2D transfer "
+                    "functions; the whole volume is rendered with the 1D transfer function");
+  }
+
+  double range[2];
+  vtkAccelVolumeScalarRange(scalars, range);
+  int dims[3];
+  input->GetDimensions(dims);
+  accelvolume::VolumeView view;
+  view.data = scalars->GetVoidPointer(0);
+  switch (scalars->GetDataType())
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      view.type = accelvolume::ScalarType::Int8;
+      break;
+    case VTK_UNSIGNED_CHAR:
+      view.type = accelvolume::ScalarType::UInt8;
+      break;
+    case VTK_SHORT:
+      view.type = accelvolume::ScalarType::Int16;
+      break;
+    case VTK_UNSIGNED_SHORT:
+      view.type = accelvolume::ScalarType::UInt16;
+      break;
+    case VTK_INT:
+      view.type = accelvolume::ScalarType::Int32;
+      break;
+    case VTK_FLOAT:
+      view.type = accelvolume::ScalarType::Float32;
+      break;
+    default:
+      view.type = accelvolume::ScalarType::Float64;
+      break;
+  }
+  std::copy(dims, dims + 3, view.dims);
+
+  // Cache keys: encodings are rebuilt only when these change.
+  if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||
+    input->GetMTime() != internals.InputTime)
+  {
+    internals.Scalars = scalars;
+    internals.ScalarsTime = scalars->GetMTime();
+    internals.InputTime = input->GetMTime();
+    ++internals.VolumeVersion;
+  }
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
+
+  accelvolume::RayCastTransfer transfer;
+  transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
+  transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  const bool gradientOpacity =
+    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  if (gradientOpacity)
+  {
+    // Same table domain as the other mappers: the function's own, or the steepest gradient.
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : (high - range[0]) / voxelSpacing;
+    transfer.gradientOpacity.resize(TableSize);
+    property->GetGradientOpacity(0)->GetTable(
+      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
+  }
+  if (transfer.rgba != internals.Table || transfer.gradientOpacity != internals.GradientTable ||
+    range[0] != internals.TableRange[0] || high != internals.TableRange[1])
+  {
+    internals.Table = transfer.rgba;
+    internals.GradientTable = transfer.gradientOpacity;
+    internals.TableRange[0] = range[0];
+    internals.TableRange[1] = high;
+    ++internals.TransferVersion;
+  }
+
+  int width = 0;
+  int height = 0;
+  int lowerLeft[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+  accelvolume::ShearWarpView frame;
+  frame.width = width;
+  frame.height = height;
+  double indexToWorldRows[3][4];
+  double worldToView[4][4];
+  vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      worldToView[r][c] = viewMatrix->GetElement(r, c);
+      if (r < 3)
+      {
+        indexToWorldRows[r][c] = indexToWorld->GetElement(r, c);
+      }
+      if (r < 3 && c < 3)
+      {
+        frame.indexToWorld[r][c] = indexToWorld->GetElement(r, c);
+      }
+    }
+  }
+  accelvolume::ParallelVoxelToImage(indexToWorldRows, worldToView, camera->GetParallelScale(),
+    width, height, frame.voxelToImage);
+  // VTK's window centre shifts the parallel view in NDC.
+  double centre[2];
+  camera->GetWindowCenter(centre);
+  frame.voxelToImage[0][3] += centre[0] * width / 2.0;
+  frame.voxelToImage[1][3] += centre[1] * height / 2.0;
+
+  accelvolume::RayCastLighting lighting;
+  lighting.shade = composite && property->GetShade(0) != 0;
+  if (lighting.shade)
+  {
+    vtkNew<vtkMatrix4x4> indexToEye;
+    vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
+    vtkAccelVolumeLights lights;
+    vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
+    lighting.ambient = lights.Lighting[0];
+    lighting.diffuse = lights.Lighting[1];
+    lighting.specular = lights.Lighting[2];
+    lighting.specularPower = lights.Lighting[3];
+    lighting.lightCount = lights.Count;
+    std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
+    std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
+        lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
+      }
+    }
+  }
+
+  vtkMultiProcessController* controller = this->Controller;
+  const int ranks = controller ? std::max(1, controller->GetNumberOfProcesses()) : 1;
+  const int rank = controller ? controller->GetLocalProcessId() : 0;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores;
+  settings.runLengthEncoding = this->RunLengthEncoding != 0;
+  settings.earlyTermination = this->EarlyRayTermination != 0;
+  settings.terminationThreshold = this->EarlyRayTerminationThreshold;
+  settings.shading = this->ShadingMode == SHADING_PHONG ? accelvolume::ShearWarpShading::Phong
+                                                        : accelvolume::ShearWarpShading::LookupTable;
+  settings.bands = threads;
+  settings.balance = this->LoadBalancing != 0;
+
+  accelvolume::ParallelFor parallel =
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
+  accelvolume::ShearWarpStats stats;
+  accelvolume::ShearWarpRenderer& engine = internals.Renderer;
+  int rectangle[4] = { 0, -1, 0, -1 };
+  bool ok = false;
+  double gatherSeconds = 0;
+  auto renderFrame = [&]()
+  {
+    try
+    {
+      if (ranks == 1)
+      {
+        ok = engine.Render(view, range[0], high, internals.VolumeVersion, transfer,
+          internals.TransferVersion, lighting, frame, settings, parallel, internals.Image,
+          rectangle, stats, error);
+        return;
+      }
+      // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
+      // (split among its threads), and rank 0 gathers the bands and warps.
+      ok = engine.BeginFrame(view, range[0], high, internals.VolumeVersion, transfer,
+        internals.TransferVersion, lighting, frame, settings, parallel, stats, error);
+      // A rank that cannot render must not leave the others waiting for its band.
+      int localOk = ok ? 1 : 0;
+      int allOk = 0;
+      controller->AllReduce(&localOk, &allOk, 1, vtkCommunicator::MIN_OP);
+      if (!allOk)
+      {
+        if (ok)
+        {
+          error = "another rank failed to prepare the frame";
+        }
+        ok = false;
+        return;
+      }
+      const double compositeStart = Now();
+      const std::vector<int> rankBounds = engine.Bands(ranks * threads, settings.balance);
+      // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
+      const int first = rank * threads;
+      std::vector<double> bandSeconds(static_cast<std::size_t>(ranks * threads), 0.0);
+      parallel(static_cast<std::size_t>(threads),
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t t = begin; t < end; ++t)
+          {
+            const double bandStart = Now();
+            engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
+            bandSeconds[first + t] = Now() - bandStart;
+          }
+        });
+      stats.compositeSeconds = Now() - compositeStart;
+      const double gatherStart = Now();
+      const accelvolume::ShearWarpFactorization& f = engine.GetFactorization();
+      const vtkIdType rowValues = 4 * static_cast<vtkIdType>(f.intermediateSize[0]);
+      float* image = engine.GetIntermediateImage();
+      const int rowBegin = rankBounds[first];
+      const int rowEnd = rankBounds[first + threads];
+      if (rank == 0)
+      {
+        for (int other = 1; other < ranks; ++other)
+        {
+          const int begin = rankBounds[other * threads];
+          const int end = rankBounds[(other + 1) * threads];
+          if (end > begin)
+          {
+            controller->Receive(image + rowValues * begin, rowValues * (end - begin), other,
+              BandRowsTag);
+          }
+        }
+      }
+      else if (rowEnd > rowBegin)
+      {
+        controller->Send(image + rowValues * rowBegin, rowValues * (rowEnd - rowBegin), 0,
+          BandRowsTag);
+      }
+      // Everyone balances the next frame with every rank's scanline times, and rank 0 reports
+      // every band's time.
+      const std::vector<double>& local = engine.GetScanlineSeconds();
+      std::vector<double> summed(local.size(), 0.0);
+      controller->AllReduce(local.data(), summed.data(), static_cast<vtkIdType>(local.size()),
+        vtkCommunicator::SUM_OP);
+      engine.SetScanlineCosts(summed);
+      std::vector<double> allBands(bandSeconds.size(), 0.0);
+      controller->AllReduce(bandSeconds.data(), allBands.data(),
+        static_cast<vtkIdType>(bandSeconds.size()), vtkCommunicator::SUM_OP);
+      stats.bandSeconds = allBands;
+      stats.bandBounds = rankBounds;
+      stats.imbalance = accelvolume::Imbalance(allBands);
+      gatherSeconds = Now() - gatherStart;
+      engine.GetCounters(stats);
+      if (rank == 0)
+      {
+        const double warpStart = Now();
+        engine.Warp(parallel, internals.Image, rectangle);
+        stats.warpSeconds = Now() - warpStart;
+      }
+    }
+    catch (const std::bad_alloc&)
+    {
+      ok = false;
+      error = "out of memory for the run-length encoded volume or the images";
+    }
+  };
+  if (this->NumberOfThreads > 0)
+  {
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, renderFrame);
+  }
+  else
+  {
+    renderFrame();
+  }
+  if (!ok)
+  {
+    vtkErrorMacro("Shear-warp rendering failed: " << error);
+    return;
+  }
+  this->LastEncodeTime = stats.encodeSeconds;
+  this->LastTableTime = stats.tableSeconds;
+  this->LastCompositeTime = stats.compositeSeconds;
+  this->LastGatherTime = gatherSeconds;
+  this->LastWarpTime = stats.warpSeconds;
+  this->LastImbalance = stats.imbalance;
+  this->LastNumberOfBands = static_cast<int>(stats.bandSeconds.size());
+  internals.BandTimes = stats.bandSeconds;
+  this->LastNumberOfVoxels = static_cast<vtkTypeInt64>(stats.voxels);
+  this->LastNumberOfSamples = static_cast<vtkTypeInt64>(stats.samples);
+  this->LastNumberOfSkippedPixels = static_cast<vtkTypeInt64>(stats.skippedOpaque);
+  this->LastPrincipalAxis = stats.principalAxis;
+  this->LastNumberOfStoredVoxels = static_cast<vtkTypeInt64>(stats.storedVoxels);
+  this->EncodedBytes = static_cast<vtkTypeInt64>(engine.GetEncodedBytes());
+
+  if (rank == 0 &&
+    !internals.Display.Draw(
+      window, lowerLeft, width, height, width, height, internals.Image.data(), rectangle))
+  {
+    vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
+  }
+  this->LastRenderTime = Now() - start;
+}
