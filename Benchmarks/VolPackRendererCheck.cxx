@@ -1,0 +1,580 @@
+// VolPackRendererCheck: proves that VolPackRenderer places, orients and scales VolPack's image as
+// voxelToImage says, by comparing it with an independent brute-force ray caster written here.
+//
+// The main risk of the wrapper is the view mapping (VolPack's own object / image conventions,
+// half-pixel offsets, flips, the principal axis), so the volume is deliberately asymmetric and
+// the views cover each principal axis, both viewing directions, scale, shift and a mirrored map.
+// The reference: one ray through each pixel centre, samples where the ray crosses the integer
+// slices of its principal axis (the step VolPack uses), trilinear scalar -> tables, opacity
+// corrected for the step length (VolPack corrects by the same law), front-to-back compositing
+// with the same early termination. It differs from VolPack in known, small ways (VolPack
+// classifies voxels before resampling, resamples twice and stores 8-bit values), hence bounds.
+// Also checked: lighting follows lightDirection in image coordinates, shading leaves alpha
+// alone, and Prepare / Render reject bad input with a message.
+// Exit status 0: pass, 1: fail.
+#include "VolPackRenderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using accelvolume::bench::VolPackRenderer;
+using accelvolume::bench::VolPackScene;
+
+namespace
+{
+constexpr int Width = 112;
+constexpr int Height = 96;
+// Agreement bounds (see the header comment for why the images are not identical).
+constexpr double MaxMeanAlphaError = 0.03;  // over pixels covered by either image
+constexpr double MaxCentroidError = 0.25;   // pixels; a half-pixel slip would show
+constexpr double MaxMeanColourError = 0.03; // premultiplied grey
+
+int Failures = 0;
+
+void Expect(bool ok, const std::string& what)
+{
+  std::printf("  [%s] %s\n", ok ? "ok" : "FAIL", what.c_str());
+  if (!ok)
+  {
+    ++Failures;
+  }
+}
+
+// Asymmetric scene: a large blob off-centre, a small dense blob in the opposite corner and a bar
+// along x, so that any flip, transposition or offset moves mass in the image.
+std::vector<std::uint8_t> MakeVolume(const int dims[3])
+{
+  struct Blob
+  {
+    double c[3], r[3], peak;
+  };
+  const Blob blobs[] = { { { 22, 17, 15 }, { 13, 10, 9 }, 230 },
+    { { 47, 33, 29 }, { 6, 5, 5 }, 255 }, { { 36, 36, 10 }, { 18, 2.5, 2.5 }, 200 } };
+  std::vector<std::uint8_t> v(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        double value = 0;
+        for (const Blob& b : blobs)
+        {
+          const double dx = (x - b.c[0]) / b.r[0], dy = (y - b.c[1]) / b.r[1];
+          const double dz = (z - b.c[2]) / b.r[2];
+          value = std::max(value, b.peak * std::exp(-1.5 * (dx * dx + dy * dy + dz * dz)));
+        }
+        v[x + static_cast<std::size_t>(dims[0]) * (y + static_cast<std::size_t>(dims[1]) * z)] =
+          static_cast<std::uint8_t>(std::lround(std::min(255.0, value)));
+      }
+    }
+  }
+  return v;
+}
+
+// One centred spherical blob: shading asymmetries then come from the light alone.
+std::vector<std::uint8_t> MakeSphere(const int dims[3])
+{
+  std::vector<std::uint8_t> v(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  std::size_t n = 0;
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x, ++n)
+      {
+        const double dx = x - 0.5 * (dims[0] - 1), dy = y - 0.5 * (dims[1] - 1);
+        const double dz = z - 0.5 * (dims[2] - 1);
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        // Smooth step from 255 inside r = 12 to 0 outside r = 16.
+        const double t = std::min(1.0, std::max(0.0, (16.0 - r) / 4.0));
+        v[n] = static_cast<std::uint8_t>(std::lround(255.0 * t * t * (3 - 2 * t)));
+      }
+    }
+  }
+  return v;
+}
+
+void Normalize(double v[3])
+{
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (int a = 0; a < 3; ++a)
+  {
+    v[a] /= n;
+  }
+}
+
+// voxelToImage for a parallel camera looking along `forward` (away from the viewer) with `up`:
+// image = scale * [right; up; forward] * (voxel - centre) + (W / 2 + shift, H / 2 + shift, 0).
+// mirror flips the image horizontally (a reflection, det < 0).
+void MakeView(const int dims[3], const double forwardIn[3], const double upIn[3], double scale,
+  const double shift[2], bool mirror, double m[3][4])
+{
+  double f[3] = { forwardIn[0], forwardIn[1], forwardIn[2] };
+  Normalize(f);
+  double u[3] = { upIn[0], upIn[1], upIn[2] };
+  const double fu = f[0] * u[0] + f[1] * u[1] + f[2] * u[2];
+  for (int a = 0; a < 3; ++a)
+  {
+    u[a] -= fu * f[a];
+  }
+  Normalize(u);
+  double r[3] = { f[1] * u[2] - f[2] * u[1], f[2] * u[0] - f[0] * u[2], f[0] * u[1] - f[1] * u[0] };
+  if (mirror)
+  {
+    for (double& c : r)
+    {
+      c = -c;
+    }
+  }
+  const double* rows[3] = { r, u, f };
+  const double centre[3] = { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) };
+  const double offset[3] = { 0.5 * Width + shift[0], 0.5 * Height + shift[1], 0.0 };
+  for (int row = 0; row < 3; ++row)
+  {
+    m[row][3] = offset[row];
+    for (int c = 0; c < 3; ++c)
+    {
+      m[row][c] = scale * rows[row][c];
+      m[row][3] -= scale * rows[row][c] * centre[c];
+    }
+  }
+}
+
+bool Invert3(const double m[3][3], double inv[3][3])
+{
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+    m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+    m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  if (std::abs(det) < 1e-12)
+  {
+    return false;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+      inv[r][c] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
+    }
+  }
+  return true;
+}
+
+double Lookup(const std::vector<float>& table, double s)
+{
+  const double x = std::min(255.0, std::max(0.0, s));
+  const int i = std::min(254, static_cast<int>(x));
+  const double t = x - i;
+  return (1 - t) * table[i] + t * table[i + 1];
+}
+
+// Brute-force reference: rgba premultiplied, rows from the bottom.
+std::vector<float> Reference(const VolPackScene& scene)
+{
+  const int* d = scene.dims;
+  double linear[3][3], inv[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear[r][c] = scene.voxelToImage[r][c];
+    }
+  }
+  std::vector<float> rgba(static_cast<std::size_t>(scene.width) * scene.height * 4, 0.0f);
+  if (!Invert3(linear, inv))
+  {
+    return rgba;
+  }
+  // Ray direction in voxel space (depth growing = away from the viewer) and its principal axis.
+  const double ray[3] = { inv[0][2], inv[1][2], inv[2][2] };
+  int k = 0;
+  for (int a = 1; a < 3; ++a)
+  {
+    k = std::abs(ray[a]) > std::abs(ray[k]) ? a : k;
+  }
+  const double stepLength =
+    std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]) / std::abs(ray[k]);
+  auto voxel = [&](int x, int y, int z)
+  {
+    return static_cast<double>(
+      scene.scalars[x + static_cast<std::size_t>(d[0]) * (y + static_cast<std::size_t>(d[1]) * z)]);
+  };
+  for (int b = 0; b < scene.height; ++b)
+  {
+    for (int a = 0; a < scene.width; ++a)
+    {
+      // Voxel-space point of the pixel centre at depth 0; the ray is base + depth * ray.
+      const double image[3] = { a + 0.5 - scene.voxelToImage[0][3],
+        b + 0.5 - scene.voxelToImage[1][3], -scene.voxelToImage[2][3] };
+      double base[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        base[r] = inv[r][0] * image[0] + inv[r][1] * image[1] + inv[r][2] * image[2];
+      }
+      double colour = 0, alpha = 0;
+      for (int n = 0; n < d[k] && alpha < scene.maxRayOpacity; ++n)
+      {
+        // Front to back: slices in order of increasing depth.
+        const int slice = ray[k] > 0 ? n : d[k] - 1 - n;
+        const double depth = (slice - base[k]) / ray[k];
+        double p[3];
+        bool inside = true;
+        for (int c = 0; c < 3; ++c)
+        {
+          p[c] = c == k ? slice : base[c] + depth * ray[c];
+          inside = inside && p[c] >= 0 && p[c] <= d[c] - 1;
+        }
+        if (!inside)
+        {
+          continue;
+        }
+        int i0[3];
+        double t[3];
+        for (int c = 0; c < 3; ++c)
+        {
+          i0[c] = std::min(d[c] - 2, static_cast<int>(p[c]));
+          i0[c] = std::max(0, i0[c]);
+          t[c] = d[c] > 1 ? p[c] - i0[c] : 0.0;
+        }
+        double s = 0;
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          double w = 1;
+          int q[3];
+          for (int c = 0; c < 3; ++c)
+          {
+            const int bit = (corner >> c) & 1;
+            w *= bit ? t[c] : 1 - t[c];
+            q[c] = std::min(d[c] - 1, i0[c] + bit);
+          }
+          s += w * voxel(q[0], q[1], q[2]);
+        }
+        const double opacity = 1 - std::pow(1 - Lookup(scene.opacity, s), stepLength);
+        colour += (1 - alpha) * opacity * Lookup(scene.grey, s);
+        alpha += (1 - alpha) * opacity;
+      }
+      float* px = &rgba[4 * (a + static_cast<std::size_t>(scene.width) * b)];
+      px[0] = px[1] = px[2] = static_cast<float>(colour);
+      px[3] = static_cast<float>(alpha);
+    }
+  }
+  return rgba;
+}
+
+struct Comparison
+{
+  double meanAlpha = 0, maxAlpha = 0, meanColour = 0, centroid = 0;
+  double centroidA[2] = { 0, 0 }, centroidB[2] = { 0, 0 };
+  double massA = 0, massB = 0;
+};
+
+void Centroid(const std::vector<float>& rgba, double c[2], double& mass)
+{
+  double sx = 0, sy = 0;
+  mass = 0;
+  for (int b = 0; b < Height; ++b)
+  {
+    for (int a = 0; a < Width; ++a)
+    {
+      const double w = rgba[4 * (a + static_cast<std::size_t>(Width) * b) + 3];
+      sx += w * (a + 0.5);
+      sy += w * (b + 0.5);
+      mass += w;
+    }
+  }
+  c[0] = mass > 0 ? sx / mass : 0;
+  c[1] = mass > 0 ? sy / mass : 0;
+}
+
+Comparison Compare(const std::vector<float>& vp, const std::vector<float>& ref)
+{
+  Comparison r;
+  std::size_t covered = 0;
+  for (std::size_t p = 0; p < vp.size() / 4; ++p)
+  {
+    const double a = vp[4 * p + 3], b = ref[4 * p + 3];
+    if (a > 0.02 || b > 0.02)
+    {
+      ++covered;
+      r.meanAlpha += std::abs(a - b);
+      r.meanColour += std::abs(vp[4 * p] - ref[4 * p]);
+    }
+    r.maxAlpha = std::max(r.maxAlpha, std::abs(a - b));
+  }
+  r.meanAlpha /= std::max<std::size_t>(1, covered);
+  r.meanColour /= std::max<std::size_t>(1, covered);
+  Centroid(vp, r.centroidA, r.massA);
+  Centroid(ref, r.centroidB, r.massB);
+  r.centroid = std::hypot(r.centroidA[0] - r.centroidB[0], r.centroidA[1] - r.centroidB[1]);
+  return r;
+}
+
+VolPackScene BaseScene(const int dims[3], const std::vector<std::uint8_t>& volume)
+{
+  VolPackScene scene;
+  for (int a = 0; a < 3; ++a)
+  {
+    scene.dims[a] = dims[a];
+  }
+  scene.scalars = volume.data();
+  scene.opacity.resize(256);
+  scene.grey.resize(256);
+  for (int v = 0; v < 256; ++v)
+  {
+    scene.opacity[v] = v < 40 ? 0.0f : 0.3f * static_cast<float>(v - 40) / 215.0f;
+    scene.grey[v] = 0.25f + 0.75f * static_cast<float>(v) / 255.0f;
+  }
+  scene.width = Width;
+  scene.height = Height;
+  return scene;
+}
+
+// Mean unpremultiplied brightness of the opaque-enough pixels on each side of a line through the
+// alpha centroid (horizontal: left / right; vertical: bottom / top).
+void SideBrightness(const std::vector<float>& rgba, bool horizontal, double& low, double& high)
+{
+  double c[2], mass;
+  Centroid(rgba, c, mass);
+  double sum[2] = { 0, 0 }, count[2] = { 0, 0 };
+  for (int b = 0; b < Height; ++b)
+  {
+    for (int a = 0; a < Width; ++a)
+    {
+      const float* px = &rgba[4 * (a + static_cast<std::size_t>(Width) * b)];
+      if (px[3] < 0.3f)
+      {
+        continue;
+      }
+      const int side = (horizontal ? a + 0.5 > c[0] : b + 0.5 > c[1]) ? 1 : 0;
+      sum[side] += px[0] / px[3];
+      count[side] += 1;
+    }
+  }
+  low = count[0] > 0 ? sum[0] / count[0] : 0;
+  high = count[1] > 0 ? sum[1] / count[1] : 0;
+}
+
+void CheckViews(const int dims[3], const std::vector<std::uint8_t>& volume)
+{
+  struct ViewCase
+  {
+    const char* name;
+    double forward[3], up[3], scale, shift[2];
+    bool mirror;
+    int axis; // principal axis the view must produce
+  };
+  const ViewCase cases[] = {
+    { "front (+z), unit scale", { 0, 0, 1 }, { 0, 1, 0 }, 1.0, { 0, 0 }, false, 2 },
+    { "back (-z), scaled 1.3, shifted", { 0, 0, -1 }, { 0, 1, 0 }, 1.3, { 6.3, -4.6 }, false, 2 },
+    { "oblique az 30 el 20 (+z)", { 0.47, 0.34, 0.81 }, { 0, 1, 0 }, 1.1, { -3.2, 2.7 }, false, 2 },
+    { "principal x, oblique", { 0.9, 0.25, -0.35 }, { 0, 0, 1 }, 1.2, { 2.5, 1.5 }, false, 0 },
+    { "principal -x, oblique", { -0.85, -0.3, 0.4 }, { 0, 1, 0 }, 0.9, { 0, 0 }, false, 0 },
+    { "principal y (looking down -y)", { 0.25, -0.9, 0.3 }, { 0, 0, 1 }, 1.25, { -1, 3 }, false,
+      1 },
+    { "principal +y, mirrored image", { -0.3, 0.85, -0.35 }, { 1, 0, 0 }, 1.0, { 2, -2 }, true, 1 },
+    { "negative side oblique (-x -y -z)", { -0.5, -0.45, -0.74 }, { 0, 1, 0 }, 1.15, { 0.5, 0.5 },
+      false, 2 },
+    { "partly outside the image", { 0.3, -0.2, 0.93 }, { 0, 1, 0 }, 1.4, { 38, -27 }, false, 2 },
+  };
+  VolPackScene scene = BaseScene(dims, volume);
+  VolPackRenderer renderer;
+  std::string error;
+  const bool prepared = renderer.Prepare(scene, error);
+  Expect(prepared, "Prepare (unshaded) " + error);
+  std::printf("  Prepare (raw voxels, min-max octree, vpClassifyVolume): %.3f s\n",
+    renderer.ClassifySeconds());
+  std::printf("  bounds: mean |d alpha| < %.3f over covered pixels, centroid < %.2f px, "
+              "mean |d colour| < %.3f\n",
+    MaxMeanAlphaError, MaxCentroidError, MaxMeanColourError);
+  for (const ViewCase& v : cases)
+  {
+    MakeView(dims, v.forward, v.up, v.scale, v.shift, v.mirror, scene.voxelToImage);
+    std::vector<float> image;
+    if (!renderer.Render(scene, image, error))
+    {
+      Expect(false, std::string(v.name) + ": Render failed: " + error);
+      continue;
+    }
+    const std::vector<float> reference = Reference(scene);
+    const Comparison c = Compare(image, reference);
+    std::printf("  %-34s axis %d  mean|da| %.4f  max|da| %.3f  mean|dc| %.4f  centroid "
+                "(%.2f, %.2f) vs (%.2f, %.2f) = %.3f px  mass %.0f / %.0f  %.2f ms\n",
+      v.name, renderer.LastPrincipalAxis(), c.meanAlpha, c.maxAlpha, c.meanColour, c.centroidA[0],
+      c.centroidA[1], c.centroidB[0], c.centroidB[1], c.centroid, c.massA, c.massB,
+      1e3 * renderer.LastRenderSeconds());
+    const bool ok = c.meanAlpha < MaxMeanAlphaError && c.centroid < MaxCentroidError &&
+      c.meanColour < MaxMeanColourError && renderer.LastPrincipalAxis() == v.axis && c.massB > 50;
+    Expect(ok, std::string(v.name) + " agrees with the reference");
+  }
+}
+
+void CheckShading(const int dims[3])
+{
+  const std::vector<std::uint8_t> sphere = MakeSphere(dims);
+  VolPackScene flat = BaseScene(dims, sphere);
+  std::fill(flat.grey.begin(), flat.grey.end(), 1.0f);
+  // Oblique view: image left / up are not voxel axes, so the light must follow the image.
+  const double forward[3] = { 0.47, 0.34, 0.81 }, up[3] = { 0, 1, 0 }, shift[2] = { 0, 0 };
+  MakeView(dims, forward, up, 1.1, shift, false, flat.voxelToImage);
+  VolPackRenderer plain, lit;
+  std::string error;
+  std::vector<float> flatImage, litImage;
+  const bool flatOk = plain.Prepare(flat, error) && plain.Render(flat, flatImage, error);
+  Expect(flatOk, "unshaded sphere " + error);
+  VolPackScene shaded = flat;
+  shaded.shade = true;
+  const bool prepared = lit.Prepare(shaded, error);
+  Expect(prepared, "Prepare (shaded) " + error);
+  if (!flatOk || !prepared)
+  {
+    return;
+  }
+
+  struct LightCase
+  {
+    const char* name;
+    float direction[3];
+    bool horizontal, brighterHigh; // which side must be brighter
+  };
+  const LightCase lights[] = { { "light from the image left", { -1, 0, -0.5f }, true, false },
+    { "light from the image right", { 1, 0, -0.5f }, true, true },
+    { "light from the image top", { 0, 1, -0.5f }, false, true },
+    { "light from the image bottom", { 0, -1, -0.5f }, false, false } };
+  for (const LightCase& l : lights)
+  {
+    std::copy(l.direction, l.direction + 3, shaded.lightDirection);
+    if (!lit.Render(shaded, litImage, error))
+    {
+      Expect(false, std::string(l.name) + ": Render failed: " + error);
+      continue;
+    }
+    double low = 0, high = 0;
+    SideBrightness(litImage, l.horizontal, low, high);
+    const double bright = l.brighterHigh ? high : low, dark = l.brighterHigh ? low : high;
+    std::printf("  %-28s brightness lit side %.3f, far side %.3f\n", l.name, bright, dark);
+    Expect(bright > 1.3 * dark, std::string(l.name) + " lights that side");
+  }
+  // Depth: image z grows away from the viewer, so (0, 0, -1) lights the visible (front) surface
+  // and (0, 0, 1) lights it from behind (ambient only, VolPack turns normals to the viewer).
+  double front[2] = { 0, 0 }, back[2] = { 0, 0 };
+  const float towards[3] = { 0, 0, -1 }, behind[3] = { 0, 0, 1 };
+  std::copy(behind, behind + 3, shaded.lightDirection);
+  const bool backOk = lit.Render(shaded, litImage, error);
+  SideBrightness(litImage, true, back[0], back[1]);
+  std::copy(towards, towards + 3, shaded.lightDirection);
+  const bool frontOk = lit.Render(shaded, litImage, error);
+  SideBrightness(litImage, true, front[0], front[1]);
+  std::printf("  light towards viewer: brightness %.3f; from behind: %.3f (ambient %.2f)\n",
+    0.5 * (front[0] + front[1]), 0.5 * (back[0] + back[1]), shaded.ambient);
+  Expect(backOk && frontOk && front[0] + front[1] > 3 * (back[0] + back[1]),
+    "depth sign of the light direction");
+
+  // Shading changes colour only; premultiplied colour never exceeds alpha (8-bit rounding aside).
+  double alphaDiff = 0, excess = 0;
+  for (std::size_t p = 0; p < litImage.size() / 4; ++p)
+  {
+    alphaDiff = std::max(alphaDiff, std::abs(double(litImage[4 * p + 3]) - flatImage[4 * p + 3]));
+    excess = std::max(excess, double(litImage[4 * p]) - litImage[4 * p + 3]);
+  }
+  std::printf(
+    "  alpha shaded vs unshaded: max diff %.4f; colour - alpha: max %.4f\n", alphaDiff, excess);
+  Expect(alphaDiff <= 1.0 / 255 + 1e-6, "shading leaves alpha unchanged");
+  Expect(excess <= 1.0 / 255 + 1e-6, "colour is premultiplied (<= alpha)");
+}
+
+void CheckErrors(const int dims[3], const std::vector<std::uint8_t>& volume)
+{
+  const VolPackScene good = BaseScene(dims, volume);
+  struct BadCase
+  {
+    const char* name;
+    VolPackScene scene;
+  };
+  std::vector<BadCase> bad;
+  bad.push_back({ "null scalars", good });
+  bad.back().scene.scalars = nullptr;
+  bad.push_back({ "zero dimension", good });
+  bad.back().scene.dims[1] = 0;
+  bad.push_back({ "dimension above 1024", good });
+  bad.back().scene.dims[0] = 2000;
+  bad.push_back({ "opacity with 255 entries", good });
+  bad.back().scene.opacity.resize(255);
+  bad.push_back({ "empty grey table", good });
+  bad.back().scene.grey.clear();
+  bad.push_back({ "opacity above 1", good });
+  bad.back().scene.opacity[100] = 1.5f;
+  bad.push_back({ "NaN grey", good });
+  bad.back().scene.grey[7] = std::nanf("");
+  bad.push_back({ "negative diffuse (shaded)", good });
+  bad.back().scene.shade = true;
+  bad.back().scene.diffuse = -1.0f;
+  for (const BadCase& b : bad)
+  {
+    VolPackRenderer renderer;
+    std::string error;
+    const bool prepared = renderer.Prepare(b.scene, error);
+    Expect(!prepared && !error.empty(), std::string("Prepare rejects ") + b.name + ": " + error);
+  }
+
+  VolPackRenderer renderer;
+  std::string error;
+  std::vector<float> image;
+  VolPackScene scene = good;
+  const double forward[3] = { 0, 0, 1 }, up[3] = { 0, 1, 0 }, shift[2] = { 0, 0 };
+  MakeView(dims, forward, up, 1.0, shift, false, scene.voxelToImage);
+  const bool early = renderer.Render(scene, image, error);
+  Expect(!early && !error.empty(), "Render before Prepare fails: " + error);
+  error.clear();
+  const bool prepared = renderer.Prepare(scene, error);
+  Expect(prepared, "Prepare " + error);
+  struct RenderCase
+  {
+    const char* name;
+    VolPackScene scene;
+  };
+  std::vector<RenderCase> renders;
+  renders.push_back({ "zero width", scene });
+  renders.back().scene.width = 0;
+  renders.push_back({ "singular voxelToImage", scene });
+  for (int c = 0; c < 4; ++c)
+  {
+    renders.back().scene.voxelToImage[2][c] = 0;
+  }
+  renders.push_back({ "maxRayOpacity 0", scene });
+  renders.back().scene.maxRayOpacity = 0;
+  renders.push_back({ "other dims than Prepare", scene });
+  renders.back().scene.dims[2] = dims[2] - 1;
+  renders.push_back({ "shade differs from Prepare", scene });
+  renders.back().scene.shade = true;
+  for (const RenderCase& r : renders)
+  {
+    error.clear();
+    const bool rendered = renderer.Render(r.scene, image, error);
+    Expect(!rendered && !error.empty(), std::string("Render rejects ") + r.name + ": " + error);
+  }
+  error.clear();
+  const bool again = renderer.Render(scene, image, error);
+  Expect(again, "Render still works after rejections " + error);
+}
+}
+
+int main()
+{
+  const int dims[3] = { 64, 48, 40 };
+  const std::vector<std::uint8_t> volume = MakeVolume(dims);
+  std::printf("VolPackRendererCheck: %dx%dx%d volume, %dx%d image\n", dims[0], dims[1], dims[2],
+    Width, Height);
+  std::printf("views against the brute-force reference:\n");
+  CheckViews(dims, volume);
+  std::printf("shading:\n");
+  CheckShading(dims);
+  std::printf("bad input:\n");
+  CheckErrors(dims, volume);
+  std::printf(
+    "%s (%d failure%s)\n", Failures ? "FAIL" : "PASS", Failures, Failures == 1 ? "" : "s");
+  return Failures ? 1 : 0;
+}
