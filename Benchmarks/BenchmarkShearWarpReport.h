@@ -1,0 +1,160 @@
+// Per-case results of accelvolume_benchmark_shearwarp, its printed tables and its JSON file (also
+// the JSON an MPI worker hands back). A case is one volume x transfer function x shading x size.
+#ifndef accelvolume_benchmark_BenchmarkShearWarpReport_h
+#define accelvolume_benchmark_BenchmarkShearWarpReport_h
+
+#include "BenchmarkCommon.h"
+#include "BenchmarkImageMetrics.h"
+#include "BenchmarkShearWarpOptions.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace accelvolume::benchmark::shearwarp
+{
+
+// Targets of the issue: our single-threaded (3) this much faster than VolPack, this parallel
+// efficiency of (3) on all threads (and on MPI ranks), at most this load imbalance.
+constexpr double VolPackTarget = 1.5;
+constexpr double EfficiencyTarget = 0.90;
+constexpr double ImbalanceTarget = 1.10;
+
+// One configuration of the mapper: the paper's experiments 1-3, and (3) with per-voxel Phong.
+struct Config
+{
+  std::string Id; // "dense", "rle", "balanced", "phong"
+  std::string Label;
+  int Experiment = 1; // the paper's experiment number
+  bool Rle = false;
+  bool Ert = false;
+  bool Balance = false;
+  bool Phong = false;
+};
+
+// The configurations of a case: (1), (2), (3), and (3) with Phong per voxel when shading.
+std::vector<Config> MakeConfigs(bool shade);
+
+// One configuration on one thread count (or, for the MPI rows, one rank count), over the timed
+// frames (one value per frame) and its first frame.
+struct RunResult
+{
+  Config Cfg;
+  int Threads = 1;
+  int Ranks = 1;
+  std::vector<double> RenderMs;    // the mapper's GetLastRenderTime: its whole Render()
+  std::vector<double> EngineMs;    // encode + tables + composite + gather + warp (no display)
+  std::vector<double> WallMs;      // window Render() + a 1x1 read-back
+  std::vector<double> CompositeMs; // all bands
+  std::vector<double> WarpMs;
+  std::vector<double> TableMs;
+  std::vector<double> GatherMs;       // MPI: bands sent to rank 0, costs shared
+  std::vector<double> Imbalance;      // slowest band / mean band
+  std::vector<double> Cores;          // process CPU time / wall time of the frame (this rank)
+  std::vector<double> BandMs;         // the last frame's band times (all ranks' bands)
+  double Voxels = 0;                  // per-frame means: voxels composited (this rank),
+  double Samples = 0;                 //   pixels composited,
+  double SkippedPixels = 0;           //   pixel visits skipped by skip links
+  double FirstFrameMs = std::nan(""); // wall, at the fixed view (encoding included)
+  double EncodeMs = std::nan("");     // GetLastEncodeTime of the first frame
+  long long StoredVoxels = 0;         // in the principal axis's encoding
+  long long EncodedBytes = 0;         // all encodings the mapper holds
+  int Axis = -1;
+  int Bands = 0;
+
+  double MedianMs() const { return Median(this->RenderMs); }
+  double MedianEngineMs() const { return Median(this->EngineMs); }
+  double MeanImbalance() const;
+};
+
+// Median over the frames of a[f] / b[f] (paired frames of one round: robust to load from other
+// processes); NaN without frames.
+double PairedRatio(const std::vector<double>& a, const std::vector<double>& b);
+
+struct VolPackResult
+{
+  bool Ran = false;
+  std::string Note;                 // why not, when it did not run
+  double ClassifyMs = std::nan(""); // vpClassifyVolume with its octree (and normals)
+  std::vector<double> RenderMs;     // shading table + vpRenderClassifiedVolume
+  int Axis = -1;
+  double OpacityExponent = 1; // opacity per voxel = 1 - (1 - a)^exponent (spacing / unit)
+  ErrorStats VsOurs;          // grey levels at the fixed view against ours (3), 1 thread
+  double MedianMs() const { return Median(this->RenderMs); }
+};
+
+// Two images of the fixed view: byte differences, and the bound they must stay within.
+struct ImageCheck
+{
+  std::string A, B;
+  int Bound = 0; // largest allowed byte difference (0: identical)
+  long long DifferingPixels = 0;
+  int MaxDifference = 0;
+  bool Ok() const { return this->MaxDifference <= this->Bound; }
+};
+
+struct CaseResult
+{
+  std::string Dataset;
+  std::string Tf;
+  bool Shade = true;
+  int Size = 0;
+  int Frames = 0;
+  int Threads = 1; // the "all threads" count
+  long long TotalVoxels = 0;
+  double Seconds = 0;
+  std::vector<RunResult> Runs; // MakeConfigs() x { 1, all threads }
+  std::vector<RunResult> Mpi;  // one per rank count
+  std::string MpiNote;         // why there are no MPI rows
+  VolPackResult VolPack;
+  std::vector<ImageCheck> Checks;
+  ErrorStats PhongVsTable; // information: the two shading evaluations, grey levels
+
+  std::string Key() const; // "<dataset>/<tf>/<shaded|unshaded>/<size>"
+  const RunResult* Find(const std::string& id, int threads) const;
+  const RunResult* FindMpi(int ranks) const;
+  // T(1 thread) / (threads x T(all threads)) of a configuration, paired per frame.
+  double Efficiency(const std::string& id) const;
+  double MpiEfficiency() const; // the largest rank count against 1 rank
+  // VolPack's frame over ours (3) on one thread (engine time: neither shows the image).
+  double VolPackRatio() const;
+  bool ChecksOk() const;
+};
+
+std::string CaseKey(const std::string& dataset, const std::string& tf, bool shade, int size);
+
+struct DatasetInfo
+{
+  std::string Name;
+  std::string File;
+  std::string Description;
+  double Spacing[3] = { 1, 1, 1 };
+  double Range[2] = { 0, 1 };
+  int Dims[3] = { 0, 0, 0 };
+  double LoadSeconds = 0;
+};
+
+struct MachineInfo
+{
+  std::string Cpu;
+  int HardwareThreads = 0;
+  std::string GlBackend;
+  std::string GlRenderer;
+  bool HaveVolPack = false;
+  std::string MpiExec;
+};
+
+std::string ReadCpuModel();
+
+// What is measured and how, before the first case.
+void PrintHeader(const Options& options, const MachineInfo& machine);
+void PrintCase(const CaseResult& c);
+// Tables 2-3 of the paper beside ours.
+void PrintSummary(const std::vector<CaseResult>& cases);
+void WriteJson(const Options& options, const MachineInfo& machine,
+  const std::vector<DatasetInfo>& datasets, const std::vector<CaseResult>& cases,
+  double totalSeconds);
+
+} // namespace accelvolume::benchmark::shearwarp
+
+#endif
