@@ -273,7 +273,7 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
           const float gf = static_cast<float>(gu - ge);
           opacity *= c.gradientOpacity[ge] + (c.gradientOpacity[ge + 1] - c.gradientOpacity[ge]) * gf;
         }
-        const long q = std::lround(std::min(opacity, 1.0f) * 65535.0f);
+        const long q = std::lround(std::min(opacity, 1.0f) * static_cast<float>(OpacityLevels));
         if (q <= 0)
         {
           return false;

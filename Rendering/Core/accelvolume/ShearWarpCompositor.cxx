@@ -6,6 +6,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace accelvolume
 {
 namespace
@@ -44,10 +48,20 @@ inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float
   if (t.shade && !t.phong)
   {
     const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
-    const float* s = &t.shading[6 * row];
-    for (int c = 0; c < 3; ++c)
+    const float* s = &t.shading[static_cast<std::size_t>(t.shadingStride) * row];
+    if (t.shadingStride == 2)
     {
-      rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+      for (float& channel : rgb)
+      {
+        channel = std::min(channel * s[0] + s[1], 1.0f);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+      }
     }
   }
   else if (t.shade)
@@ -108,16 +122,29 @@ struct CompositePolicy
   // the pixel; true once the pixel is saturated.
   bool Sample(const float* a, const float* b, const float* w, float* pixel) const
   {
+#if defined(__SSE2__)
+    // One RGBA pixel per SSE register; same operation order as the scalar code below.
+    const __m128 sample = _mm_add_ps(
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(w[0]), _mm_loadu_ps(a)),
+                   _mm_mul_ps(_mm_set1_ps(w[1]), _mm_loadu_ps(a + 4))),
+        _mm_mul_ps(_mm_set1_ps(w[2]), _mm_loadu_ps(b))),
+      _mm_mul_ps(_mm_set1_ps(w[3]), _mm_loadu_ps(b + 4)));
+    const float transmit = 1.0f - pixel[3];
+    const __m128 result =
+      _mm_add_ps(_mm_loadu_ps(pixel), _mm_mul_ps(_mm_set1_ps(transmit), sample));
+    _mm_storeu_ps(pixel, result);
+#else
     float sample[4];
     for (int c = 0; c < 4; ++c)
     {
-      sample[c] = w[0] * a[c] + w[1] * a[4 + c] + w[2] * b[c] + w[3] * b[4 + c];
+      sample[c] = ((w[0] * a[c] + w[1] * a[4 + c]) + w[2] * b[c]) + w[3] * b[4 + c];
     }
     const float transmit = 1.0f - pixel[3];
     for (int c = 0; c < 4; ++c)
     {
       pixel[c] += transmit * sample[c];
     }
+#endif
     return pixel[3] >= this->tables.terminationThreshold;
   }
 };

@@ -21,13 +21,16 @@ namespace accelvolume
 // Per-frame tables for composite scanlines.
 struct CompositeTables
 {
-  // Opacity for the frame's slice-to-slice ray length, by ShadedVoxel::opacity (65536 entries).
+  // Opacity for the frame's slice-to-slice ray length, by ShadedVoxel::opacity (OpacityLevels + 1
+  // entries).
   std::vector<float> opacity;
   bool shade = false;
   bool phong = false; // true: Phong per voxel from the decoded normal; false: shading table
-  // Shading table, NormalCodes + 1 rows (the last for NoNormal) of 6 floats: the factor on the
-  // voxel colour (ambient + diffuse, per channel) and the specular term added (per channel).
+  // Shading table, NormalCodes + 1 rows (the last for NoNormal) of shadingStride floats: the
+  // factor on the voxel colour (ambient + diffuse) and the specular term added, per channel
+  // (stride 6: r, g, b factors then r, g, b terms) or, with white lights, once (stride 2).
   std::vector<float> shading;
+  int shadingStride = 6;
   // Per-voxel Phong: eye-space lights, the index-gradient -> eye normal matrix (row-major) and
   // the material, as RayCastLighting.
   float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;

@@ -11,6 +11,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace accelvolume
 {
 namespace
@@ -345,12 +349,12 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     const double ratio =
       std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]) /
       transfer.opacityUnitDistance;
-    if (ratio != impl.opacityRatio || t.opacity.size() != 65536)
+    if (ratio != impl.opacityRatio || t.opacity.size() != OpacityLevels + 1)
     {
-      t.opacity.resize(65536);
-      for (int q = 0; q < 65536; ++q)
+      t.opacity.resize(OpacityLevels + 1);
+      for (int q = 0; q <= OpacityLevels; ++q)
       {
-        t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / 65535.0, ratio));
+        t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
       }
       impl.opacityRatio = ratio;
     }
@@ -380,10 +384,17 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     {
       // Lacroute's shading table: one row per quantized normal; the view vector is +z in eye
       // space for every pixel of a parallel view, so the specular term is fixed per normal too.
-      t.shading.assign(6 * (static_cast<std::size_t>(NormalCodes) + 1), 0.0f);
+      // White lights (VTK's default) need one factor and one highlight per normal, not three.
+      bool white = true;
+      for (int i = 0; i < t.lightCount; ++i)
+      {
+        white = white && t.lightColours[i][0] == t.lightColours[i][1] &&
+          t.lightColours[i][0] == t.lightColours[i][2];
+      }
+      std::vector<float> full(6 * (static_cast<std::size_t>(NormalCodes) + 1), 0.0f);
       for (int code = 0; code <= NormalCodes; ++code)
       {
-        float* row = &t.shading[6 * static_cast<std::size_t>(code)];
+        float* row = &full[6 * static_cast<std::size_t>(code)];
         row[0] = row[1] = row[2] = t.ambient;
         if (code == NormalCodes)
         {
@@ -420,6 +431,20 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
             row[c + 3] += highlight * t.lightColours[i][c];
           }
         }
+      }
+      t.shadingStride = white ? 2 : 6;
+      if (white)
+      {
+        t.shading.resize(2 * (static_cast<std::size_t>(NormalCodes) + 1));
+        for (std::size_t code = 0; code <= static_cast<std::size_t>(NormalCodes); ++code)
+        {
+          t.shading[2 * code] = full[6 * code];
+          t.shading[2 * code + 1] = full[6 * code + 3];
+        }
+      }
+      else
+      {
+        t.shading = std::move(full);
       }
     }
   }
@@ -620,12 +645,24 @@ void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rg
           {
             const float* p00 = image + 4 * (static_cast<std::size_t>(v0) * iw + u0);
             const float* p10 = p00 + 4 * static_cast<std::size_t>(iw);
+#if defined(__SSE2__)
+            const __m128 wa = _mm_set1_ps(a);
+            const __m128 bottom0 = _mm_loadu_ps(p00);
+            const __m128 top0 = _mm_loadu_ps(p10);
+            const __m128 bottom =
+              _mm_add_ps(bottom0, _mm_mul_ps(wa, _mm_sub_ps(_mm_loadu_ps(p00 + 4), bottom0)));
+            const __m128 top =
+              _mm_add_ps(top0, _mm_mul_ps(wa, _mm_sub_ps(_mm_loadu_ps(p10 + 4), top0)));
+            _mm_storeu_ps(
+              pixel, _mm_add_ps(bottom, _mm_mul_ps(_mm_set1_ps(b), _mm_sub_ps(top, bottom))));
+#else
             for (int c = 0; c < 4; ++c)
             {
               const float bottom = p00[c] + a * (p00[c + 4] - p00[c]);
               const float top = p10[c] + a * (p10[c + 4] - p10[c]);
               pixel[c] = bottom + b * (top - bottom);
             }
+#endif
             continue;
           }
           // The image's one-pixel fringe: taps outside it are transparent.
