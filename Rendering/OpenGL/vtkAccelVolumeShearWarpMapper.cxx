@@ -30,7 +30,6 @@
 #include <cmath>
 #include <new>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace
@@ -324,7 +323,9 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   vtkMultiProcessController* controller = this->Controller;
   const int ranks = controller ? std::max(1, controller->GetNumberOfProcesses()) : 1;
   const int rank = controller ? controller->GetLocalProcessId() : 0;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // The cores this process may use (an MPI launcher may bind each rank to one): more threads
+  // than that only contend, and TBB warns about them.
+  const int cores = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
   const int threads = this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores;
   settings.runLengthEncoding = this->RunLengthEncoding != 0;
   settings.earlyTermination = this->EarlyRayTermination != 0;

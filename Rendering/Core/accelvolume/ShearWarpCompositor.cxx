@@ -266,34 +266,86 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
         return b;
       }
       // Row j serves scanline j + shiftJ (as its second row) and j + shiftJ + 1 (as its first);
-      // a run whose pixels are saturated in both is never read, so it is not shaded.
-      const int users[2] = { j + shiftJ - v0, j + shiftJ + 1 - v0 };
-      for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+      // voxel i is read by pixels i + shiftI and i + shiftI + 1 of those. Only voxels one of
+      // them still needs open are shaded (Lacroute's walk of voxel runs and pixel runs
+      // together): voxels behind saturated pixels are never touched.
+      std::int32_t* userLinks[2] = { nullptr, nullptr };
+      int users = 0;
+      for (int q = 0; q < 2; ++q)
       {
-        const int uBegin = static_cast<int>(run->begin) + shiftI;
-        const int uEnd = static_cast<int>(run->end) + shiftI + 1;
-        bool needed = !skip;
-        for (int q = 0; q < 2 && !needed; ++q)
+        const int user = j + shiftJ + q - v0;
+        if (user >= 0 && user < rows && ws.open[user] > 0)
         {
-          if (users[q] >= 0 && users[q] < rows && ws.open[users[q]] > 0)
+          userLinks[users++] = ws.next.data() + stride * user;
+        }
+      }
+      // First voxel >= i that an open pixel reads (i + shiftI or i + shiftI + 1 open), or a
+      // large value when none.
+      auto nextNeeded = [&](int i) -> int
+      {
+        if (!skip)
+        {
+          return i;
+        }
+        int best = std::numeric_limits<int>::max();
+        const int u = std::max(i + shiftI, 0);
+        for (int q = 0; q < users; ++q)
+        {
+          const int open = FindOpen(userLinks[q], std::min(u, width));
+          if (open < width)
           {
-            needed = FindOpen(ws.next.data() + stride * users[q], std::max(uBegin, 0)) <
-              std::min(uEnd, width);
+            best = std::min(best, std::max(i, open - shiftI - 1));
           }
         }
-        if (!needed)
+        return best;
+      };
+      auto isOpen = [&](int u) -> bool
+      {
+        if (u < 0 || u >= width)
         {
-          continue;
+          return false;
         }
-        const int cellBegin = static_cast<int>(run->begin) + 1;
-        const typename Policy::Voxel* voxel = voxels + run->offset;
-        for (std::uint32_t i = run->begin; i < run->end; ++i, ++voxel)
+        for (int q = 0; q < users; ++q)
         {
-          policy.Load(*voxel, cells + C * (i + 1));
+          if (userLinks[q][u] == u)
+          {
+            return true;
+          }
         }
-        loaded += run->end - run->begin;
-        written.push_back(cellBegin);
-        written.push_back(static_cast<std::int32_t>(run->end) + 1);
+        return false;
+      };
+      if (skip && users == 0)
+      {
+        return b;
+      }
+      for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+      {
+        const int runEnd = static_cast<int>(run->end);
+        int i = nextNeeded(static_cast<int>(run->begin));
+        while (i < runEnd)
+        {
+          int end = i + 1;
+          if (skip)
+          {
+            while (end < runEnd && (isOpen(end + shiftI) || isOpen(end + shiftI + 1)))
+            {
+              ++end;
+            }
+          }
+          else
+          {
+            end = runEnd;
+          }
+          const typename Policy::Voxel* voxel = voxels + run->offset + (i - static_cast<int>(run->begin));
+          for (int x = i; x < end; ++x, ++voxel)
+          {
+            policy.Load(*voxel, cells + C * (x + 1));
+          }
+          loaded += static_cast<std::uint64_t>(end - i);
+          written.push_back(i + 1);
+          written.push_back(end + 1);
+          i = end < runEnd ? nextNeeded(end) : runEnd;
+        }
       }
       return b;
     };
