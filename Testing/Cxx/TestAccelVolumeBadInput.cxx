@@ -1,7 +1,9 @@
 // Bad input never crashes: each case gets a clear vtkErrorMacro and an unchanged background,
-// for the slice mapper and the CPU ray cast mapper alike.
+// for the slice mapper, the CPU ray cast mapper and the shear-warp mapper alike (the shear-warp
+// mapper, parallel projection only, also for a perspective camera).
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeRayCastMapper.h"
+#include "vtkAccelVolumeShearWarpMapper.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
 #include "vtkCharArray.h"
@@ -16,9 +18,12 @@
 namespace
 {
 
+// The shear-warp mapper renders parallel projections only: its cases use a parallel camera,
+// except the one about the camera.
 template <typename MapperType>
 bool Expect(const char* what, const std::function<void(vtkVolumeMapper*)>& configure,
-  const char* expectedText)
+  const char* expectedText,
+  bool parallel = std::is_same<MapperType, vtkAccelVolumeShearWarpMapper>::value)
 {
   vtkNew<MapperType> mapper;
   vtkNew<accelvolume_test::ErrorRecorder> recorder;
@@ -30,6 +35,7 @@ bool Expect(const char* what, const std::function<void(vtkVolumeMapper*)>& confi
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.2, 0.4, 0.6);
   renderer->AddVolume(volume);
+  renderer->GetActiveCamera()->SetParallelProjection(parallel);
   vtkNew<vtkRenderWindow> window;
   window->SetSize(64, 64);
   window->AddRenderer(renderer);
@@ -100,6 +106,38 @@ bool ExpectAll()
          },
          "not supported") &&
     ok;
+  if (std::is_same<MapperType, vtkAccelVolumeShearWarpMapper>::value)
+  {
+    ok = Expect<MapperType>(
+           "two components",
+           [](vtkVolumeMapper* mapper)
+           {
+             vtkNew<vtkImageData> image;
+             image->SetDimensions(4, 4, 4);
+             image->AllocateScalars(VTK_UNSIGNED_CHAR, 2);
+             mapper->SetInputData(image);
+           },
+           "single-component") &&
+      ok;
+    for (int blend : { vtkVolumeMapper::ADDITIVE_BLEND, vtkVolumeMapper::AVERAGE_INTENSITY_BLEND })
+    {
+      ok = Expect<MapperType>(
+             blend == vtkVolumeMapper::ADDITIVE_BLEND ? "additive blend" : "average blend",
+             [blend](vtkVolumeMapper* mapper)
+             {
+               mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
+               mapper->SetBlendMode(blend);
+             },
+             "not supported by the shear-warp mapper") &&
+        ok;
+    }
+    ok = Expect<MapperType>(
+           "perspective camera",
+           [](vtkVolumeMapper* mapper)
+           { mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8)); },
+           "needs a parallel projection", false) &&
+      ok;
+  }
   if (std::is_same<MapperType, vtkAccelVolumeSliceMapper>::value)
   {
     ok = Expect<MapperType>(
@@ -124,5 +162,6 @@ int TestAccelVolumeBadInput(int, char*[])
 {
   const bool slice = ExpectAll<vtkAccelVolumeSliceMapper>();
   const bool rayCast = ExpectAll<vtkAccelVolumeRayCastMapper>();
-  return slice && rayCast ? EXIT_SUCCESS : EXIT_FAILURE;
+  const bool shearWarp = ExpectAll<vtkAccelVolumeShearWarpMapper>();
+  return slice && rayCast && shearWarp ? EXIT_SUCCESS : EXIT_FAILURE;
 }

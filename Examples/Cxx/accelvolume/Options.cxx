@@ -173,7 +173,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
       {
         options.mapper = ParseChoice<MapperKind>(f, reader.Value(f),
           { { "slice", MapperKind::Slice }, { "raycast", MapperKind::RayCast },
-            { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed } });
+            { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed },
+            { "shearwarp", MapperKind::ShearWarp } });
       } },
     { "--blend",
       [&](const std::string& f)
@@ -255,8 +256,18 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
           throw Usage("--zoom must be positive");
         }
       } },
-    { "--parallel", [&](const std::string&) { options.parallel = true; } },
-    { "--perspective", [&](const std::string&) { options.parallel = false; } },
+    { "--parallel",
+      [&](const std::string&)
+      {
+        options.parallel = true;
+        options.havePerspective = false;
+      } },
+    { "--perspective",
+      [&](const std::string&)
+      {
+        options.parallel = false;
+        options.havePerspective = true;
+      } },
     { "--crop",
       [&](const std::string& f)
       {
@@ -365,6 +376,28 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         }
         options.haveImageSampleDistance = true;
       } },
+    { "--balance",
+      [&](const std::string& f)
+      {
+        options.balance =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+        options.haveBalance = true;
+      } },
+    { "--rle",
+      [&](const std::string& f)
+      {
+        options.runLengthEncoding =
+          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
+        options.haveRunLengthEncoding = true;
+      } },
+    { "--shading",
+      [&](const std::string& f)
+      {
+        options.phongShading =
+          ParseChoice<bool>(f, reader.Value(f), { { "table", false }, { "phong", true } });
+        options.haveShading = true;
+      } },
+    { "--mpi", [&](const std::string&) { options.mpi = true; } },
     { "--frames",
       [&](const std::string& f)
       {
@@ -434,7 +467,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
                 "has composite, MIP, MinIP and additive only)");
   }
   const bool rayCast = options.mapper == MapperKind::RayCast;
-  const bool cpu = rayCast || options.mapper == MapperKind::VTKFixed;
+  const bool shearWarp = options.mapper == MapperKind::ShearWarp;
+  const bool cpu = rayCast || shearWarp || options.mapper == MapperKind::VTKFixed;
   // Mapper-specific flags that would silently do nothing elsewhere are usage errors.
   const auto onlyFor = [&](bool given, const char* flag, bool valid, const char* mappers)
   {
@@ -446,9 +480,44 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
   };
   onlyFor(options.haveLeap, "--leap", rayCast, "--mapper raycast");
   onlyFor(options.haveCellLeap, "--cell-leap", rayCast, "--mapper raycast");
-  onlyFor(options.haveThreads, "--threads", cpu, "the CPU mappers (raycast, vtk-fixed)");
-  onlyFor(options.haveImageSampleDistance, "--image-sample-distance", cpu,
-    "the CPU mappers (raycast, vtk-fixed)");
+  onlyFor(
+    options.haveThreads, "--threads", cpu, "the CPU mappers (raycast, shearwarp, vtk-fixed)");
+  onlyFor(options.haveImageSampleDistance, "--image-sample-distance", cpu && !shearWarp,
+    "--mapper raycast and vtk-fixed");
+  onlyFor(options.haveBalance, "--balance", shearWarp, "--mapper shearwarp");
+  onlyFor(options.haveRunLengthEncoding, "--rle", shearWarp, "--mapper shearwarp");
+  onlyFor(options.haveShading, "--shading", shearWarp, "--mapper shearwarp");
+  onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
+  if (shearWarp)
+  {
+    // Shear-warp factorizes a parallel view only: it is the default for this mapper, and an
+    // explicit --perspective is refused rather than silently changed.
+    if (options.havePerspective)
+    {
+      throw Usage("--mapper shearwarp renders parallel projections only; drop --perspective "
+                  "(shearwarp always uses --parallel)");
+    }
+    options.parallel = true;
+    if (options.blend == BlendKind::Additive || options.blend == BlendKind::Average)
+    {
+      throw Usage(std::string("--mapper shearwarp does not support --blend ") +
+        BlendName(options.blend) + " (it has composite, mip and minip)");
+    }
+    // Settings shear-warp has no use for would silently do nothing.
+    if (options.haveCrop)
+    {
+      throw Usage("--mapper shearwarp does not crop; drop --crop");
+    }
+    if (options.haveSampleDistance || options.slices > 0)
+    {
+      throw Usage(std::string(options.haveSampleDistance ? "--sample-distance" : "--slices") +
+        " does not apply to --mapper shearwarp (it samples once per volume slice)");
+    }
+    if (options.haveRaysumUnit)
+    {
+      throw Usage("--raysum-unit does not apply to --mapper shearwarp (no additive blend)");
+    }
+  }
   if (options.haveSampleDistance && options.slices > 0)
   {
     throw Usage("--sample-distance and --slices are mutually exclusive");
@@ -474,6 +543,8 @@ const char* MapperName(MapperKind mapper)
       return "vtk-gpu";
     case MapperKind::VTKFixed:
       return "vtk-fixed";
+    case MapperKind::ShearWarp:
+      return "shearwarp";
   }
   return "unknown";
 }

@@ -32,7 +32,8 @@ enum class MapperKind
   Slice,   // vtkAccelVolumeSliceMapper
   RayCast, // vtkAccelVolumeRayCastMapper (CPU)
   VTKGPU,  // vtkGPUVolumeRayCastMapper
-  VTKFixed // vtkFixedPointVolumeRayCastMapper
+  VTKFixed, // vtkFixedPointVolumeRayCastMapper
+  ShearWarp // vtkAccelVolumeShearWarpMapper (CPU, parallel projection only)
 };
 
 // vtkAccelVolumeRayCastMapper::LEAP_* (empty-space leaping of --mapper raycast).
@@ -82,6 +83,7 @@ struct Options
   int size[2] = { 512, 512 };
   double azimuth = 0, elevation = 0, roll = 0, zoom = 1;
   bool parallel = false;
+  bool havePerspective = false; // --perspective given (and not overridden by a later --parallel)
   bool haveCrop = false;
   double crop[6] = { 0, 0, 0, 0, 0, 0 }; // index coordinates
   bool boundaryRerender = true;
@@ -105,6 +107,14 @@ struct Options
   bool haveThreads = false;
   double imageSampleDistance = 1; // pixels per ray along each image axis
   bool haveImageSampleDistance = false;
+  // --mapper shearwarp only.
+  bool haveBalance = false;
+  bool balance = true; // load-balanced scanline bands
+  bool haveRunLengthEncoding = false;
+  bool runLengthEncoding = true;
+  bool haveShading = false;
+  bool phongShading = false; // --shading phong (else the lookup table)
+  bool mpi = false;          // --mpi: vtkMPIController for the shear-warp mapper
   std::string outPath;
   std::string statsPath; // "-" = stdout
   std::string gl;        // as given ("" = automatic)

@@ -3,13 +3,18 @@
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
 #include <vtkAccelVolumeRayCastMapper.h>
+#include <vtkAccelVolumeShearWarpMapper.h>
 #include <vtkAccelVolumeSliceMapper.h>
 
 #include <vtkCamera.h>
 #include <vtkDataArray.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
+#include <vtkCommunicator.h>
 #include <vtkLogger.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -142,6 +147,14 @@ void VTKMessages::ThrowIfError(const std::string& context)
   }
 }
 
+std::string VTKMessages::TakeError()
+{
+  std::string error;
+  std::lock_guard<std::mutex> lock(this->Data->Mutex);
+  error.swap(this->Data->FirstError);
+  return error;
+}
+
 void VTKMessages::Clear()
 {
   std::lock_guard<std::mutex> lock(this->Data->Mutex);
@@ -221,7 +234,87 @@ void ReadRayCastResult(vtkAccelVolumeRayCastMapper* mapper, RenderResult& result
   result.sampleDistance = mapper->GetLastSampleDistance();
 }
 
+// The shear-warp mapper's settings as it holds them and its last frame's counters and timings.
+void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper,
+  vtkMultiProcessController* controller, RenderResult& result)
+{
+  ShearWarpResult& out = result.shearWarp;
+  result.shearWarpUsed = true;
+  out.runLengthEncoding = mapper->GetRunLengthEncoding() != 0;
+  out.earlyRayTermination = mapper->GetEarlyRayTermination() != 0;
+  out.balance = mapper->GetLoadBalancing() != 0;
+  out.phongShading = mapper->GetShadingMode() == vtkAccelVolumeShearWarpMapper::SHADING_PHONG;
+  out.threads = mapper->GetNumberOfThreads();
+  out.ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  out.renderMs = 1000 * mapper->GetLastRenderTime();
+  out.encodeMs = 1000 * mapper->GetLastEncodeTime();
+  out.tableMs = 1000 * mapper->GetLastTableTime();
+  out.compositeMs = 1000 * mapper->GetLastCompositeTime();
+  out.gatherMs = 1000 * mapper->GetLastGatherTime();
+  out.warpMs = 1000 * mapper->GetLastWarpTime();
+  out.imbalance = mapper->GetLastImbalance();
+  out.bandMs.clear();
+  for (int band = 0; band < mapper->GetLastNumberOfBands(); ++band)
+  {
+    out.bandMs.push_back(1000 * mapper->GetLastBandTime(band));
+  }
+  out.voxels = mapper->GetLastNumberOfVoxels();
+  out.samples = mapper->GetLastNumberOfSamples();
+  out.skippedPixels = mapper->GetLastNumberOfSkippedPixels();
+  if (out.ranks > 1)
+  {
+    // The mapper counts this rank's bands; the stats report the whole frame (collective: every
+    // rank reads its result).
+    const long long local[3] = { out.voxels, out.samples, out.skippedPixels };
+    long long total[3] = { 0, 0, 0 };
+    controller->AllReduce(local, total, 3, vtkCommunicator::SUM_OP);
+    out.voxels = total[0];
+    out.samples = total[1];
+    out.skippedPixels = total[2];
+  }
+  out.principalAxis = mapper->GetLastPrincipalAxis();
+  out.storedVoxels = mapper->GetLastNumberOfStoredVoxels();
+  out.encodedBytes = mapper->GetEncodedBytes();
+}
+
+// World distance between shear-warp's samples along a ray: one sample per slice of the principal
+// axis, so the ray length across one index step of that axis (0 when unknown).
+double ShearWarpSliceDistance(vtkImageData* image, vtkCamera* camera, int axis)
+{
+  if (axis < 0 || axis > 2)
+  {
+    return 0;
+  }
+  double direction[3];
+  camera->GetDirectionOfProjection(direction);
+  vtkMatrix4x4* indexToWorld = image->GetIndexToPhysicalMatrix();
+  vtkNew<vtkMatrix3x3> linear;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear->SetElement(r, c, indexToWorld->GetElement(r, c));
+    }
+  }
+  linear->Invert();
+  double inIndex[3];
+  linear->MultiplyPoint(direction, inIndex);
+  return std::fabs(inIndex[axis]) > 1e-12 ? 1.0 / std::fabs(inIndex[axis]) : 0;
+}
+
 } // namespace
+
+bool AnyRankFailed(vtkMultiProcessController* controller, bool failed)
+{
+  if (!controller || controller->GetNumberOfProcesses() < 2)
+  {
+    return failed;
+  }
+  const int local = failed ? 1 : 0;
+  int any = 0;
+  controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
+  return any != 0;
+}
 
 void CheckCrop(const Options& options, vtkImageData* image)
 {
@@ -247,7 +340,7 @@ void CheckCrop(const Options& options, vtkImageData* image)
 }
 
 RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
-  VTKMessages& messages)
+  VTKMessages& messages, vtkMultiProcessController* controller)
 {
   RenderResult result;
   image->GetPointData()->GetScalars()->GetRange(result.scalarRange, 0);
@@ -293,6 +386,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   vtkSmartPointer<vtkVolumeMapper> mapper;
   vtkAccelVolumeSliceMapper* sliceMapper = nullptr;
   vtkAccelVolumeRayCastMapper* rayCastMapper = nullptr;
+  vtkAccelVolumeShearWarpMapper* shearWarpMapper = nullptr;
   switch (options.mapper)
   {
     case MapperKind::Slice:
@@ -367,6 +461,25 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       mapper = fixed;
       break;
     }
+    case MapperKind::ShearWarp:
+    {
+      auto shearWarp = vtkSmartPointer<vtkAccelVolumeShearWarpMapper>::New();
+      shearWarp->SetNumberOfThreads(options.threads);
+      shearWarp->SetEarlyRayTermination(options.earlyRayTermination);
+      shearWarp->SetRunLengthEncoding(options.runLengthEncoding);
+      shearWarp->SetLoadBalancing(options.balance);
+      shearWarp->SetShadingMode(options.phongShading
+          ? vtkAccelVolumeShearWarpMapper::SHADING_PHONG
+          : vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE);
+      if (controller)
+      {
+        shearWarp->SetController(controller);
+      }
+      result.sampleDistanceSource = "slice-spacing";
+      shearWarpMapper = shearWarp;
+      mapper = shearWarp;
+      break;
+    }
   }
   switch (options.blend)
   {
@@ -427,7 +540,22 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   window->SetMultiSamples(0);
   window->SetSize(options.size[0], options.size[1]);
   window->AddRenderer(renderer);
-  messages.ThrowIfError("cannot set up the render window");
+  // --mpi: the ranks render in lockstep, so a failure on any rank must stop every rank (a rank
+  // left alone would wait for the failed one forever).
+  const auto agree = [&](const std::string& context)
+  {
+    const std::string error = messages.TakeError();
+    const bool failed = AnyRankFailed(controller, !error.empty());
+    if (!error.empty())
+    {
+      throw CliError(ExitRuntime, context + ": " + error);
+    }
+    if (failed)
+    {
+      throw CliError(ExitRuntime, context + " on another MPI rank");
+    }
+  };
+  agree("cannot set up the render window");
 
   vtkNew<vtkUnsignedCharArray> pixel;
   auto renderFrame = [&]()
@@ -437,13 +565,17 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     // Reading one pixel back waits for the GPU, so the frame time includes its work.
     window->GetPixelData(0, 0, 0, 0, 0, pixel, 0);
     const double ms = Milliseconds(std::chrono::steady_clock::now() - start);
-    messages.ThrowIfError("render failed");
+    agree("render failed");
     return ms;
   };
   result.firstFrameMs = renderFrame();
   if (rayCastMapper)
   {
     result.rayCast.firstPrepareMs = 1000 * rayCastMapper->GetLastPrepareTime();
+  }
+  if (shearWarpMapper)
+  {
+    result.shearWarp.firstEncodeMs = 1000 * shearWarpMapper->GetLastEncodeTime();
   }
   for (int frame = 0; frame < options.frames; ++frame)
   {
@@ -484,6 +616,12 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   if (rayCastMapper)
   {
     ReadRayCastResult(rayCastMapper, result);
+  }
+  if (shearWarpMapper)
+  {
+    ReadShearWarpResult(shearWarpMapper, controller, result);
+    result.sampleDistance =
+      ShearWarpSliceDistance(image, camera, shearWarpMapper->GetLastPrincipalAxis());
   }
   result.glRenderer =
     rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+class vtkMultiProcessController;
+
 namespace accelvolume::cli
 {
 
@@ -28,6 +30,8 @@ public:
   // Throws CliError(ExitRuntime, context + ": " + first error) when an error arrived since the
   // last Clear(), then clears.
   void ThrowIfError(const std::string& context);
+  // The first error since the last Clear() ("" when none), and clears it.
+  std::string TakeError();
   void Clear();
   int GetNumberOfWarnings() const;
   std::string GetFirstWarning() const;
@@ -59,6 +63,34 @@ struct RayCastResult
   double firstPrepareMs = 0; // the warm-up frame, which builds the leaping structures
 };
 
+// --mapper shearwarp: the mapper's settings and what it did in the last frame (this rank).
+struct ShearWarpResult
+{
+  bool runLengthEncoding = true;
+  bool earlyRayTermination = true;
+  bool balance = true;
+  bool phongShading = false;
+  int threads = 0; // as set (0 = all cores)
+  int ranks = 1;
+  double renderMs = 0;
+  double encodeMs = 0;
+  double firstEncodeMs = 0; // the warm-up frame, which classifies and encodes the volume
+  double tableMs = 0;
+  double compositeMs = 0;
+  double gatherMs = 0;
+  double warpMs = 0;
+  double imbalance = 1;
+  std::vector<double> bandMs; // compositing time of each band (threads x ranks)
+  // Counters of the whole frame (summed over the ranks with --mpi); the encoding's are per rank
+  // (every rank encodes the whole volume).
+  long long voxels = 0;
+  long long samples = 0;
+  long long skippedPixels = 0;
+  int principalAxis = -1;
+  long long storedVoxels = 0;
+  long long encodedBytes = 0;
+};
+
 struct RenderResult
 {
   double firstFrameMs = 0;
@@ -80,6 +112,8 @@ struct RenderResult
   AppliedTransferFunction transferFunction;    // shading and lighting actually set
   bool rayCastUsed = false;
   RayCastResult rayCast; // when rayCastUsed
+  bool shearWarpUsed = false;
+  ShearWarpResult shearWarp; // when shearWarpUsed
 };
 
 // Throws CliError(ExitUsage) when the crop box lies outside the volume or is inverted.
@@ -87,9 +121,15 @@ void CheckCrop(const Options& options, vtkImageData* image);
 
 // Renders one warm-up frame and options.frames timed frames, writing options.outPath if set, with
 // the transfer function tf (LoadTransferFunction). Throws CliError(ExitRuntime) when VTK reports an
-// error while rendering or writing.
+// error while rendering or writing. controller (--mpi, shear-warp only): every rank calls this
+// with the same arguments; the ranks agree after every frame whether one of them failed (so none
+// waits forever for a failed one), and only the caller passes outPath for rank 0.
 RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
-  VTKMessages& messages);
+  VTKMessages& messages, vtkMultiProcessController* controller = nullptr);
+
+// --mpi: whether any rank failed (failed on this one), agreed by all ranks; a no-op (returns
+// failed) without a controller of several processes.
+bool AnyRankFailed(vtkMultiProcessController* controller, bool failed);
 
 } // namespace accelvolume::cli
 

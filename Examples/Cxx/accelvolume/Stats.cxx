@@ -105,6 +105,43 @@ std::string RayCastObject(const RenderResult& result)
   return text.str();
 }
 
+// The "shearwarp" object: the shear-warp mapper's settings, last-frame timings (rank 0's; band_ms
+// holds every rank's bands) and counters (voxels, samples, skipped pixels summed over the ranks;
+// stored voxels and encoded bytes per rank), or null.
+std::string ShearWarpObject(const RenderResult& result)
+{
+  if (!result.shearWarpUsed)
+  {
+    return "null";
+  }
+  const ShearWarpResult& w = result.shearWarp;
+  std::string bands;
+  for (std::size_t i = 0; i < w.bandMs.size(); ++i)
+  {
+    bands += (i ? ", " : "") + Number(w.bandMs[i]);
+  }
+  static const char* const axes[] = { "x", "y", "z" };
+  std::ostringstream text;
+  text << "{\"rle\": " << (w.runLengthEncoding ? "true" : "false")
+       << ", \"ert\": " << (w.earlyRayTermination ? "true" : "false")
+       << ", \"balance\": " << (w.balance ? "true" : "false")
+       << ", \"shading\": " << JsonString(w.phongShading ? "phong" : "table")
+       << ", \"threads\": " << w.threads << ", \"ranks\": " << w.ranks
+       << ",\n    \"render_ms\": " << Number(w.renderMs) << ", \"encode_ms\": " << Number(w.encodeMs)
+       << ", \"first_encode_ms\": " << Number(w.firstEncodeMs)
+       << ", \"table_ms\": " << Number(w.tableMs) << ", \"composite_ms\": " << Number(w.compositeMs)
+       << ", \"gather_ms\": " << Number(w.gatherMs) << ", \"warp_ms\": " << Number(w.warpMs)
+       << ",\n    \"imbalance\": " << Number(w.imbalance) << ", \"bands\": " << w.bandMs.size()
+       << ", \"band_ms\": [" << bands << "]"
+       << ",\n    \"voxels\": " << w.voxels << ", \"samples\": " << w.samples
+       << ", \"skipped_pixels\": " << w.skippedPixels << ", \"principal_axis\": "
+       << (w.principalAxis >= 0 && w.principalAxis < 3 ? JsonString(axes[w.principalAxis])
+                                                       : std::string("null"))
+       << ", \"stored_voxels\": " << w.storedVoxels << ", \"encoded_bytes\": " << w.encodedBytes
+       << "}";
+  return text.str();
+}
+
 std::string TypeName(vtkImageData* image)
 {
   // DescribeVolume gives "XxYxZ type"; the type is the part after the space.
@@ -162,7 +199,9 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
   const double dimsDouble[3] = { double(dims[0]), double(dims[1]), double(dims[2]) };
   const bool phantom = options.volume.inputPath.empty();
   const std::string input = phantom ? options.volume.phantom : options.volume.inputPath;
-  const bool cpu = options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed;
+  const bool sampledImage =
+    options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed;
+  const bool cpu = sampledImage || options.mapper == MapperKind::ShearWarp;
   std::string frameList;
   for (std::size_t i = 0; i < result.frameMs.size() && i < 10000; ++i)
   {
@@ -233,9 +272,10 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"out\": " << (options.outPath.empty() ? "null" : JsonString(options.outPath))
          << ",\n"
          << "  \"threads\": " << (cpu ? std::to_string(options.threads) : "null") << ",\n"
-         << "  \"image_sample_distance\": " << (cpu ? Number(options.imageSampleDistance) : "null")
+         << "  \"image_sample_distance\": " << (sampledImage ? Number(options.imageSampleDistance) : "null")
          << ",\n"
          << "  \"raycast\": " << RayCastObject(result) << ",\n"
+         << "  \"shearwarp\": " << ShearWarpObject(result) << ",\n"
          << "  \"vtk_warnings\": " << warnings << "\n"
          << "}\n";
 }
@@ -260,6 +300,14 @@ std::string Summary(const Options& options, vtkImageData* image, const RenderRes
   {
     text << ", leap " << LeapName(result.rayCast.leap) << ", cell leap "
          << (result.rayCast.cellLeap ? "on" : "off") << ", " << result.rayCast.samples
+         << " samples";
+  }
+  if (result.shearWarpUsed)
+  {
+    const ShearWarpResult& w = result.shearWarp;
+    text << ", axis " << "xyz?"[w.principalAxis >= 0 && w.principalAxis < 3 ? w.principalAxis : 3]
+         << ", " << w.bandMs.size() << " bands on " << w.ranks << " rank"
+         << (w.ranks == 1 ? "" : "s") << ", imbalance " << w.imbalance << ", " << w.samples
          << " samples";
   }
   text << ", " << result.glBackend << " / " << result.glRenderer;

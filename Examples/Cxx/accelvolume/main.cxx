@@ -9,6 +9,8 @@
 #include "VolumeIO.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
+#include <vtkMPIController.h>
+#include <vtkMultiProcessController.h>
 
 #include <dlfcn.h>
 
@@ -17,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <new>
 
 #ifndef ACCELVOLUME_VERSION
@@ -26,6 +29,91 @@
 namespace
 {
 using namespace accelvolume::cli;
+
+// --mpi: ranks other than 0 print nothing, not even errors (rank 0 reports the agreed failure).
+bool SilentRank = false;
+
+// The launcher's rank before MPI is initialized (Open MPI, MPICH, PMIx); 0 when not launched so.
+int LauncherRank()
+{
+  for (const char* name : { "OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK" })
+  {
+    const char* value = std::getenv(name);
+    if (value && *value)
+    {
+      return std::atoi(value);
+    }
+  }
+  return 0;
+}
+
+// --mpi: MPI initialized for the whole render (vtkMPIController as VTK's global controller) and
+// finalized when the render is over, on success and on agreed failures alike.
+class MPISession
+{
+public:
+  MPISession(int* argc, char*** argv)
+  {
+    this->Controller = vtkMPIController::New();
+    this->Controller->Initialize(argc, argv);
+    vtkMultiProcessController::SetGlobalController(this->Controller);
+  }
+  ~MPISession()
+  {
+    this->Controller->Finalize();
+    vtkMultiProcessController::SetGlobalController(nullptr);
+    this->Controller->Delete();
+  }
+  MPISession(const MPISession&) = delete;
+  MPISession& operator=(const MPISession&) = delete;
+  vtkMultiProcessController* Get() const { return this->Controller; }
+  int Rank() const { return this->Controller->GetLocalProcessId(); }
+
+private:
+  vtkMPIController* Controller = nullptr;
+};
+
+// Runs step on every rank; when it fails on any rank, every rank throws (this rank's own error,
+// else "failed on another MPI rank"), so no rank goes on to wait for a failed one.
+template <typename Step>
+void Agreed(vtkMultiProcessController* controller, const char* what, Step&& step)
+{
+  if (!controller)
+  {
+    step();
+    return;
+  }
+  int code = 0;
+  std::string message;
+  try
+  {
+    step();
+  }
+  catch (const CliError& failure)
+  {
+    code = failure.Code;
+    message = failure.what();
+  }
+  catch (const std::bad_alloc&)
+  {
+    code = ExitRuntime;
+    message = "out of memory";
+  }
+  catch (const std::exception& failure)
+  {
+    code = ExitRuntime;
+    message = failure.what();
+  }
+  const bool anyFailed = AnyRankFailed(controller, code != 0);
+  if (code != 0)
+  {
+    throw CliError(code, message);
+  }
+  if (anyFailed)
+  {
+    throw CliError(ExitRuntime, std::string(what) + " failed on another MPI rank");
+  }
+}
 
 // Whether an X display can be opened. VTK's X window aborts the process when it cannot, so the
 // CLI asks first; libX11 is loaded at run time (VTK's X build already depends on it).
@@ -148,7 +236,12 @@ int Run(int argc, char* argv[])
   {
     return RunOctreeCommand(std::vector<std::string>(argv, argv + argc));
   }
-  const Options options = ParseOptions(std::vector<std::string>(argv, argv + argc));
+  for (int i = 2; i < argc; ++i)
+  {
+    // Under mpirun, a usage error found before MPI starts is printed by rank 0 only.
+    SilentRank = SilentRank || (std::string(argv[i]) == "--mpi" && LauncherRank() > 0);
+  }
+  Options options = ParseOptions(std::vector<std::string>(argv, argv + argc));
   switch (options.action)
   {
     case Options::Action::MainHelp:
@@ -163,25 +256,47 @@ int Run(int argc, char* argv[])
     case Options::Action::Render:
       break;
   }
-  CheckPhantom(options);
-  CheckOutputPath(options.outPath, "--out");
-  CheckOutputPath(options.statsPath, "--stats");
-  // Read before the volume so that a bad --tf file fails in milliseconds, not after a large load.
-  const TransferFunctionSpec transferFunction = LoadTransferFunction(options);
-
-  VTKMessages messages;
-  const std::string backendNote = ChooseBackend(options);
-
-  std::string error;
-  vtkSmartPointer<vtkImageData> image = LoadVolume(options.volume, error);
-  messages.Install(); // loading swaps VTK's output window and logger levels while it runs
-  if (!image)
+  // --mpi: every rank builds the same scene and renders the same frames; rank 0 alone writes
+  // the PNG, the stats and the summary.
+  std::unique_ptr<MPISession> mpi;
+  if (options.mpi)
   {
-    throw CliError(ExitRuntime, error);
+    mpi = std::make_unique<MPISession>(&argc, &argv);
+    SilentRank = mpi->Rank() != 0;
+    if (SilentRank)
+    {
+      options.outPath.clear();
+      options.statsPath.clear();
+      options.quiet = true;
+    }
   }
-  CheckCrop(options, image);
+  vtkMultiProcessController* controller = mpi ? mpi->Get() : nullptr;
 
-  const RenderResult result = RunRender(options, transferFunction, image, messages);
+  TransferFunctionSpec transferFunction;
+  VTKMessages messages;
+  std::string backendNote;
+  vtkSmartPointer<vtkImageData> image;
+  Agreed(controller, "loading the input",
+    [&]()
+    {
+      CheckPhantom(options);
+      CheckOutputPath(options.outPath, "--out");
+      CheckOutputPath(options.statsPath, "--stats");
+      // Read before the volume so that a bad --tf file fails in milliseconds, not after a large
+      // load.
+      transferFunction = LoadTransferFunction(options);
+      backendNote = ChooseBackend(options);
+      std::string error;
+      image = LoadVolume(options.volume, error);
+      messages.Install(); // loading swaps VTK's output window and logger levels while it runs
+      if (!image)
+      {
+        throw CliError(ExitRuntime, error);
+      }
+      CheckCrop(options, image);
+    });
+
+  const RenderResult result = RunRender(options, transferFunction, image, messages, controller);
 
   if (!options.statsPath.empty())
   {
@@ -231,17 +346,26 @@ int main(int argc, char* argv[])
   }
   catch (const CliError& failure)
   {
-    std::cerr << "accelvolume: error: " << failure.what() << std::endl;
+    if (!SilentRank)
+    {
+      std::cerr << "accelvolume: error: " << failure.what() << std::endl;
+    }
     return failure.Code;
   }
   catch (const std::bad_alloc&)
   {
-    std::cerr << "accelvolume: error: out of memory" << std::endl;
+    if (!SilentRank)
+    {
+      std::cerr << "accelvolume: error: out of memory" << std::endl;
+    }
     return ExitRuntime;
   }
   catch (const std::exception& failure)
   {
-    std::cerr << "accelvolume: error: " << failure.what() << std::endl;
+    if (!SilentRank)
+    {
+      std::cerr << "accelvolume: error: " << failure.what() << std::endl;
+    }
     return ExitRuntime;
   }
 }
