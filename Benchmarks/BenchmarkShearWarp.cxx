@@ -27,7 +27,9 @@
 // translucent (transparent below 10 %, ramp to opacity 0.35), where runs of transparent voxels
 // matter and few rays saturate. Shading: the presets' Phong (ambient 0.2, diffuse 0.7,
 // specular 0.3, power 10) with VTK's headlight; VolPack gets the same tables at 256 entries
-// (grey = the mean of R, G, B) and its opacity raised to spacing(principal axis) / unit distance.
+// (the RGB colour transfer function in VolPack's RGB mode, so both render the same coloured
+// image with three colour channels; --volpack-grey: the mean of R, G, B in its luminance mode)
+// and its opacity raised to spacing(principal axis) / unit distance.
 // Options: BenchmarkShearWarpOptions.{h,cxx}; tables and JSON: BenchmarkShearWarpReport.{h,cxx};
 // the scene, frame records, run JSON and VolPack: BenchmarkShearWarpScene.{h,cxx}.
 #include "BenchmarkCommon.h"
@@ -90,6 +92,35 @@ ErrorStats GreyError(const Image& reference, const Image& image, int size)
 {
   return CompareImages(reference, image,
     MaskOr(NonBackgroundMask(reference, size, size), NonBackgroundMask(image, size, size)), 2.0);
+}
+
+// Channel-level error (0..255) over the pixels non-black in either image: each of R, G, B of a
+// pixel is a sample (RMS over the three channels), Max the largest channel difference.
+ErrorStats RgbError(const Image& reference, const Image& image, int size)
+{
+  const std::vector<std::uint8_t> mask =
+    MaskOr(NonBackgroundMask(reference, size, size), NonBackgroundMask(image, size, size));
+  ErrorStats stats;
+  for (size_t p = 0; p < mask.size() && 3 * p + 2 < reference.size() && 3 * p + 2 < image.size();
+       ++p)
+  {
+    if (!mask[p])
+    {
+      continue;
+    }
+    double squared = 0, largest = 0;
+    for (size_t c = 3 * p; c < 3 * p + 3; ++c)
+    {
+      const double d = std::abs(double(image[c]) - double(reference[c]));
+      squared += d * d;
+      largest = std::max(largest, d);
+    }
+    stats.SumSquared += squared / 3.0;
+    stats.Max = std::max(stats.Max, largest);
+    ++stats.Pixels;
+    stats.Above += largest > 2.0;
+  }
+  return stats;
 }
 
 // Our configurations on 1 / all threads and VolPack: first frames and image checks at the fixed
@@ -172,9 +203,11 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
   {
     c.VolPack.Note = options.VolPack ? "libvolpack not found at build time" : "--no-volpack";
   }
-  else if (volpack->Prepare(property, shade, c.Runs[balanced].Axis, tf, c.VolPack.Note))
+  else if (volpack->Prepare(
+             property, shade, c.Runs[balanced].Axis, tf, options.VolPackGrey, c.VolPack.Note))
   {
     Image volpackImage;
+    c.VolPack.Grey = options.VolPackGrey;
     c.VolPack.ClassifyMs = volpack->ClassifyMs();
     c.VolPack.OpacityExponent = volpack->OpacityExponent();
     c.VolPack.Ran = std::isfinite(
@@ -182,6 +215,7 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
     if (c.VolPack.Ran)
     {
       c.VolPack.VsOurs = GreyError(ours, volpackImage, size);
+      c.VolPack.VsOursRgb = RgbError(ours, volpackImage, size);
       if (!options.Images.empty())
       {
         WritePng(stem + "_volpack.png", volpackImage, size, size);

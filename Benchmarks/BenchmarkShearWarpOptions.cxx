@@ -36,6 +36,8 @@ void Usage()
        "  --mpi-ranks A,B     rank counts of the MPI rows (default 1,2)\n"
        "  --no-mpi            skip the MPI rows (no mpiexec launch)\n"
        "  --no-volpack        skip the VolPack rows\n"
+       "  --volpack-grey      VolPack in luminance mode (grey = mean of the transfer function's\n"
+       "                      R, G, B: one colour channel) instead of RGB like the mapper\n"
        "  --gl egl|osmesa|auto headless OpenGL backend (default $ACCELVOLUME_GL, else egl)\n"
        "  --json FILE         machine-readable results (default "
        "accelvolume_benchmark_shearwarp.json)\n"
@@ -100,6 +102,10 @@ bool ParseArguments(int argc, char* argv[], Options& options)
     else if (arg == "--no-volpack")
     {
       options.VolPack = false;
+    }
+    else if (arg == "--volpack-grey")
+    {
+      options.VolPackGrey = true;
     }
     else if (arg == "--mpi-worker")
     {

@@ -33,6 +33,7 @@ struct Options
   bool Mpi = true;
   std::vector<int> MpiRanks = { 1, 2 };
   bool VolPack = true;
+  bool VolPackGrey = false; // VolPack in luminance mode (grey = mean of R, G, B), not RGB
   std::string GL = "egl";
   std::string Json = "accelvolume_benchmark_shearwarp.json";
   std::string Images; // PNGs of the fixed view, when set

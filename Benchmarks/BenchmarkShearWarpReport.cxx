@@ -222,7 +222,9 @@ void PrintCase(const CaseResult& c)
   if (c.VolPack.Ran)
   {
     const RunResult* dense = c.Find("dense", 1);
-    std::cout << "  " << std::left << std::setw(24) << "VolPack (classified)" << std::right
+    std::cout << "  " << std::left << std::setw(24)
+              << (c.VolPack.Grey ? "VolPack grey (classif.)" : "VolPack RGB (classified)")
+              << std::right
               << std::setw(5) << "1" << std::setw(10) << Ms(c.VolPack.MedianMs()) << std::setw(9)
               << Ms(c.VolPack.MedianMs()) << std::setw(8)
               << Times(dense ? PairedRatio(dense->RenderMs, c.VolPack.RenderMs) : std::nan(""))
@@ -279,9 +281,12 @@ void PrintCase(const CaseResult& c)
   }
   if (c.VolPack.Ran)
   {
-    std::cout << "  VolPack vs ours (3) 1 thread at the fixed view: grey RMS "
-              << Num(c.VolPack.VsOurs.Rms(), 2) << ", max " << Num(c.VolPack.VsOurs.Max, 0)
-              << " over " << c.VolPack.VsOurs.Pixels << " non-black px"
+    std::cout << "  VolPack (" << (c.VolPack.Grey ? "grey" : "RGB")
+              << ") vs ours (3) 1 thread at the fixed view: RGB RMS "
+              << Num(c.VolPack.VsOursRgb.Rms(), 2) << ", max " << Num(c.VolPack.VsOursRgb.Max, 0)
+              << "; grey RMS " << Num(c.VolPack.VsOurs.Rms(), 2) << ", max "
+              << Num(c.VolPack.VsOurs.Max, 0) << " over " << c.VolPack.VsOurs.Pixels
+              << " non-black px"
               << (c.Shade ? " (shaded: vpVolumeNormals gives the volume's border voxels normal "
                             "code 0, so where the volume's faces cut the object VolPack shades "
                             "them otherwise; unshaded cases compare the pictures alone)"
@@ -390,6 +395,7 @@ void WriteJson(const Options& options, const MachineInfo& machine,
       << ", \"projection\": \"parallel\", \"blend\": \"composite\", \"mpi\": "
       << (options.Mpi ? "true" : "false")
       << ", \"volpack\": " << (options.VolPack ? "true" : "false")
+      << ", \"volpack_mode\": \"" << (options.VolPackGrey ? "grey" : "rgb") << "\""
       << ", \"ms_per_frame\": \"median of the mapper's "
       << "GetLastRenderTime\", \"engine_ms\": \"encode + tables + composite + gather + warp\", "
          "\"ratios\": \"median over frames of paired per-frame ratios\", \"targets\": "
@@ -446,10 +452,13 @@ void WriteJson(const Options& options, const MachineInfo& machine,
     JsonErrors(out, c.PhongVsTable);
     out << ",\n      \"volpack\": {\"ran\": " << (c.VolPack.Ran ? "true" : "false")
         << ", \"note\": \"" << JsonEscape(c.VolPack.Note)
+        << "\", \"mode\": \"" << (c.VolPack.Grey ? "grey" : "rgb")
         << "\", \"classify_ms\": " << Num(c.VolPack.ClassifyMs, 2)
         << ", \"median_ms\": " << Num(c.VolPack.MedianMs(), 3) << ", \"axis\": " << c.VolPack.Axis
         << ", \"opacity_exponent\": " << Num(c.VolPack.OpacityExponent, 4) << ", \"vs_ours\": ";
     JsonErrors(out, c.VolPack.VsOurs);
+    out << ", \"vs_ours_rgb\": ";
+    JsonErrors(out, c.VolPack.VsOursRgb);
     out << ", \"render_ms\": ";
     JsonArray(out, c.VolPack.RenderMs);
     out << "},\n      \"runs\": [\n";

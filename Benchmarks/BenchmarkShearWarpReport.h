@@ -79,7 +79,9 @@ struct VolPackResult
   std::vector<double> RenderMs;     // shading table + vpRenderClassifiedVolume
   int Axis = -1;
   double OpacityExponent = 1; // opacity per voxel = 1 - (1 - a)^exponent (spacing / unit)
+  bool Grey = false;          // luminance mode (--volpack-grey) instead of RGB
   ErrorStats VsOurs;          // grey levels at the fixed view against ours (3), 1 thread
+  ErrorStats VsOursRgb;       // the same over the R, G, B channels (each a sample)
   double MedianMs() const { return Median(this->RenderMs); }
 };
 

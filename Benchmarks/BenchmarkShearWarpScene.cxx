@@ -429,15 +429,16 @@ double VolPackAnchor::OpacityExponent() const
   return this->Impl->Exponent;
 }
 
-bool VolPackAnchor::Prepare(
-  vtkVolumeProperty* property, bool shade, int axis, const std::string& tf, std::string& note)
+bool VolPackAnchor::Prepare(vtkVolumeProperty* property, bool shade, int axis,
+  const std::string& tf, bool grey, std::string& note)
 {
 #ifdef ACCELVOLUME_HAVE_VOLPACK
   Internals& vp = *this->Impl;
   const DatasetInfo& info = vp.Info;
   const double unit = std::max(1e-6, property->GetScalarOpacityUnitDistance(0));
   vp.Exponent = info.Spacing[std::clamp(axis, 0, 2)] / unit;
-  const std::string key = tf + (shade ? "/shaded/" : "/unshaded/") + std::to_string(axis);
+  const std::string key = tf + (shade ? "/shaded/" : "/unshaded/") + std::to_string(axis) +
+    (grey ? "/grey" : "/rgb");
   if (key == vp.PreparedKey && vp.Renderer)
   {
     return true;
@@ -448,6 +449,9 @@ bool VolPackAnchor::Prepare(
   s.scalars = vp.Scalars.data();
   s.opacity.assign(256, 0.0f);
   s.grey.assign(256, 0.0f);
+  s.colour.assign(grey ? 0 : 256 * 3, 0.0f);
+  // The same scalar -> level mapping as the quantization: level i is the value Range[0] +
+  // (Range[1] - Range[0]) * i / 255, where the mapper's tables are sampled.
   for (int i = 0; i < 256; ++i)
   {
     const double x = info.Range[0] + (info.Range[1] - info.Range[0]) * i / 255.0;
@@ -456,6 +460,13 @@ bool VolPackAnchor::Prepare(
     property->GetRGBTransferFunction(0)->GetColor(x, rgb);
     s.opacity[i] = static_cast<float>(1.0 - std::pow(1.0 - a, vp.Exponent));
     s.grey[i] = static_cast<float>(std::clamp((rgb[0] + rgb[1] + rgb[2]) / 3.0, 0.0, 1.0));
+    if (!grey)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        s.colour[3 * i + c] = static_cast<float>(std::clamp(rgb[c], 0.0, 1.0));
+      }
+    }
   }
   s.shade = shade;
   s.ambient = static_cast<float>(property->GetAmbient(0));
@@ -475,7 +486,7 @@ bool VolPackAnchor::Prepare(
   vp.PreparedKey = key;
   return true;
 #else
-  (void)property, (void)shade, (void)axis, (void)tf;
+  (void)property, (void)shade, (void)axis, (void)tf, (void)grey;
   note = "libvolpack not found at build time";
   return false;
 #endif
@@ -500,9 +511,11 @@ double VolPackAnchor::Render(vtkImageData* image, vtkVolume* volume, vtkCamera* 
     rgb->resize(static_cast<std::size_t>(size) * size * 3);
     for (std::size_t p = 0; p < rgb->size() / 3; ++p)
     {
-      const auto grey =
-        static_cast<std::uint8_t>(std::clamp(rgba[4 * p] * 255.0f + 0.5f, 0.0f, 255.0f));
-      (*rgb)[3 * p] = (*rgb)[3 * p + 1] = (*rgb)[3 * p + 2] = grey;
+      for (int c = 0; c < 3; ++c) // premultiplied on black: the colour shown
+      {
+        (*rgb)[3 * p + c] =
+          static_cast<std::uint8_t>(std::clamp(rgba[4 * p + c] * 255.0f + 0.5f, 0.0f, 255.0f));
+      }
     }
   }
   return 1000.0 * vp.Renderer->LastRenderSeconds();

@@ -91,18 +91,20 @@ void WriteRunJson(std::ostream& out, const RunResult& run, const char* indent);
 bool ReadRunJson(const accelvolume::cli::JsonValue& value, RunResult& run);
 
 // VolPack rendering a case's scene: the volume quantized over its range to 8 bits, the property's
-// tables at 256 entries (grey = mean of R, G, B; opacity raised to spacing(axis) / unit distance,
+// tables at 256 entries (colour: the RGB transfer function, VolPack's RGB mode, or with grey the
+// mean of R, G, B in its luminance mode; opacity raised to spacing(axis) / unit distance,
 // VolPack's opacity being per voxel along the principal axis), VTK's headlight, maximum ray
 // opacity 0.99 (the mapper's termination threshold), the camera's view as voxel -> pixel map.
+// The image handed back is RGB (r = g = b in grey mode).
 class VolPackAnchor
 {
 public:
   VolPackAnchor(vtkImageData* image, const DatasetInfo& info);
   ~VolPackAnchor();
   static bool Available(); // built with libvolpack
-  // Classifies when the tf / shading / axis changed; false with note when it can't.
-  bool Prepare(
-    vtkVolumeProperty* property, bool shade, int axis, const std::string& tf, std::string& note);
+  // Classifies when the tf / shading / axis / colour mode changed; false with note when it can't.
+  bool Prepare(vtkVolumeProperty* property, bool shade, int axis, const std::string& tf, bool grey,
+    std::string& note);
   // Renders the camera's view: VolPack's milliseconds (shading table + render), NaN with note.
   double Render(vtkImageData* image, vtkVolume* volume, vtkCamera* camera, int size, Image* rgb,
     int& axis, std::string& note);

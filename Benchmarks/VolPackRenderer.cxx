@@ -21,10 +21,14 @@
 // carries the rest: VIEW = Viewport^-1 * Screen * Pre^-1 * MODEL^-1. The light is given in world
 // space as F * lightDirection, set while MODEL is the identity (vpSetLight applies MODEL).
 //
-// Colours: one lookup shader. Without shading the colour field is the scalar and the table is
-// grey * 255 (VolPack colours are 0..255). With shading the colour field is the quantized normal
-// and two materials are blended per scalar by the weight table: material 0 (ambient, diffuse)
-// weighted by grey, material 1 (specular only) weighted by 1.
+// Colours: one lookup shader, 1 channel (grey) or 3 (RGB). Without shading the colour field is
+// the scalar and the table is grey * 255 or (r, g, b) * 255 (VolPack colours are 0..255). With
+// shading the colour field is the quantized normal and materials are blended per scalar by the
+// weight table (vpShadeTable fills table[normal][material][channel]):
+//   grey: material 0 (ambient, diffuse) weighted by grey, material 1 (specular only) by 1;
+//   RGB:  materials 0, 1, 2 (ambient, diffuse in channel r, g, b alone) weighted by r, g, b,
+//         material 3 (white specular only) by 1,
+// so each channel is c * (ambient + diffuse N.L) + specular (N.H)^power.
 #include "VolPackRenderer.h"
 
 #include <volpack.h> // declares everything extern "C" itself when compiled as C++
@@ -192,6 +196,22 @@ bool ValidTable(const std::vector<float>& table)
   return true;
 }
 
+bool ValidColour(const std::vector<float>& table)
+{
+  if (table.size() != 256 * 3)
+  {
+    return false;
+  }
+  for (float v : table)
+  {
+    if (!(v >= 0.0f && v <= 1.0f))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool CheckVolume(const VolPackScene& scene, std::string& error)
 {
   for (int a = 0; a < 3; ++a)
@@ -215,9 +235,16 @@ bool CheckVolume(const VolPackScene& scene, std::string& error)
     error = "VolPackRenderer: no scalars";
     return false;
   }
-  if (!ValidTable(scene.opacity) || !ValidTable(scene.grey))
+  if (!ValidTable(scene.opacity))
   {
-    error = "VolPackRenderer: opacity and grey must have 256 entries in [0, 1]";
+    error = "VolPackRenderer: opacity must have 256 entries in [0, 1]";
+    return false;
+  }
+  if (scene.colour.empty() ? !ValidTable(scene.grey) : !ValidColour(scene.colour))
+  {
+    error = scene.colour.empty()
+      ? "VolPackRenderer: grey must have 256 entries in [0, 1] (or give colour)"
+      : "VolPackRenderer: colour must have 256 * 3 entries in [0, 1]";
     return false;
   }
   if (scene.shade)
@@ -241,12 +268,14 @@ struct VolPackRenderer::Internals
   vpContext* Context = nullptr;
   int Dims[3] = { 0, 0, 0 };
   bool Shade = false;
+  int Channels = 1; // 1: grey (VP_LUMINANCEA), 3: RGB (VP_RGBA)
   // VolPack keeps pointers to all of these: they live as long as the context.
   std::vector<std::uint8_t> Voxels;
   std::vector<float> OpacityTable;
   std::vector<float> ColourTable;
   std::vector<float> WeightTable;
-  std::vector<std::uint8_t> Image; // VP_LUMINANCEA, 2 bytes per pixel, rows from the bottom
+  std::vector<std::uint8_t> Image; // VP_LUMINANCEA (2 bytes per pixel) or VP_RGBA (4), rows
+                                   // from the bottom
   double ClassifySeconds = 0;
   double RenderSeconds = 0;
   int Axis = -1;
@@ -319,29 +348,39 @@ bool VolPackRenderer::Internals::Build(const VolPackScene& scene, std::string& e
   ACCELVOLUME_VP(vpCreateMinMaxOctree(vpc, 0, OctreeBaseNode));
   ACCELVOLUME_VP(vpClassifyVolume(vpc));
 
+  const int channels = this->Channels;
   if (scene.shade)
   {
-    // Colour table [normal][material], refilled by vpShadeTable every frame; weights
-    // [scalar][material]: grey for the ambient + diffuse material, 1 for the specular one.
-    this->ColourTable.assign(static_cast<std::size_t>(VP_NORM_MAX + 1) * 2, 0.0f);
-    this->WeightTable.assign(256 * 2, 1.0f);
+    // Colour table [normal][material][channel], refilled by vpShadeTable every frame; weights
+    // [scalar][material]: grey (or r, g, b) for the ambient + diffuse material(s), 1 for the
+    // specular one (the last).
+    const int materials = channels + 1;
+    this->ColourTable.assign(
+      static_cast<std::size_t>(VP_NORM_MAX + 1) * materials * channels, 0.0f);
+    this->WeightTable.assign(static_cast<std::size_t>(256) * materials, 1.0f);
     for (int v = 0; v < 256; ++v)
     {
-      this->WeightTable[2 * v] = scene.grey[v];
+      for (int c = 0; c < channels; ++c)
+      {
+        this->WeightTable[materials * v + c] =
+          channels == 1 ? scene.grey[v] : scene.colour[3 * v + c];
+      }
     }
-    ACCELVOLUME_VP(vpSetLookupShader(vpc, 1, 2, IndexField, this->ColourTable.data(),
-      static_cast<int>(this->ColourTable.size() * sizeof(float)), ScalarField,
-      this->WeightTable.data(), static_cast<int>(this->WeightTable.size() * sizeof(float))));
+    ACCELVOLUME_VP(vpSetLookupShader(vpc, channels, materials, IndexField,
+      this->ColourTable.data(), static_cast<int>(this->ColourTable.size() * sizeof(float)),
+      ScalarField, this->WeightTable.data(),
+      static_cast<int>(this->WeightTable.size() * sizeof(float))));
   }
   else
   {
-    this->ColourTable.resize(256);
-    for (int v = 0; v < 256; ++v)
+    // Colour table [scalar][channel] (one material).
+    this->ColourTable.resize(static_cast<std::size_t>(256) * channels);
+    for (std::size_t i = 0; i < this->ColourTable.size(); ++i)
     {
-      this->ColourTable[v] = 255.0f * scene.grey[v];
+      this->ColourTable[i] = 255.0f * (channels == 1 ? scene.grey[i] : scene.colour[i]);
     }
     this->WeightTable.clear();
-    ACCELVOLUME_VP(vpSetLookupShader(vpc, 1, 1, IndexField, this->ColourTable.data(),
+    ACCELVOLUME_VP(vpSetLookupShader(vpc, channels, 1, IndexField, this->ColourTable.data(),
       static_cast<int>(this->ColourTable.size() * sizeof(float)), 0, nullptr, 0));
   }
   return true;
@@ -440,14 +479,28 @@ bool VolPackRenderer::Internals::SetView(const VolPackScene& scene, std::string&
     ACCELVOLUME_VP(vpEnable(vpc, VP_LIGHT0, 1));
     const double a = scene.ambient, d = scene.diffuse, s = scene.specular;
     const double p = scene.specularPower;
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL0, VP_AMBIENT, VP_BOTH_SIDES, a, a, a));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL0, VP_DIFFUSE, VP_BOTH_SIDES, d, d, d));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL0, VP_SPECULAR, VP_BOTH_SIDES, 0, 0, 0));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL0, VP_SHINYNESS, VP_BOTH_SIDES, p, 0, 0));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL1, VP_AMBIENT, VP_BOTH_SIDES, 0, 0, 0));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL1, VP_DIFFUSE, VP_BOTH_SIDES, 0, 0, 0));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL1, VP_SPECULAR, VP_BOTH_SIDES, s, s, s));
-    ACCELVOLUME_VP(vpSetMaterial(vpc, VP_MATERIAL1, VP_SHINYNESS, VP_BOTH_SIDES, p, 0, 0));
+    // Materials 0 .. channels-1: ambient + diffuse in their own channel (grey: the one channel);
+    // material `channels`: white specular only (see the top of this file).
+    const int channels = this->Channels;
+    for (int m = 0; m <= channels; ++m)
+    {
+      double amb[3] = { 0, 0, 0 }, diff[3] = { 0, 0, 0 }, spec[3] = { 0, 0, 0 };
+      for (int c = 0; c < 3; ++c)
+      {
+        const bool own = m < channels && (channels == 1 || c == m);
+        amb[c] = own ? a : 0.0;
+        diff[c] = own ? d : 0.0;
+        spec[c] = m == channels ? s : 0.0;
+      }
+      const int material = VP_MATERIAL0 + m;
+      ACCELVOLUME_VP(
+        vpSetMaterial(vpc, material, VP_AMBIENT, VP_BOTH_SIDES, amb[0], amb[1], amb[2]));
+      ACCELVOLUME_VP(
+        vpSetMaterial(vpc, material, VP_DIFFUSE, VP_BOTH_SIDES, diff[0], diff[1], diff[2]));
+      ACCELVOLUME_VP(
+        vpSetMaterial(vpc, material, VP_SPECULAR, VP_BOTH_SIDES, spec[0], spec[1], spec[2]));
+      ACCELVOLUME_VP(vpSetMaterial(vpc, material, VP_SHINYNESS, VP_BOTH_SIDES, p, 0, 0));
+    }
   }
   ToVolPack(model, matrix);
   ACCELVOLUME_VP(vpSetMatrix(vpc, matrix));
@@ -506,6 +559,7 @@ bool VolPackRenderer::Prepare(const VolPackScene& scene, std::string& error)
     this->Impl->Dims[a] = scene.dims[a];
   }
   this->Impl->Shade = scene.shade;
+  this->Impl->Channels = scene.colour.empty() ? 1 : 3;
   if (!this->Impl->Build(scene, error))
   {
     this->Impl->Release();
@@ -527,13 +581,15 @@ bool VolPackRenderer::Render(
     return false;
   }
   if (scene.dims[0] != impl.Dims[0] || scene.dims[1] != impl.Dims[1] ||
-    scene.dims[2] != impl.Dims[2] || scene.shade != impl.Shade)
+    scene.dims[2] != impl.Dims[2] || scene.shade != impl.Shade ||
+    (scene.colour.empty() ? 1 : 3) != impl.Channels)
   {
-    error = "VolPackRenderer: dims and shade must be those given to Prepare";
+    error = "VolPackRenderer: dims, shade and the colour mode (grey / colour) must be those "
+            "given to Prepare";
     return false;
   }
   if (scene.width < 1 || scene.height < 1 ||
-    static_cast<double>(scene.width) * scene.height * 2 > INT_MAX)
+    static_cast<double>(scene.width) * scene.height * 4 > INT_MAX)
   {
     error = "VolPackRenderer: bad image size";
     return false;
@@ -544,9 +600,10 @@ bool VolPackRenderer::Render(
     return false;
   }
   vpContext* vpc = impl.Context;
-  impl.Image.assign(static_cast<std::size_t>(scene.width) * scene.height * 2, 0);
-  vpResult code =
-    vpSetImage(vpc, impl.Image.data(), scene.width, scene.height, scene.width * 2, VP_LUMINANCEA);
+  const int pixelBytes = impl.Channels == 1 ? 2 : 4;
+  impl.Image.assign(static_cast<std::size_t>(scene.width) * scene.height * pixelBytes, 0);
+  vpResult code = vpSetImage(vpc, impl.Image.data(), scene.width, scene.height,
+    scene.width * pixelBytes, impl.Channels == 1 ? VP_LUMINANCEA : VP_RGBA);
   if (code != VP_OK)
   {
     error = VolPackError("vpSetImage", code);
@@ -580,17 +637,27 @@ bool VolPackRenderer::Render(
     impl.Axis = axis;
   }
 
-  // Luminance is already premultiplied (VolPack composites colour * opacity).
+  // Colours are already premultiplied (VolPack composites colour * opacity).
   const std::size_t pixels = static_cast<std::size_t>(scene.width) * scene.height;
   rgba.resize(pixels * 4);
   const float toUnit = 1.0f / 255.0f;
-  for (std::size_t p = 0; p < pixels; ++p)
+  if (impl.Channels == 1)
   {
-    const float luminance = impl.Image[2 * p] * toUnit;
-    rgba[4 * p + 0] = luminance;
-    rgba[4 * p + 1] = luminance;
-    rgba[4 * p + 2] = luminance;
-    rgba[4 * p + 3] = impl.Image[2 * p + 1] * toUnit;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      const float luminance = impl.Image[2 * p] * toUnit;
+      rgba[4 * p + 0] = luminance;
+      rgba[4 * p + 1] = luminance;
+      rgba[4 * p + 2] = luminance;
+      rgba[4 * p + 3] = impl.Image[2 * p + 1] * toUnit;
+    }
+  }
+  else
+  {
+    for (std::size_t i = 0; i < pixels * 4; ++i)
+    {
+      rgba[i] = impl.Image[i] * toUnit; // VP_RGBA: r, g, b, a bytes
+    }
   }
   return true;
 }

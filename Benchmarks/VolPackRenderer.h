@@ -11,10 +11,15 @@
 //   ray length per slice in voxel units (vp_view.c, ComputeAffineOpacityCorrection). The scene's
 //   opacity table is per voxel of ray length, so this is the same convention as ours.
 // - Classified voxels (opacity, opacity * colour) are resampled bilinearly in each slice; the
-//   classified opacity and the final image are 8-bit (VP_LUMINANCEA), so expect ~1/255 steps.
+//   classified opacity and the final image are 8-bit (VP_LUMINANCEA in grey mode, VP_RGBA in
+//   colour mode), so expect ~1/255 steps.
+// - Two colour modes: grey (one channel, `grey`, VolPack's luminance mode) or RGB (`colour`
+//   non-empty: three channels per voxel, VolPack's RGB lookup shader and VP_RGBA image, the work
+//   of a colour renderer).
 // - Shading (shade = true) uses VolPack's lookup shader over 13-bit quantized normals: colour =
-//   grey * (ambient + diffuse * max(N.L, 0)) + specular * max(N.H, 0)^power, the normal turned to
-//   face the viewer (VolPack treats back-facing normals as the interior side).
+//   c * (ambient + diffuse * max(N.L, 0)) + specular * max(N.H, 0)^power per channel (c the grey
+//   or the r, g, b of the scalar; white light), the normal turned to face the viewer (VolPack
+//   treats back-facing normals as the interior side).
 #ifndef accelvolume_bench_VolPackRenderer_h
 #define accelvolume_bench_VolPackRenderer_h
 
@@ -35,8 +40,11 @@ struct VolPackScene
   std::vector<float> opacity;            // 256 entries in [0,1]: opacity per 8-bit scalar value,
                                          // for a sample spacing of one voxel
   std::vector<float> grey;               // 256 entries in [0,1]: grey colour per scalar value
-                                         // (VolPack luminance mode)
-  bool shade = false; // false: colour = grey (no lighting); true: Phong with one directional light
+                                         // (VolPack luminance mode; ignored when colour is set)
+  std::vector<float> colour;             // empty (grey mode) or 256*3 entries in [0,1]: r, g, b
+                                         // per scalar value (VolPack RGB mode)
+  bool shade = false; // false: colour = grey / rgb (no lighting); true: Phong, one white
+                      // directional light
   float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
   float lightDirection[3] = { 0, 0, 1 }; // in IMAGE coordinates (see below), towards the light
   int width = 0, height = 0;             // final image size in pixels
@@ -62,8 +70,9 @@ public:
   bool Prepare(const VolPackScene& scene, std::string& error);
 
   // Renders with the scene's view, image size, lighting and maxRayOpacity (the volume, opacity
-  // and grey are those given to Prepare; dims and shade must match). rgba = width*height*4
-  // floats, premultiplied by alpha, rows from the bottom; r = g = b = VolPack's luminance.
+  // and grey / colour are those given to Prepare; dims, shade and the colour mode must match).
+  // rgba = width*height*4 floats, premultiplied by alpha, rows from the bottom; in grey mode
+  // r = g = b = VolPack's luminance.
   // LastRenderSeconds() times VolPack's per-frame work (shading table and rendering).
   bool Render(const VolPackScene& scene, std::vector<float>& rgba, std::string& error);
 

@@ -9,6 +9,10 @@
 // corrected for the step length (VolPack corrects by the same law), front-to-back compositing
 // with the same early termination. It differs from VolPack in known, small ways (VolPack
 // classifies voxels before resampling, resamples twice and stores 8-bit values), hence bounds.
+// The colour mode (VolPack RGB, `colour` set) is checked against the same reference, unshaded and
+// shaded, channel by channel; the shaded reference shades each voxel (central-difference normal,
+// zero on the volume's border as vpVolumeNormals, turned to face the viewer) and interpolates the
+// opacity-weighted colours, as VolPack classifies voxels before resampling (shaded grey too).
 // Also checked: lighting follows lightDirection in image coordinates, shading leaves alpha
 // alone, and Prepare / Render reject bad input with a message.
 // Exit status 0: pass, 1: fail.
@@ -30,7 +34,7 @@ constexpr int Height = 96;
 // Agreement bounds (see the header comment for why the images are not identical).
 constexpr double MaxMeanAlphaError = 0.03;  // over pixels covered by either image
 constexpr double MaxCentroidError = 0.25;   // pixels; a half-pixel slip would show
-constexpr double MaxMeanColourError = 0.03; // premultiplied grey
+constexpr double MaxMeanColourError = 0.03; // premultiplied grey / each of r, g, b
 
 int Failures = 0;
 
@@ -172,6 +176,81 @@ double Lookup(const std::vector<float>& table, double s)
   return (1 - t) * table[i] + t * table[i + 1];
 }
 
+// Colour channel c (0..2) of the scene's table at scalar s: grey, or colour's r, g, b.
+double TableColour(const VolPackScene& scene, int c, double s)
+{
+  if (scene.colour.empty())
+  {
+    return Lookup(scene.grey, s);
+  }
+  const double x = std::min(255.0, std::max(0.0, s));
+  const int i = std::min(254, static_cast<int>(x));
+  const double t = x - i;
+  return (1 - t) * scene.colour[3 * i + c] + t * scene.colour[3 * (i + 1) + c];
+}
+
+// Per voxel, for the shaded reference: opacity (per voxel of ray length) and the shaded colour
+// c * (ambient + diffuse max(N.L, 0)) + specular max(N.H, 0)^power of each channel, N the
+// central-difference gradient taken to image space (inverse transpose) and turned to face the
+// viewer (image -z); zero on the volume's border (ambient only), as vpVolumeNormals.
+void ShadeVoxels(const VolPackScene& scene, const double inv[3][3], std::vector<float>& alpha,
+  std::vector<float>& rgb)
+{
+  const int* d = scene.dims;
+  const std::size_t count = static_cast<std::size_t>(d[0]) * d[1] * d[2];
+  alpha.resize(count);
+  rgb.resize(3 * count);
+  double l[3] = { scene.lightDirection[0], scene.lightDirection[1], scene.lightDirection[2] };
+  Normalize(l);
+  double h[3] = { l[0], l[1], l[2] - 1.0 }; // L + V, V = (0, 0, -1) towards the viewer
+  Normalize(h);
+  const std::size_t sy = d[0], sz = static_cast<std::size_t>(d[0]) * d[1];
+  std::size_t n = 0;
+  for (int z = 0; z < d[2]; ++z)
+  {
+    for (int y = 0; y < d[1]; ++y)
+    {
+      for (int x = 0; x < d[0]; ++x, ++n)
+      {
+        const double s = scene.scalars[n];
+        alpha[n] = static_cast<float>(Lookup(scene.opacity, s));
+        double diffuse = 0, specular = 0;
+        const bool border =
+          x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1;
+        if (!border)
+        {
+          const double g[3] = { double(scene.scalars[n + 1]) - scene.scalars[n - 1],
+            double(scene.scalars[n + sy]) - scene.scalars[n - sy],
+            double(scene.scalars[n + sz]) - scene.scalars[n - sz] };
+          double nrm[3];
+          for (int r = 0; r < 3; ++r)
+          {
+            nrm[r] = inv[0][r] * g[0] + inv[1][r] * g[1] + inv[2][r] * g[2];
+          }
+          const double length = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+          if (length > 1e-12)
+          {
+            const double facing = nrm[2] > 0 ? -1.0 : 1.0; // N.V >= 0 with V = (0, 0, -1)
+            for (double& c : nrm)
+            {
+              c *= facing / length;
+            }
+            diffuse = std::max(0.0, nrm[0] * l[0] + nrm[1] * l[1] + nrm[2] * l[2]);
+            specular = std::pow(std::max(0.0, nrm[0] * h[0] + nrm[1] * h[1] + nrm[2] * h[2]),
+              static_cast<double>(scene.specularPower));
+          }
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          rgb[3 * n + c] = static_cast<float>(TableColour(scene, c, s) *
+              (scene.ambient + scene.diffuse * diffuse) +
+            scene.specular * specular);
+        }
+      }
+    }
+  }
+}
+
 // Brute-force reference: rgba premultiplied, rows from the bottom.
 std::vector<float> Reference(const VolPackScene& scene)
 {
@@ -198,6 +277,11 @@ std::vector<float> Reference(const VolPackScene& scene)
   }
   const double stepLength =
     std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]) / std::abs(ray[k]);
+  std::vector<float> voxelAlpha, voxelRgb;
+  if (scene.shade)
+  {
+    ShadeVoxels(scene, inv, voxelAlpha, voxelRgb);
+  }
   auto voxel = [&](int x, int y, int z)
   {
     return static_cast<double>(
@@ -215,7 +299,7 @@ std::vector<float> Reference(const VolPackScene& scene)
       {
         base[r] = inv[r][0] * image[0] + inv[r][1] * image[1] + inv[r][2] * image[2];
       }
-      double colour = 0, alpha = 0;
+      double colour[3] = { 0, 0, 0 }, alpha = 0;
       for (int n = 0; n < d[k] && alpha < scene.maxRayOpacity; ++n)
       {
         // Front to back: slices in order of increasing depth.
@@ -240,7 +324,7 @@ std::vector<float> Reference(const VolPackScene& scene)
           i0[c] = std::max(0, i0[c]);
           t[c] = d[c] > 1 ? p[c] - i0[c] : 0.0;
         }
-        double s = 0;
+        double s = 0, weighted[3] = { 0, 0, 0 }, plain[3] = { 0, 0, 0 }, weights = 0;
         for (int corner = 0; corner < 8; ++corner)
         {
           double w = 1;
@@ -252,13 +336,35 @@ std::vector<float> Reference(const VolPackScene& scene)
             q[c] = std::min(d[c] - 1, i0[c] + bit);
           }
           s += w * voxel(q[0], q[1], q[2]);
+          if (scene.shade)
+          {
+            const std::size_t v =
+              q[0] + static_cast<std::size_t>(d[0]) * (q[1] + static_cast<std::size_t>(d[1]) * q[2]);
+            for (int c = 0; c < 3; ++c)
+            {
+              weighted[c] += w * voxelAlpha[v] * voxelRgb[3 * v + c];
+              plain[c] += w * voxelRgb[3 * v + c];
+            }
+            weights += w * voxelAlpha[v];
+          }
         }
         const double opacity = 1 - std::pow(1 - Lookup(scene.opacity, s), stepLength);
-        colour += (1 - alpha) * opacity * Lookup(scene.grey, s);
+        for (int c = 0; c < 3; ++c)
+        {
+          // Shaded: the opacity-weighted mean of the voxels' colours (VolPack resamples
+          // opacity * colour of classified voxels); unshaded: the table at the sample's scalar.
+          const double sampleColour = !scene.shade ? TableColour(scene, c, s)
+            : weights > 1e-12                      ? weighted[c] / weights
+                                                   : plain[c];
+          colour[c] += (1 - alpha) * opacity * sampleColour;
+        }
         alpha += (1 - alpha) * opacity;
       }
       float* px = &rgba[4 * (a + static_cast<std::size_t>(scene.width) * b)];
-      px[0] = px[1] = px[2] = static_cast<float>(colour);
+      for (int c = 0; c < 3; ++c)
+      {
+        px[c] = static_cast<float>(colour[c]);
+      }
       px[3] = static_cast<float>(alpha);
     }
   }
@@ -267,7 +373,8 @@ std::vector<float> Reference(const VolPackScene& scene)
 
 struct Comparison
 {
-  double meanAlpha = 0, maxAlpha = 0, meanColour = 0, centroid = 0;
+  double meanAlpha = 0, maxAlpha = 0, meanColour = 0, centroid = 0; // meanColour: worst channel
+  double meanChannel[3] = { 0, 0, 0 };
   double centroidA[2] = { 0, 0 }, centroidB[2] = { 0, 0 };
   double massA = 0, massB = 0;
 };
@@ -301,12 +408,19 @@ Comparison Compare(const std::vector<float>& vp, const std::vector<float>& ref)
     {
       ++covered;
       r.meanAlpha += std::abs(a - b);
-      r.meanColour += std::abs(vp[4 * p] - ref[4 * p]);
+      for (int c = 0; c < 3; ++c)
+      {
+        r.meanChannel[c] += std::abs(vp[4 * p + c] - ref[4 * p + c]);
+      }
     }
     r.maxAlpha = std::max(r.maxAlpha, std::abs(a - b));
   }
   r.meanAlpha /= std::max<std::size_t>(1, covered);
-  r.meanColour /= std::max<std::size_t>(1, covered);
+  for (double& m : r.meanChannel)
+  {
+    m /= std::max<std::size_t>(1, covered);
+    r.meanColour = std::max(r.meanColour, m);
+  }
   Centroid(vp, r.centroidA, r.massA);
   Centroid(ref, r.centroidB, r.massB);
   r.centroid = std::hypot(r.centroidA[0] - r.centroidB[0], r.centroidA[1] - r.centroidB[1]);
@@ -486,6 +600,116 @@ void CheckShading(const int dims[3])
   Expect(excess <= 1.0 / 255 + 1e-6, "colour is premultiplied (<= alpha)");
 }
 
+// Colour ramps that differ per channel, so a swapped or dropped channel shows.
+void SetColourRamps(VolPackScene& scene)
+{
+  scene.colour.resize(256 * 3);
+  for (int v = 0; v < 256; ++v)
+  {
+    const float x = static_cast<float>(v) / 255.0f;
+    scene.colour[3 * v + 0] = 0.15f + 0.85f * x;                                 // r: up
+    scene.colour[3 * v + 1] = 1.0f - std::abs(2.0f * x - 1.0f) * 0.8f;          // g: hump
+    scene.colour[3 * v + 2] = std::min(1.0f, std::max(0.0f, 0.95f - 0.9f * x)); // b: down
+  }
+}
+
+// RGB mode (and shaded grey) against the reference, a few views, unshaded and shaded.
+void CheckColour(const int dims[3], const std::vector<std::uint8_t>& volume)
+{
+  struct ViewCase
+  {
+    const char* name;
+    double forward[3], up[3], scale, shift[2];
+    bool mirror;
+  };
+  const ViewCase views[] = {
+    { "front (+z)", { 0, 0, 1 }, { 0, 1, 0 }, 1.0, { 0, 0 }, false },
+    { "oblique az 30 el 20 (+z)", { 0.47, 0.34, 0.81 }, { 0, 1, 0 }, 1.1, { -3.2, 2.7 }, false },
+    { "principal x, oblique", { 0.9, 0.25, -0.35 }, { 0, 0, 1 }, 1.2, { 2.5, 1.5 }, false },
+    { "principal +y, mirrored", { -0.3, 0.85, -0.35 }, { 1, 0, 0 }, 1.0, { 2, -2 }, true },
+  };
+  struct ModeCase
+  {
+    const char* name;
+    bool colour, shade;
+  };
+  const ModeCase modes[] = { { "rgb unshaded", true, false }, { "rgb shaded", true, true },
+    { "grey shaded", false, true } };
+  const float light[3] = { 0.45f, 0.55f, -0.7f }; // image right, up, towards the viewer
+  for (const ModeCase& mode : modes)
+  {
+    VolPackScene scene = BaseScene(dims, volume);
+    if (mode.colour)
+    {
+      SetColourRamps(scene);
+    }
+    scene.shade = mode.shade;
+    std::copy(light, light + 3, scene.lightDirection);
+    VolPackRenderer renderer;
+    std::string error;
+    const bool prepared = renderer.Prepare(scene, error);
+    Expect(prepared, std::string("Prepare (") + mode.name + ") " + error);
+    if (!prepared)
+    {
+      continue;
+    }
+    for (const ViewCase& v : views)
+    {
+      MakeView(dims, v.forward, v.up, v.scale, v.shift, v.mirror, scene.voxelToImage);
+      std::vector<float> image;
+      const std::string name = std::string(mode.name) + ", " + v.name;
+      if (!renderer.Render(scene, image, error))
+      {
+        Expect(false, name + ": Render failed: " + error);
+        continue;
+      }
+      const Comparison c = Compare(image, Reference(scene));
+      std::printf("  %-42s mean|da| %.4f  mean|dc| r %.4f g %.4f b %.4f  centroid %.3f px  "
+                  "%.2f ms\n",
+        name.c_str(), c.meanAlpha, c.meanChannel[0], c.meanChannel[1], c.meanChannel[2],
+        c.centroid, 1e3 * renderer.LastRenderSeconds());
+      const bool ok = c.meanAlpha < MaxMeanAlphaError && c.centroid < MaxCentroidError &&
+        c.meanColour < MaxMeanColourError && c.massB > 50;
+      Expect(ok, name + " agrees with the reference");
+    }
+  }
+
+  // The colour mode changes colours only: alpha as in grey mode, and each channel follows its
+  // own ramp (grey = the mean of the ramps gives the mean of the channels, up to rounding).
+  VolPackScene grey = BaseScene(dims, volume), rgb = grey;
+  SetColourRamps(rgb);
+  for (int v = 0; v < 256; ++v)
+  {
+    grey.grey[v] = (rgb.colour[3 * v] + rgb.colour[3 * v + 1] + rgb.colour[3 * v + 2]) / 3.0f;
+  }
+  const double forward[3] = { 0.47, 0.34, 0.81 }, up[3] = { 0, 1, 0 }, shift[2] = { 0, 0 };
+  MakeView(dims, forward, up, 1.1, shift, false, grey.voxelToImage);
+  MakeView(dims, forward, up, 1.1, shift, false, rgb.voxelToImage);
+  VolPackRenderer g, c;
+  std::string error;
+  std::vector<float> gi, ci;
+  const bool ok = g.Prepare(grey, error) && g.Render(grey, gi, error) && c.Prepare(rgb, error) &&
+    c.Render(rgb, ci, error);
+  Expect(ok, "grey and rgb renders " + error);
+  if (ok)
+  {
+    double alphaDiff = 0, meanDiff = 0, spread = 0;
+    for (std::size_t p = 0; p < gi.size() / 4; ++p)
+    {
+      alphaDiff = std::max(alphaDiff, std::abs(double(gi[4 * p + 3]) - ci[4 * p + 3]));
+      meanDiff = std::max(
+        meanDiff, std::abs((ci[4 * p] + ci[4 * p + 1] + ci[4 * p + 2]) / 3.0 - gi[4 * p]));
+      spread = std::max(spread, double(std::abs(ci[4 * p] - ci[4 * p + 2])));
+    }
+    std::printf("  rgb vs grey (grey = mean of the ramps): alpha max diff %.4f, mean(r,g,b) - grey "
+                "max %.4f, max |r - b| %.3f\n",
+      alphaDiff, meanDiff, spread);
+    Expect(alphaDiff <= 1e-6, "colour mode leaves alpha as in grey mode");
+    Expect(meanDiff <= 2.0 / 255 + 1e-6, "mean of the channels is the grey image");
+    Expect(spread > 0.1, "channels differ (colour is not grey)");
+  }
+}
+
 void CheckErrors(const int dims[3], const std::vector<std::uint8_t>& volume)
 {
   const VolPackScene good = BaseScene(dims, volume);
@@ -509,6 +733,15 @@ void CheckErrors(const int dims[3], const std::vector<std::uint8_t>& volume)
   bad.back().scene.opacity[100] = 1.5f;
   bad.push_back({ "NaN grey", good });
   bad.back().scene.grey[7] = std::nanf("");
+  bad.push_back({ "colour with 255 * 3 entries", good });
+  SetColourRamps(bad.back().scene);
+  bad.back().scene.colour.resize(255 * 3);
+  bad.push_back({ "NaN colour", good });
+  SetColourRamps(bad.back().scene);
+  bad.back().scene.colour[100] = std::nanf("");
+  bad.push_back({ "colour above 1", good });
+  SetColourRamps(bad.back().scene);
+  bad.back().scene.colour[5] = 1.01f;
   bad.push_back({ "negative diffuse (shaded)", good });
   bad.back().scene.shade = true;
   bad.back().scene.diffuse = -1.0f;
@@ -550,6 +783,8 @@ void CheckErrors(const int dims[3], const std::vector<std::uint8_t>& volume)
   renders.back().scene.dims[2] = dims[2] - 1;
   renders.push_back({ "shade differs from Prepare", scene });
   renders.back().scene.shade = true;
+  renders.push_back({ "colour mode differs from Prepare", scene });
+  SetColourRamps(renders.back().scene);
   for (const RenderCase& r : renders)
   {
     error.clear();
@@ -572,6 +807,8 @@ int main()
   CheckViews(dims, volume);
   std::printf("shading:\n");
   CheckShading(dims);
+  std::printf("colour (VolPack RGB) and shaded grey against the reference:\n");
+  CheckColour(dims, volume);
   std::printf("bad input:\n");
   CheckErrors(dims, volume);
   std::printf(
