@@ -30,12 +30,31 @@
 #include <cmath>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
 
 namespace
 {
 constexpr int TableSize = 1024; // as the other mappers, so all classify alike
 constexpr int BandRowsTag = 78231;
+
+// Cores in this process's affinity mask (vtkSMPTools' estimate follows its own settings).
+int UsableCores()
+{
+#if defined(__linux__)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0)
+  {
+    return std::max(1, CPU_COUNT(&set));
+  }
+#endif
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 double Now()
 {
@@ -325,7 +344,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   const int rank = controller ? controller->GetLocalProcessId() : 0;
   // The cores this process may use (an MPI launcher may bind each rank to one): more threads
   // than that only contend, and TBB warns about them.
-  const int cores = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
+  const int cores = UsableCores();
   const int threads = this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores;
   settings.runLengthEncoding = this->RunLengthEncoding != 0;
   settings.earlyTermination = this->EarlyRayTermination != 0;

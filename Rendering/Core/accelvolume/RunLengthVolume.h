@@ -4,8 +4,9 @@
 // For axis k (i = (k + 1) % 3, j = (k + 2) % 3) scanline (j, k) runs along i. Each scanline keeps
 // the runs of voxels that can contribute [begin, end) with the offset of their first voxel in
 // one packed voxel array; transparent voxels are not stored at all. Encoding is parallel over
-// slices and identical for any thread count. A dense encoding (one run covering every scanline)
-// serves as the "no run-length encoding" baseline with the same compositing code.
+// slices and identical for any thread count. A dense encoding (one run covering every scanline;
+// for MIP / MinIP, runs broken only at NaN voxels) serves as the "no run-length encoding"
+// baseline with the same compositing code.
 #ifndef accelvolume_RunLengthVolume_h
 #define accelvolume_RunLengthVolume_h
 
@@ -38,7 +39,8 @@ struct ShadedVoxel
 using ScalarVoxel = std::uint16_t;
 
 // Octahedral normal code: NormalBits per coordinate, so the shading table has NormalCodes rows
-// (6 bits: at most about 2 degrees off, 4096 rows that stay in cache; Lacroute used 13 bits).
+// (6 bits: 1.4 degrees off on average, 3.8 at worst; 4096 rows that stay in cache; Lacroute
+// used 13 bits).
 inline constexpr int NormalBits = 6;
 inline constexpr int NormalCodes = 1 << (2 * NormalBits);
 inline constexpr std::uint16_t NoNormal = 0xFFFF;

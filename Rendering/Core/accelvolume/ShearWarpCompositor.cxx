@@ -9,11 +9,26 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+#include <chrono>
 
 namespace accelvolume
 {
 namespace
 {
+
+// A cheap clock for per-scanline costs: the time-stamp counter where there is one (a few
+// cycles a read, so every scanline of every slice can be timed), else a steady clock.
+inline std::uint64_t Ticks()
+{
+#if defined(__x86_64__) || defined(__i386__)
+  return __rdtsc();
+#else
+  return static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
 
 // Skip links: next[u] == u for a pixel still open, else a link towards the next open pixel
 // (path-compressed as it is followed); next[width] == width closes the scanline.
@@ -318,9 +333,29 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
       {
         return b;
       }
+      // First open pixel at or after the runs walked so far: runs whose pixels all lie before
+      // it are passed over with one comparison.
+      int frontier = skip ? std::numeric_limits<int>::min() : std::numeric_limits<int>::max();
       for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
       {
         const int runEnd = static_cast<int>(run->end);
+        if (skip)
+        {
+          const int runPixels = runEnd + shiftI + 1; // pixels [begin + shiftI, runPixels)
+          if (frontier < static_cast<int>(run->begin) + shiftI)
+          {
+            frontier = width;
+            const int from = std::min(std::max(static_cast<int>(run->begin) + shiftI, 0), width);
+            for (int q = 0; q < users; ++q)
+            {
+              frontier = std::min(frontier, FindOpen(userLinks[q], from));
+            }
+          }
+          if (frontier >= std::min(runPixels, width))
+          {
+            continue;
+          }
+        }
         int i = nextNeeded(static_cast<int>(run->begin));
         while (i < runEnd)
         {
@@ -352,14 +387,66 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
 
     const int vBegin = std::max(v0, shiftJ);
     const int vEnd = std::min(v1, shiftJ + nj + 1);
+    std::uint64_t previousTicks = work ? Ticks() : 0;
+    int previousRow = -1;
     for (int v = vBegin; v < vEnd; ++v)
     {
       const int r = v - v0;
+      if (work)
+      {
+        // The time since the last mark belongs to the scanline worked on before it.
+        const std::uint64_t now = Ticks();
+        if (previousRow >= 0)
+        {
+          work[previousRow] += static_cast<double>(now - previousTicks);
+        }
+        previousTicks = now;
+        previousRow = r;
+      }
       if (ws.open[r] == 0)
       {
         continue;
       }
       const int j0 = v - shiftJ - 1;
+      if (j0 + 3 < nj)
+      {
+        // The scanline after next: its runs and first voxels arrive while this pair works.
+        const VoxelRun* ahead = encoded.RunsBegin(j0 + 3, k);
+        __builtin_prefetch(ahead);
+        if (ahead != encoded.RunsEnd(j0 + 3, k))
+        {
+          __builtin_prefetch(voxels + ahead->offset);
+        }
+      }
+      // The pixels the two voxel scanlines can reach at all; when every one of them is already
+      // saturated (the common case behind an opaque surface), nothing of this pair is touched.
+      int reachBegin = std::numeric_limits<int>::max();
+      int reachEnd = std::numeric_limits<int>::min();
+      for (int q = 0; q < 2; ++q)
+      {
+        const int j = j0 + q;
+        if (j >= 0 && j < nj && encoded.RunsBegin(j, k) != encoded.RunsEnd(j, k))
+        {
+          reachBegin = std::min(reachBegin, static_cast<int>(encoded.RunsBegin(j, k)->begin) + shiftI);
+          reachEnd = std::max(reachEnd, static_cast<int>((encoded.RunsEnd(j, k) - 1)->end) + shiftI + 1);
+        }
+      }
+      if (reachEnd <= reachBegin)
+      {
+        continue;
+      }
+      std::int32_t* links = ws.next.data() + stride * r;
+      if (skip)
+      {
+        const int first = std::max(reachBegin, 0);
+        const int last = std::min(reachEnd, width);
+        const int found = first < last ? FindOpen(links, first) : last;
+        if (found >= last)
+        {
+          counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, last - first));
+          continue;
+        }
+      }
       std::uint64_t loaded = 0;
       const int bufferA = ensure(j0, -1, loaded);
       const int bufferB = ensure(j0 + 1, bufferA, loaded);
@@ -397,7 +484,6 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
       }
       const float* cellsA = ws.rows[bufferA].data();
       const float* cellsB = ws.rows[bufferB].data();
-      std::int32_t* links = ws.next.data() + stride * r;
       float* row = pixels + static_cast<std::size_t>(C) * width * r;
       std::uint64_t samples = 0;
       for (std::size_t p = 0; p < spans.size(); p += 2)
@@ -429,10 +515,10 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
         }
       }
       counters.samples += samples;
-      if (work)
-      {
-        work[r] += 4.0 + static_cast<double>(samples) + static_cast<double>(loaded);
-      }
+    }
+    if (work && previousRow >= 0)
+    {
+      work[previousRow] += static_cast<double>(Ticks() - previousTicks);
     }
   }
 }

@@ -72,8 +72,8 @@ struct ScanlineWorkspace
 // Composites every slice, front to back and slice by slice (the encoding is streamed in
 // order), into intermediate scanlines [v0, v1): rgba holds (v1 - v0) scanlines of
 // intermediateSize[0] premultiplied pixels (4 floats each), transparent on entry. work, when
-// not null, receives a relative cost per scanline (samples and voxels it took), which turns
-// the band's measured time into per-scanline times.
+// not null, receives a relative cost per scanline (clock ticks spent on it, over all slices),
+// which turns the band's measured time into per-scanline times.
 void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded,
   const ShearWarpFactorization& factorization, const CompositeTables& tables, int v0, int v1,
   float* rgba, ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work);

@@ -116,7 +116,7 @@ public:
   // Intermediate image: intermediateSize[0] * intermediateSize[1] premultiplied RGBA pixels.
   float* GetIntermediateImage();
   // Seconds per intermediate scanline of the last CompositeRows calls (0 where not composited):
-  // each call's time shared out over its scanlines by the samples and voxels each took.
+  // each call's time shared out over its scanlines by the clock ticks each took.
   const std::vector<double>& GetScanlineSeconds() const;
   // Costs used to balance the next frame (e.g. the sum of every rank's scanline seconds).
   void SetScanlineCosts(const std::vector<double>& seconds);

@@ -1,0 +1,305 @@
+// ShearWarpRenderer: images independent of bands, balancing, threads and the order the phases
+// composite scanline ranges; run-length encoding exact against the dense baseline; Phong against
+// the shading table; encodings cached per axis and version; bad arguments fail cleanly.
+#include "ShearWarpEngineTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace accelvolume;
+using namespace accelvolume_test;
+
+TEST(ShearWarpEngine, ImagesIgnoreBandsBalancingAndThreads)
+{
+  const int dims[3] = { 40, 32, 24 };
+  const ParallelFor threaded = UnevenThreadedFor(3);
+  for (ShearWarpBlend blend :
+    { ShearWarpBlend::Composite, ShearWarpBlend::Maximum, ShearWarpBlend::Minimum })
+  {
+    SCOPED_TRACE(BlendName(blend));
+    const bool minimum = blend == ShearWarpBlend::Minimum;
+    const Scene scene = MakeScene(dims, false, minimum ? Content::Inverted : Content::SphereAndBar);
+    const RayCastTransfer tf = MakeTransfer(0.3f, minimum);
+    const ViewSetup camera = MakeCamera(scene, 200, -35, Isotropic, 90, 70, 25, true);
+    ShearWarpSettings settings;
+    settings.blend = blend;
+    ShearWarpRenderer reference;
+    const Frame base = RenderFrame(reference, scene, tf, camera, settings);
+    ExpectTransparentOutside(base, 90, 70);
+    double alpha = 0;
+    for (std::size_t p = 3; p < base.rgba.size(); p += 4)
+    {
+      alpha += base.rgba[p];
+    }
+    EXPECT_GT(alpha, 50.0); // something visible
+    // The phases by hand, as MPI ranks use them: scanline ranges composited in any order.
+    {
+      ShearWarpRenderer phased;
+      ShearWarpStats stats;
+      std::string error;
+      ASSERT_TRUE(phased.BeginFrame(scene.view, scene.range[0], scene.range[1], 1, tf, 1,
+        camera.lighting, camera.sw, settings, SerialParallelFor, stats, error))
+        << error;
+      const int rows = phased.GetFactorization().intermediateSize[1];
+      for (int v1 = rows; v1 > 0; v1 -= 5)
+      {
+        phased.CompositeRows(std::max(0, v1 - 5), v1);
+      }
+      Frame frame;
+      phased.Warp(SerialParallelFor, frame.rgba, frame.rectangle);
+      EXPECT_TRUE(BitIdentical(frame.rgba, base.rgba)) << "phases";
+      ASSERT_EQ(phased.GetScanlineSeconds().size(), static_cast<std::size_t>(rows));
+      for (double seconds : phased.GetScanlineSeconds())
+      {
+        EXPECT_GE(seconds, 0.0);
+      }
+    }
+    ShearWarpRenderer renderer; // one renderer: balancing learns from the frames before
+    for (int bands : { 1, 2, 3, 7 })
+    {
+      for (bool balance : { false, true })
+      {
+        for (int p = 0; p < 2; ++p)
+        {
+          settings.bands = bands;
+          settings.balance = balance;
+          const Frame frame = RenderFrame(
+            renderer, scene, tf, camera, settings, p ? threaded : ParallelFor(SerialParallelFor));
+          EXPECT_TRUE(BitIdentical(frame.rgba, base.rgba))
+            << bands << " bands, balance " << balance << ", threads " << p;
+          ASSERT_EQ(frame.stats.bandBounds.size(), static_cast<std::size_t>(bands) + 1);
+          EXPECT_EQ(frame.stats.bandBounds.front(), 0);
+          EXPECT_EQ(frame.stats.bandBounds.back(), frame.stats.intermediateSize[1]);
+          EXPECT_TRUE(std::is_sorted(frame.stats.bandBounds.begin(), frame.stats.bandBounds.end()));
+          EXPECT_EQ(frame.stats.samples, base.stats.samples);
+          EXPECT_EQ(std::vector<int>(frame.rectangle, frame.rectangle + 4),
+            std::vector<int>(base.rectangle, base.rectangle + 4));
+        }
+      }
+    }
+  }
+}
+
+TEST(ShearWarpEngine, RunLengthEncodingIsExactAgainstTheDenseVolume)
+{
+  const int dims[3] = { 36, 30, 26 };
+  const Scene scene = MakeScene(dims, true);
+  const Scene inverted = MakeScene(dims, true, Content::Inverted);
+  const RayCastTransfer tf = MakeTransfer(0.6f);
+  // MIP / MinIP: coarse tables whose opacity jumps between entries, so the visibility threshold
+  // the renderer derives (which voxels the encoding may leave out) must be exactly right.
+  RayCastTransfer high;
+  high.rgba = { 0.1f, 0.2f, 0.3f, 0.0f, 0.2f, 0.3f, 0.4f, 0.0f, 0.3f, 0.9f, 0.5f, 0.8f, 0.4f, 0.5f,
+    0.6f, 0.8f, 0.5f, 0.6f, 0.7f, 0.9f, 0.6f, 0.7f, 0.8f, 1.0f };
+  RayCastTransfer low = high;
+  for (int e = 0; e < 6; ++e)
+  {
+    std::copy(&high.rgba[4 * (5 - e)], &high.rgba[4 * (5 - e)] + 4, &low.rgba[4 * e]);
+  }
+  // Views down each axis from both sides, and oblique ones, so every principal axis and slice
+  // order is exercised.
+  const double views[][2] = { { 0, 0 }, { 180, 3 }, { 93, 5 }, { -88, -7 }, { 20, 70 },
+    { 160, -65 }, { 35, 25 } };
+  const double spacing[3] = { 1.0, 1.25, 0.8 };
+  for (const auto& v : views)
+  {
+    for (int mode = 0; mode < 5; ++mode)
+    {
+      const ShearWarpBlend blend = mode < 3 ? ShearWarpBlend::Composite
+        : mode == 3                         ? ShearWarpBlend::Maximum
+                                            : ShearWarpBlend::Minimum;
+      SCOPED_TRACE("view " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " mode " +
+        std::to_string(mode));
+      const ViewSetup camera =
+        MakeCamera(scene, v[0], v[1], spacing, 80, 64, 30, mode >= 1 && mode <= 2);
+      ShearWarpSettings settings;
+      settings.blend = blend;
+      settings.shading = mode == 2 ? ShearWarpShading::Phong : ShearWarpShading::LookupTable;
+      settings.earlyTermination = false;
+      const bool minimum = blend == ShearWarpBlend::Minimum;
+      const Scene& volume = minimum ? inverted : scene;
+      const RayCastTransfer& table = minimum ? low : blend == ShearWarpBlend::Maximum ? high : tf;
+      ShearWarpRenderer renderer;
+      const Frame rle = RenderFrame(renderer, volume, table, camera, settings);
+      settings.runLengthEncoding = false;
+      const Frame dense = RenderFrame(renderer, volume, table, camera, settings);
+      double alpha = 0;
+      for (std::size_t q = 3; q < rle.rgba.size(); q += 4)
+      {
+        alpha += rle.rgba[q];
+      }
+      EXPECT_GT(alpha, 50.0);
+      EXPECT_TRUE(BitIdentical(rle.rgba, dense.rgba));
+      EXPECT_LT(rle.stats.storedVoxels, dense.stats.storedVoxels);
+      EXPECT_LT(rle.stats.samples, dense.stats.samples);
+      EXPECT_EQ(rle.stats.principalAxis, dense.stats.principalAxis);
+      if (blend == ShearWarpBlend::Composite)
+      {
+        // Early termination moves no channel by more than 1 - threshold.
+        settings.runLengthEncoding = true;
+        settings.earlyTermination = true;
+        settings.terminationThreshold = 0.95;
+        const Frame terminated = RenderFrame(renderer, scene, tf, camera, settings);
+        double worst = 0;
+        for (std::size_t q = 0; q < rle.rgba.size(); ++q)
+        {
+          worst = std::max(worst, double(std::abs(terminated.rgba[q] - rle.rgba[q])));
+        }
+        EXPECT_LE(worst, 0.05 + 1e-5);
+      }
+    }
+  }
+}
+
+TEST(ShearWarpEngine, PhongMatchesTheShadingTable)
+{
+  const int dims[3] = { 32, 28, 24 };
+  const Scene scene = MakeScene(dims, false);
+  const RayCastTransfer tf = MakeTransfer(0.6f);
+  const ViewSetup camera = MakeCamera(scene, 55, 20, Isotropic, 64, 60, 22, true);
+  ShearWarpSettings settings;
+  ShearWarpRenderer renderer;
+  const Frame table = RenderFrame(renderer, scene, tf, camera, settings);
+  settings.shading = ShearWarpShading::Phong;
+  const Frame phong = RenderFrame(renderer, scene, tf, camera, settings);
+  double worst = 0;
+  for (std::size_t q = 0; q < table.rgba.size(); ++q)
+  {
+    worst = std::max(worst, double(std::abs(table.rgba[q] - phong.rgba[q])));
+  }
+  EXPECT_LE(worst, 1e-4); // the same formulas, per code or per voxel
+  // Shading must change the image.
+  ShearWarpRenderer plainRenderer;
+  ViewSetup unshaded = camera;
+  unshaded.lighting.shade = false;
+  const Frame plain = RenderFrame(plainRenderer, scene, tf, unshaded, settings);
+  EXPECT_FALSE(BitIdentical(plain.rgba, table.rgba));
+}
+
+TEST(ShearWarpEngine, EncodingsAreCachedPerAxisAndVersion)
+{
+  const int dims[3] = { 30, 26, 22 };
+  const Scene scene = MakeScene(dims, false);
+  const RayCastTransfer tf = MakeTransfer();
+  const RayCastTransfer other = MakeTransfer(0.9f);
+  const ViewSetup alongZ = MakeCamera(scene, 10, 5, Isotropic, 48, 40, 20, false);
+  const ViewSetup alongX = MakeCamera(scene, 80, 5, Isotropic, 48, 40, 20, false);
+  for (ShearWarpBlend blend : { ShearWarpBlend::Composite, ShearWarpBlend::Maximum })
+  {
+    SCOPED_TRACE(BlendName(blend));
+    ShearWarpSettings settings;
+    settings.blend = blend;
+    ShearWarpRenderer renderer;
+    const Frame first = RenderFrame(renderer, scene, tf, alongZ, settings);
+    EXPECT_GT(first.stats.encodeSeconds, 0.0);
+    EXPECT_EQ(first.stats.principalAxis, 2);
+    const Frame second = RenderFrame(renderer, scene, tf, alongZ, settings);
+    EXPECT_EQ(second.stats.encodeSeconds, 0.0);
+    EXPECT_TRUE(BitIdentical(first.rgba, second.rgba));
+    // Another principal axis: a second encoding; back to the first: reused.
+    const Frame x = RenderFrame(renderer, scene, tf, alongX, settings);
+    EXPECT_EQ(x.stats.principalAxis, 0);
+    EXPECT_GT(x.stats.encodeSeconds, 0.0);
+    EXPECT_GT(x.stats.encodedBytes, first.stats.encodedBytes);
+    EXPECT_EQ(RenderFrame(renderer, scene, tf, alongZ, settings).stats.encodeSeconds, 0.0);
+    // Same versions, other table: the cached encoding is what the versions promise.
+    const Frame stale = RenderFrame(renderer, scene, other, alongZ, settings, SerialParallelFor, 1);
+    EXPECT_EQ(stale.stats.encodeSeconds, 0.0);
+    // A new transfer version re-encodes and drops the encodings of the old one.
+    const Frame changed =
+      RenderFrame(renderer, scene, other, alongZ, settings, SerialParallelFor, 2);
+    EXPECT_GT(changed.stats.encodeSeconds, 0.0);
+    EXPECT_FALSE(BitIdentical(changed.rgba, first.rgba));
+    EXPECT_EQ(RenderFrame(renderer, scene, other, alongZ, settings, SerialParallelFor, 2)
+                .stats.encodeSeconds,
+      0.0);
+    // A new volume version re-encodes too.
+    EXPECT_GT(RenderFrame(renderer, scene, other, alongZ, settings, SerialParallelFor, 2, 7)
+                .stats.encodeSeconds,
+      0.0);
+    ShearWarpRenderer fresh;
+    const Frame freshFrame =
+      RenderFrame(fresh, scene, other, alongZ, settings, SerialParallelFor, 2);
+    EXPECT_TRUE(BitIdentical(changed.rgba, freshFrame.rgba));
+    // The encodings of the old transfer function (both axes) were dropped: only the new one is
+    // held, as in a renderer that never saw the old one.
+    EXPECT_EQ(changed.stats.encodedBytes, freshFrame.stats.encodedBytes);
+  }
+  // Turning shading on needs normals: a new encoding.
+  ShearWarpRenderer renderer;
+  ShearWarpSettings settings;
+  RenderFrame(renderer, scene, tf, alongZ, settings);
+  ViewSetup shaded = alongZ;
+  shaded.lighting.shade = true;
+  EXPECT_GT(RenderFrame(renderer, scene, tf, shaded, settings).stats.encodeSeconds, 0.0);
+}
+
+TEST(ShearWarpEngine, BadArgumentsFail)
+{
+  const int dims[3] = { 8, 8, 8 };
+  const Scene scene = MakeScene(dims, false);
+  const RayCastTransfer tf = MakeTransfer();
+  const ViewSetup camera = MakeCamera(scene, 30, 20, Isotropic, 16, 16, 8, false);
+  ShearWarpSettings settings;
+  ShearWarpRenderer renderer;
+  std::vector<float> rgba;
+  int rectangle[4];
+  ShearWarpStats stats;
+  auto fails = [&](const VolumeView& volume, double rangeMin, const RayCastTransfer& transfer,
+                 const ShearWarpView& view, const ShearWarpSettings& s, const char* what)
+  {
+    std::string error;
+    EXPECT_FALSE(renderer.Render(volume, rangeMin, 255, 1, transfer, 1, camera.lighting, view, s,
+      SerialParallelFor, rgba, rectangle, stats, error))
+      << what;
+    EXPECT_FALSE(error.empty()) << what;
+  };
+  VolumeView empty;
+  fails(empty, 0, tf, camera.sw, settings, "no data");
+  VolumeView flat = scene.view;
+  flat.dims[2] = 0;
+  fails(flat, 0, tf, camera.sw, settings, "zero dims");
+  ShearWarpView noWidth = camera.sw;
+  noWidth.width = 0;
+  fails(scene.view, 0, tf, noWidth, settings, "width 0");
+  ShearWarpView noHeight = camera.sw;
+  noHeight.height = -2;
+  fails(scene.view, 0, tf, noHeight, settings, "height -2");
+  RayCastTransfer shortTable;
+  shortTable.rgba = { 1, 1, 1, 1 };
+  fails(scene.view, 0, shortTable, camera.sw, settings, "one-entry table");
+  shortTable.rgba = { 1, 1, 1, 1, 1, 1 };
+  fails(scene.view, 0, shortTable, camera.sw, settings, "ragged table");
+  RayCastTransfer noDistance = tf;
+  noDistance.opacityUnitDistance = 0;
+  fails(scene.view, 0, noDistance, camera.sw, settings, "opacity unit distance 0");
+  fails(scene.view, std::nan(""), tf, camera.sw, settings, "NaN range");
+  ShearWarpSettings noBands = settings;
+  noBands.bands = 0;
+  fails(scene.view, 0, tf, camera.sw, noBands, "0 bands");
+  // Every ray through one point (what the affine part of a perspective map degenerates to):
+  // the depth row is a combination of the others.
+  ShearWarpView singular = camera.sw;
+  for (int c = 0; c < 4; ++c)
+  {
+    singular.voxelToImage[2][c] = singular.voxelToImage[0][c] - 2 * singular.voxelToImage[1][c];
+  }
+  fails(scene.view, 0, tf, singular, settings, "singular map");
+  ShearWarpView zero = camera.sw;
+  for (auto& row : zero.voxelToImage)
+    for (double& value : row)
+      value = 0;
+  fails(scene.view, 0, tf, zero, settings, "zero map");
+  // The renderer still works afterwards.
+  std::string error;
+  EXPECT_TRUE(renderer.Render(scene.view, 0, 255, 1, tf, 1, camera.lighting, camera.sw, settings,
+    SerialParallelFor, rgba, rectangle, stats, error))
+    << error;
+  EXPECT_EQ(rgba.size(), 4u * 16 * 16);
+}
