@@ -12,13 +12,16 @@
 #include "vtkCommunicator.h"
 #include "vtkMPIController.h"
 #include "vtkMultiProcessController.h"
-#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <string>
 #include <thread>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
 
 namespace
 {
@@ -96,7 +99,16 @@ bool CheckScene(vtkMultiProcessController* controller, const char* name, const c
     }
     single.Window->Render();
     const std::vector<float> expected = ReadPixels(single.Window);
-    const int cores = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()); // as the mapper
+    // As the mapper: the cores in this rank's affinity mask (mpirun may bind it to one).
+    int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+#if defined(__linux__)
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof(set), &set) == 0)
+    {
+      cores = std::max(1, CPU_COUNT(&set));
+    }
+#endif
     const int expectedBands = ranks * std::min(threads, cores);
     const bool same = ours == expected;
     const bool bandsOk = distributed.Mapper->GetLastNumberOfBands() == expectedBands &&
