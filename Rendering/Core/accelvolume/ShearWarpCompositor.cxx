@@ -81,37 +81,13 @@ inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float
   }
   else if (t.shade)
   {
-    // Phong per voxel, two-sided, as the ray caster (eye space, parallel view: V = +z).
     float factor[3] = { t.ambient, t.ambient, t.ambient };
     float specular[3] = { 0, 0, 0 };
     if (voxel->normal != NoNormal)
     {
       float g[3];
       DecodeNormal(voxel->normal, g);
-      float n[3];
-      for (int r = 0; r < 3; ++r)
-      {
-        n[r] = t.normalMatrix[r][0] * g[0] + t.normalMatrix[r][1] * g[1] +
-          t.normalMatrix[r][2] * g[2];
-      }
-      const float inverse = -1.0f / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (float& value : n)
-      {
-        value *= inverse;
-      }
-      for (int i = 0; i < t.lightCount; ++i)
-      {
-        const float* l = t.lightDirections[i];
-        const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        const float rDotV = 2.0f * nDotL * n[2] - l[2];
-        const float highlight =
-          rDotV > 0 ? t.specular * std::pow(std::min(rDotV, 1.0f), t.specularPower) : 0.0f;
-        for (int c = 0; c < 3; ++c)
-        {
-          factor[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
-          specular[c] += highlight * t.lightColours[i][c];
-        }
-      }
+      PhongTerms(t, g, factor, specular);
     }
     for (int c = 0; c < 3; ++c)
     {
@@ -523,6 +499,79 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
   }
 }
 
+}
+
+void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], float specular[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    factor[c] = t.ambient;
+    specular[c] = 0;
+  }
+  float n[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    n[r] = t.normalMatrix[r][0] * g[0] + t.normalMatrix[r][1] * g[1] + t.normalMatrix[r][2] * g[2];
+  }
+  const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(length > 0))
+  {
+    return; // a vanishing gradient: ambient only, as the ray caster
+  }
+  for (float& value : n)
+  {
+    value /= -length;
+  }
+  for (int i = 0; i < t.lightCount; ++i)
+  {
+    const float* l = t.lightDirections[i];
+    const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+    const float rDotV = 2.0f * nDotL * n[2] - l[2];
+    const float highlight =
+      rDotV > 0 ? t.specular * std::pow(std::min(rDotV, 1.0f), t.specularPower) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      factor[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
+      specular[c] += highlight * t.lightColours[i][c];
+    }
+  }
+}
+
+void BuildShadingTable(CompositeTables& t)
+{
+  // One row per quantized normal: the view vector is +z in eye space for every pixel of a
+  // parallel view, so the specular term is fixed per normal too. White lights (VTK's default)
+  // need one factor and one highlight per normal, not three.
+  bool white = true;
+  for (int i = 0; i < t.lightCount; ++i)
+  {
+    white = white && t.lightColours[i][0] == t.lightColours[i][1] &&
+      t.lightColours[i][0] == t.lightColours[i][2];
+  }
+  t.shadingStride = white ? 2 : 6;
+  t.shading.assign(static_cast<std::size_t>(t.shadingStride) * (NormalCodes + 1), 0.0f);
+  for (int code = 0; code <= NormalCodes; ++code)
+  {
+    float factor[3] = { t.ambient, t.ambient, t.ambient };
+    float specular[3] = { 0, 0, 0 };
+    if (code < NormalCodes) // the last row is NoNormal: ambient only
+    {
+      float g[3];
+      DecodeNormal(static_cast<std::uint16_t>(code), g);
+      PhongTerms(t, g, factor, specular);
+    }
+    float* row = &t.shading[static_cast<std::size_t>(t.shadingStride) * code];
+    if (white)
+    {
+      row[0] = factor[0];
+      row[1] = specular[0];
+    }
+    else
+    {
+      std::copy(factor, factor + 3, row);
+      std::copy(specular, specular + 3, row + 3);
+    }
+  }
 }
 
 void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpFactorization& f,

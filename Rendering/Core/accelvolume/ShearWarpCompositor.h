@@ -44,6 +44,14 @@ struct CompositeTables
   bool skipLinks = true; // false: no pixel is ever skipped (the brute-force baseline)
 };
 
+// Phong with VTK's coefficients, two-sided, for an index-space gradient direction g (eye space
+// through normalMatrix; parallel view, so the view vector is +z): the factor on the voxel colour
+// (ambient + diffuse) and the specular term, per channel. The ray caster's model.
+void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3], float specular[3]);
+
+// Lacroute's shading table over the quantized normals (tables.shading and shadingStride).
+void BuildShadingTable(CompositeTables& tables);
+
 struct ScanlineCounters
 {
   std::uint64_t voxels = 0;         // voxel values read (a voxel serves up to four pixels)

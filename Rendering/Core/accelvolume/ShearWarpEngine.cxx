@@ -382,77 +382,15 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     }
     if (t.shade && !t.phong)
     {
-      // Lacroute's shading table: one row per quantized normal; the view vector is +z in eye
-      // space for every pixel of a parallel view, so the specular term is fixed per normal too.
-      // White lights (VTK's default) need one factor and one highlight per normal, not three.
-      bool white = true;
-      for (int i = 0; i < t.lightCount; ++i)
-      {
-        white = white && t.lightColours[i][0] == t.lightColours[i][1] &&
-          t.lightColours[i][0] == t.lightColours[i][2];
-      }
-      std::vector<float> full(6 * (static_cast<std::size_t>(NormalCodes) + 1), 0.0f);
-      for (int code = 0; code <= NormalCodes; ++code)
-      {
-        float* row = &full[6 * static_cast<std::size_t>(code)];
-        row[0] = row[1] = row[2] = t.ambient;
-        if (code == NormalCodes)
-        {
-          continue; // NoNormal: ambient only, as the ray caster for a vanishing gradient
-        }
-        float g[3];
-        DecodeNormal(static_cast<std::uint16_t>(code), g);
-        float n[3];
-        for (int r = 0; r < 3; ++r)
-        {
-          n[r] = t.normalMatrix[r][0] * g[0] + t.normalMatrix[r][1] * g[1] +
-            t.normalMatrix[r][2] * g[2];
-        }
-        const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (!(length > 0))
-        {
-          continue;
-        }
-        for (float& value : n)
-        {
-          value /= -length;
-        }
-        for (int i = 0; i < t.lightCount; ++i)
-        {
-          const float* l = t.lightDirections[i];
-          const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-          const float rDotV = 2.0f * nDotL * n[2] - l[2];
-          const float highlight = rDotV > 0
-            ? t.specular * static_cast<float>(std::pow(std::min(rDotV, 1.0f), t.specularPower))
-            : 0.0f;
-          for (int c = 0; c < 3; ++c)
-          {
-            row[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
-            row[c + 3] += highlight * t.lightColours[i][c];
-          }
-        }
-      }
-      t.shadingStride = white ? 2 : 6;
-      if (white)
-      {
-        t.shading.resize(2 * (static_cast<std::size_t>(NormalCodes) + 1));
-        for (std::size_t code = 0; code <= static_cast<std::size_t>(NormalCodes); ++code)
-        {
-          t.shading[2 * code] = full[6 * code];
-          t.shading[2 * code + 1] = full[6 * code + 3];
-        }
-      }
-      else
-      {
-        t.shading = std::move(full);
-      }
+      BuildShadingTable(t);
     }
   }
   stats.tableSeconds = Seconds(tableStart);
 
   const std::size_t pixels =
     static_cast<std::size_t>(f.intermediateSize[0]) * static_cast<std::size_t>(f.intermediateSize[1]);
-  impl.intermediate.assign(4 * pixels, 0.0f);
+  // Resized only: each band clears its own rows (in parallel) before compositing them.
+  impl.intermediate.resize(4 * pixels);
   impl.scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
   impl.voxels = 0;
   impl.samples = 0;
@@ -507,6 +445,7 @@ void ShearWarpRenderer::CompositeRows(int v0, int v1)
   ScanlineCounters counters;
   std::vector<double> work(static_cast<std::size_t>(v1 - v0), 0.0);
   float* rows = impl.intermediate.data() + 4 * static_cast<std::size_t>(width) * v0;
+  std::fill(rows, rows + 4 * static_cast<std::size_t>(width) * (v1 - v0), 0.0f);
   if (impl.compositeSlot)
   {
     CompositeBand(impl.compositeSlot->encoded, f, impl.tables, v0, v1, rows, workspace, counters,
@@ -577,20 +516,23 @@ void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rg
     std::fill(rgba.begin(), rgba.end(), 0.0f);
     return;
   }
-  std::fill(rgba.begin(), rgba.begin() + 4 * static_cast<std::size_t>(width) * rectangle[2], 0.0f);
-  std::fill(rgba.begin() + 4 * static_cast<std::size_t>(width) * (rectangle[3] + 1), rgba.end(), 0.0f);
   const float* image = impl.intermediate.data();
   const double(*m)[3] = f.inverseWarp;
   const int x0 = rectangle[0];
   const int x1 = rectangle[1];
-  const int y0 = rectangle[2];
-  parallel(static_cast<std::size_t>(rectangle[3] - rectangle[2] + 1),
+  // Every row, so that the rows outside the rectangle are cleared in parallel too.
+  parallel(static_cast<std::size_t>(height),
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t row = begin; row < end; ++row)
       {
-        const int y = y0 + static_cast<int>(row);
+        const int y = static_cast<int>(row);
         float* out = rgba.data() + 4 * (static_cast<std::size_t>(y) * width);
+        if (y < rectangle[2] || y > rectangle[3])
+        {
+          std::fill(out, out + 4 * static_cast<std::size_t>(width), 0.0f);
+          continue;
+        }
         // (u, v) of pixel x's centre is (uStart + x du, vStart + x dv): linear along the row.
         const double uStart = m[0][0] * 0.5 + m[0][1] * (y + 0.5) + m[0][2];
         const double vStart = m[1][0] * 0.5 + m[1][1] * (y + 0.5) + m[1][2];

@@ -114,6 +114,8 @@ public:
 
   const ShearWarpFactorization& GetFactorization() const;
   // Intermediate image: intermediateSize[0] * intermediateSize[1] premultiplied RGBA pixels.
+  // A scanline is defined once CompositeRows has composited it this frame (or a caller has
+  // written it, e.g. rows received from other MPI ranks); Warp reads every scanline.
   float* GetIntermediateImage();
   // Seconds per intermediate scanline of the last CompositeRows calls (0 where not composited):
   // each call's time shared out over its scanlines by the clock ticks each took.
