@@ -80,14 +80,14 @@ void EncodeScanline(int ni, Keep keep, VoxelAt voxelAt, SliceEncoding<Voxel>& sl
       break;
     }
     VoxelRun run;
-    run.begin = static_cast<std::uint32_t>(i);
-    run.offset = slice.voxels.size();
+    run.begin = static_cast<std::uint16_t>(i);
+    run.offset = static_cast<std::uint32_t>(slice.voxels.size()); // < 65535^2 per slice
     while (i < ni && keep(i))
     {
       slice.voxels.push_back(voxelAt(i));
       ++i;
     }
-    run.end = static_cast<std::uint32_t>(i);
+    run.end = static_cast<std::uint16_t>(i);
     slice.runs.push_back(run);
     ++count;
   }
@@ -97,8 +97,8 @@ void EncodeScanline(int ni, Keep keep, VoxelAt voxelAt, SliceEncoding<Voxel>& sl
 // Encodes every slice in parallel (encodeSlice(k, slice)) and concatenates them in slice order,
 // so the result never depends on the thread count.
 template <typename Voxel, typename EncodeSlice>
-void EncodeSlices(const int dims[3], int axis, bool dense, const ParallelFor& parallel,
-  EncodeSlice encodeSlice, RunLengthVolume<Voxel>& encoded)
+bool EncodeSlices(const int dims[3], int axis, bool dense, const ParallelFor& parallel,
+  EncodeSlice encodeSlice, RunLengthVolume<Voxel>& encoded, std::string& error)
 {
   encoded.Clear();
   encoded.axis = axis;
@@ -125,6 +125,13 @@ void EncodeSlices(const int dims[3], int axis, bool dense, const ParallelFor& pa
     runCount += slice.runs.size();
     voxelCount += slice.voxels.size();
   }
+  if (runCount > std::numeric_limits<std::uint32_t>::max() ||
+    voxelCount > std::numeric_limits<std::uint32_t>::max())
+  {
+    encoded.Clear();
+    error = "run-length encoding: more than 2^32 - 1 stored voxels or runs (volume too large)";
+    return false;
+  }
   encoded.rowStart.resize(static_cast<std::size_t>(nj) * nk + 1);
   encoded.runs.reserve(runCount);
   encoded.voxels.reserve(voxelCount);
@@ -132,7 +139,7 @@ void EncodeSlices(const int dims[3], int axis, bool dense, const ParallelFor& pa
   encoded.rowStart[0] = 0;
   for (auto& slice : slices)
   {
-    const std::uint64_t base = encoded.voxels.size();
+    const auto base = static_cast<std::uint32_t>(encoded.voxels.size());
     for (VoxelRun run : slice.runs)
     {
       run.offset += base;
@@ -146,6 +153,7 @@ void EncodeSlices(const int dims[3], int axis, bool dense, const ParallelFor& pa
     }
     slice = SliceEncoding<Voxel>(); // free as we go
   }
+  return true;
 }
 
 bool CheckVolume(const VolumeView& volume, int axis, std::string& error)
@@ -160,9 +168,10 @@ bool CheckVolume(const VolumeView& volume, int axis, std::string& error)
     error = "run-length encoding: the principal axis must be 0, 1 or 2";
     return false;
   }
-  if (static_cast<std::uint64_t>(volume.dims[0]) > std::numeric_limits<std::uint32_t>::max())
+  if (volume.dims[0] > MaximumRunLengthAxis || volume.dims[1] > MaximumRunLengthAxis ||
+    volume.dims[2] > MaximumRunLengthAxis)
   {
-    error = "run-length encoding: the volume is too long along one axis";
+    error = "run-length encoding: an axis is longer than 65535 voxels";
     return false;
   }
   return true;
@@ -231,6 +240,7 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
     : 0.0;
   const int i = (axis + 1) % 3;
   const int j = (axis + 2) % 3;
+  bool ok = false;
   DispatchScalarType(volume,
     [&](const auto* typed)
     {
@@ -292,7 +302,7 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
         }
         return true;
       };
-      EncodeSlices<ShadedVoxel>(volume.dims, axis, dense, parallel,
+      ok = EncodeSlices<ShadedVoxel>(volume.dims, axis, dense, parallel,
         [&](int k, SliceEncoding<ShadedVoxel>& slice)
         {
           const int ni = volume.dims[i];
@@ -312,9 +322,9 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
               ni, [&](int x) { return keep[x] != 0; }, [&](int x) { return row[x]; }, slice);
           }
         },
-        encoded);
+        encoded, error);
     });
-  return true;
+  return ok;
 }
 
 bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, bool maximum,
@@ -329,12 +339,13 @@ bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, b
   const double scale = 65535.0 / width;
   const int i = (axis + 1) % 3;
   const int j = (axis + 2) % 3;
+  bool ok = false;
   DispatchScalarType(volume,
     [&](const auto* typed)
     {
       using T = std::remove_cv_t<std::remove_pointer_t<decltype(typed)>>;
       const Grid<T> grid(volume, typed);
-      EncodeSlices<ScalarVoxel>(volume.dims, axis, dense, parallel,
+      ok = EncodeSlices<ScalarVoxel>(volume.dims, axis, dense, parallel,
         [&](int k, SliceEncoding<ScalarVoxel>& slice)
         {
           const int ni = volume.dims[i];
@@ -389,9 +400,9 @@ bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, b
               [&](int x) { return values[rowAt + x]; }, slice);
           }
         },
-        encoded);
+        encoded, error);
     });
-  return true;
+  return ok;
 }
 
 }

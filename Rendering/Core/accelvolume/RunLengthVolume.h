@@ -47,11 +47,14 @@ inline constexpr std::uint16_t NoNormal = 0xFFFF;
 std::uint16_t EncodeNormal(float x, float y, float z); // NoNormal for a zero vector
 void DecodeNormal(std::uint16_t code, float normal[3]); // unit vector
 
+// 8 bytes: compositing reads the runs of every scanline pair it visits, so their size is memory
+// traffic (axes are limited to 65535 voxels and an encoding to 2^32 - 1 stored voxels and runs).
 struct VoxelRun
 {
-  std::uint32_t begin, end; // voxel positions along i, end exclusive
-  std::uint64_t offset;     // index of voxel `begin` in the voxel array
+  std::uint16_t begin, end; // voxel positions along i, end exclusive
+  std::uint32_t offset;     // index of voxel `begin` in the voxel array
 };
+inline constexpr int MaximumRunLengthAxis = 65535;
 
 template <typename Voxel>
 struct RunLengthVolume
@@ -59,7 +62,7 @@ struct RunLengthVolume
   int axis = -1;                  // principal axis k (object axis), -1 when empty
   int sliceDims[3] = { 0, 0, 0 }; // ni, nj, nk
   bool dense = false;             // one run per scanline, transparent voxels stored too
-  std::vector<std::uint64_t> rowStart; // runs of scanline (j, k): [rowStart[r], rowStart[r + 1]), r = j + nj k
+  std::vector<std::uint32_t> rowStart; // runs of scanline (j, k): [rowStart[r], rowStart[r + 1]), r = j + nj k
   std::vector<VoxelRun> runs;
   std::vector<Voxel> voxels;
 
@@ -68,7 +71,7 @@ struct RunLengthVolume
   const VoxelRun* RunsEnd(int j, int k) const { return this->runs.data() + this->rowStart[this->Row(j, k) + 1]; }
   std::size_t Bytes() const
   {
-    return this->rowStart.size() * sizeof(std::uint64_t) + this->runs.size() * sizeof(VoxelRun) +
+    return this->rowStart.size() * sizeof(std::uint32_t) + this->runs.size() * sizeof(VoxelRun) +
       this->voxels.size() * sizeof(Voxel);
   }
   void Clear() { *this = RunLengthVolume(); }
