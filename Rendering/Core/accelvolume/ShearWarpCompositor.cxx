@@ -427,10 +427,11 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
       const int bufferA = ensure(j0, -1, loaded);
       const int bufferB = ensure(j0 + 1, bufferA, loaded);
       counters.voxels += loaded;
-      // Pixels the two scanlines' runs cover, merged: voxel run [b, e) reaches pixels u whose
-      // i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1).
-      std::vector<std::int32_t>& spans = ws.spans;
-      spans.clear();
+      // The pixels the two scanlines' runs cover, in order: voxel run [b, e) reaches pixels u
+      // whose i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1). `done` keeps overlapping
+      // runs of the two scanlines from compositing a pixel twice; `frontier`, the first open
+      // pixel at or after the runs walked, passes over runs behind saturated pixels with one
+      // comparison.
       const VoxelRun* runs[2] = { nullptr, nullptr };
       const VoxelRun* ends[2] = { nullptr, nullptr };
       for (int q = 0; q < 2; ++q)
@@ -442,41 +443,37 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
           ends[q] = encoded.RunsEnd(j, k);
         }
       }
-      while (runs[0] != ends[0] || runs[1] != ends[1])
-      {
-        const int q = (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
-        const VoxelRun* run = runs[q]++;
-        const int begin = static_cast<int>(run->begin) + shiftI;
-        const int end = static_cast<int>(run->end) + shiftI + 1;
-        if (!spans.empty() && begin <= spans.back())
-        {
-          spans.back() = std::max(spans.back(), end);
-        }
-        else
-        {
-          spans.push_back(begin);
-          spans.push_back(end);
-        }
-      }
       const float* cellsA = ws.rows[bufferA].data();
       const float* cellsB = ws.rows[bufferB].data();
       float* row = pixels + static_cast<std::size_t>(C) * width * r;
       std::uint64_t samples = 0;
-      for (std::size_t p = 0; p < spans.size(); p += 2)
+      int done = 0;
+      int frontier = skip ? std::numeric_limits<int>::min() : 0;
+      while (runs[0] != ends[0] || runs[1] != ends[1])
       {
-        const int spanEnd = std::min(spans[p + 1], width);
-        for (int u = std::max(spans[p], 0);; ++u)
+        const int q =
+          (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
+        const VoxelRun* run = runs[q]++;
+        const int spanBegin = std::max({ static_cast<int>(run->begin) + shiftI, done, 0 });
+        const int spanEnd = std::min(static_cast<int>(run->end) + shiftI + 1, width);
+        if (spanBegin >= spanEnd)
         {
-          if (skip)
+          continue;
+        }
+        done = spanEnd;
+        int u = spanBegin;
+        if (skip)
+        {
+          if (frontier < spanBegin)
           {
-            const int found = FindOpen(links, u);
-            counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
-            u = found;
+            frontier = FindOpen(links, spanBegin);
           }
-          if (u >= spanEnd)
-          {
-            break;
-          }
+          counters.skippedOpaque +=
+            static_cast<std::uint64_t>(std::max(0, std::min(frontier, spanEnd) - spanBegin));
+          u = frontier;
+        }
+        while (u < spanEnd)
+        {
           // Cell i sits at i + 1: pixel u's corner i0 = u - shiftI - 1 is cell u - shiftI.
           const int cell = u - shiftI;
           ++samples;
@@ -488,6 +485,18 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
               --openRows;
             }
           }
+          ++u;
+          if (skip)
+          {
+            const int found = FindOpen(links, u);
+            counters.skippedOpaque +=
+              static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
+            u = found;
+          }
+        }
+        if (skip)
+        {
+          frontier = u; // the first open pixel at or after spanEnd
         }
       }
       counters.samples += samples;

@@ -65,13 +65,12 @@ struct ScanlineCounters
   }
 };
 
-// Scratch space per worker: skip links per scanline, merged spans, the two shaded voxel
-// scanlines of the current slice.
+// Scratch space per worker: skip links per scanline, open pixels per scanline, the two shaded
+// voxel scanlines of the current slice.
 struct ScanlineWorkspace
 {
   std::vector<std::int32_t> next;
   std::vector<std::int32_t> open;
-  std::vector<std::int32_t> spans;
   std::vector<float> rows[2];
   std::vector<std::int32_t> written[2];
   int rowIndex[2] = { 0, 0 }; // voxel scanline each buffer holds (set by the band loop)
