@@ -1,6 +1,7 @@
 // vtkAccelVolumeMapperSupport: scene and input handling shared by the AccelVolume mappers.
 #include "vtkAccelVolumeMapperSupport.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -12,6 +13,7 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkRenderer.h"
+#include "vtkTimeStamp.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -261,5 +263,71 @@ void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
     {
       lights.NormalMatrix[r][c] = inverse[c][r];
     }
+  }
+}
+
+bool vtkAccelVolumeFetchInput(
+  vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error)
+{
+  input = nullptr;
+  scalars = nullptr;
+  if (mapper->GetNumberOfInputConnections(0) > 0)
+  {
+    mapper->GetInputAlgorithm()->Update();
+    input = vtkImageData::SafeDownCast(mapper->GetInput());
+  }
+  int cellFlag = 0;
+  if (input)
+  {
+    scalars = vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(),
+      mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
+  }
+  return vtkAccelVolumeCheckInput(input, scalars, cellFlag, error);
+}
+
+bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      type = accelvolume::ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_CHAR:
+      type = accelvolume::ScalarType::UInt8;
+      return true;
+    case VTK_SHORT:
+      type = accelvolume::ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = accelvolume::ScalarType::UInt16;
+      return true;
+    case VTK_INT:
+      type = accelvolume::ScalarType::Int32;
+      return true;
+    case VTK_FLOAT:
+      type = accelvolume::ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      type = accelvolume::ScalarType::Float64;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool vtkAccelVolumeView(vtkImageData* input, vtkDataArray* scalars, accelvolume::VolumeView& view)
+{
+  view.data = scalars->GetVoidPointer(0);
+  input->GetDimensions(view.dims);
+  return vtkAccelVolumeScalarType(scalars->GetDataType(), view.type);
+}
+
+void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported)
+{
+  if (mapper->GetNumberOfInputConnections(0) == 0 && mapper->GetMTime() > reported)
+  {
+    reported.Modified();
+    vtkErrorWithObjectMacro(mapper, "No input: connect a vtkImageData to the mapper");
   }
 }

@@ -5,6 +5,7 @@
 #define vtkAccelVolumeMapperSupport_h
 
 #include "accelvolume/Geometry.h"
+#include "accelvolume/MinMaxOctree.h" // ScalarType, VolumeView
 
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@ class vtkImageData;
 class vtkMatrix4x4;
 class vtkPlaneCollection;
 class vtkRenderer;
+class vtkTimeStamp;
 class vtkVolumeMapper;
 class vtkVolumeProperty;
 
@@ -21,6 +23,19 @@ class vtkVolumeProperty;
 // False with a user-facing message otherwise (input may be null).
 bool vtkAccelVolumeCheckInput(
   vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error);
+
+// Updates the mapper's input and picks the scalars it renders (the mapper's scalar mode and
+// array); then vtkAccelVolumeCheckInput. False with a user-facing message.
+bool vtkAccelVolumeFetchInput(
+  vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
+
+// For GetBounds: a vtkErrorMacro on the mapper when it has no input, once per change of the
+// mapper (GetBounds is called many times per frame).
+void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported);
+
+// The core's view of VTK scalars (no copy); false for a type the mappers do not render.
+bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);
+bool vtkAccelVolumeView(vtkImageData* input, vtkDataArray* scalars, accelvolume::VolumeView& view);
 
 // Finite scalar range; NaN / infinite data fall back to a unit range so tables stay defined.
 void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2]);

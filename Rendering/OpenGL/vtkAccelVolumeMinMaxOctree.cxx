@@ -1,6 +1,8 @@
 // VTK face of the min-max octree: input validation, rebuild/re-classify timestamps, builders.
 #include "vtkAccelVolumeMinMaxOctree.h"
 
+#include "vtkAccelVolumeMapperSupport.h"
+
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 
 #include "vtkDataArray.h"
@@ -20,37 +22,6 @@ namespace
 {
 // The transfer-table resolution the slice mapper uses, so both see the same opacities.
 constexpr int OpacityTableSize = 1024;
-
-bool ToScalarType(int vtkType, accelvolume::ScalarType& type)
-{
-  switch (vtkType)
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      type = accelvolume::ScalarType::Int8;
-      return true;
-    case VTK_UNSIGNED_CHAR:
-      type = accelvolume::ScalarType::UInt8;
-      return true;
-    case VTK_SHORT:
-      type = accelvolume::ScalarType::Int16;
-      return true;
-    case VTK_UNSIGNED_SHORT:
-      type = accelvolume::ScalarType::UInt16;
-      return true;
-    case VTK_INT:
-      type = accelvolume::ScalarType::Int32;
-      return true;
-    case VTK_FLOAT:
-      type = accelvolume::ScalarType::Float32;
-      return true;
-    case VTK_DOUBLE:
-      type = accelvolume::ScalarType::Float64;
-      return true;
-    default:
-      return false;
-  }
-}
 
 // The core's parallel loops on vtkSMPTools. The leaf pass hands out leaf slabs (one layer of
 // leaves per z step: a few hundred at most, each a lot of work), so small counts get a grain of
@@ -157,7 +128,7 @@ bool vtkAccelVolumeMinMaxOctree::Update()
     return false;
   }
   accelvolume::ScalarType type;
-  if (!ToScalarType(scalars->GetDataType(), type))
+  if (!vtkAccelVolumeScalarType(scalars->GetDataType(), type))
   {
     vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
                                              << " (use char, short, unsigned short, int, "

@@ -31,37 +31,6 @@ namespace
 {
 constexpr int TableSize = 1024; // as the slice mapper, so both classify alike
 
-bool ToScalarType(int vtkType, accelvolume::ScalarType& type)
-{
-  switch (vtkType)
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      type = accelvolume::ScalarType::Int8;
-      return true;
-    case VTK_UNSIGNED_CHAR:
-      type = accelvolume::ScalarType::UInt8;
-      return true;
-    case VTK_SHORT:
-      type = accelvolume::ScalarType::Int16;
-      return true;
-    case VTK_UNSIGNED_SHORT:
-      type = accelvolume::ScalarType::UInt16;
-      return true;
-    case VTK_INT:
-      type = accelvolume::ScalarType::Int32;
-      return true;
-    case VTK_FLOAT:
-      type = accelvolume::ScalarType::Float32;
-      return true;
-    case VTK_DOUBLE:
-      type = accelvolume::ScalarType::Float64;
-      return true;
-    default:
-      return false;
-  }
-}
-
 accelvolume::RayCastBlend ToBlend(int blendMode)
 {
   switch (blendMode)
@@ -145,11 +114,7 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
 
 double* vtkAccelVolumeRayCastMapper::GetBounds()
 {
-  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
-  {
-    this->MissingInputReportTime.Modified();
-    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
-  }
+  vtkAccelVolumeReportMissingInput(this, this->MissingInputReportTime);
   return this->Superclass::GetBounds();
 }
 
@@ -177,17 +142,9 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
     return;
   }
   vtkImageData* input = nullptr;
-  if (this->GetNumberOfInputConnections(0) > 0)
-  {
-    this->GetInputAlgorithm()->Update();
-    input = vtkImageData::SafeDownCast(this->GetInput());
-  }
-  int cellFlag = 0;
-  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
-                                : nullptr;
+  vtkDataArray* scalars = nullptr;
   std::string error;
-  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
+  if (!vtkAccelVolumeFetchInput(this, input, scalars, error))
   {
     vtkErrorMacro(<< error);
     return;
@@ -216,12 +173,9 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
 
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
-  int dims[3];
-  input->GetDimensions(dims);
   accelvolume::VolumeView view;
-  view.data = scalars->GetVoidPointer(0);
-  ToScalarType(scalars->GetDataType(), view.type);
-  std::copy(dims, dims + 3, view.dims);
+  vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
+  const int* dims = view.dims;
 
   // Cache keys: the caster rebuilds its octree / classification only when these change.
   if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||

@@ -118,11 +118,7 @@ double vtkAccelVolumeShearWarpMapper::GetLastBandTime(int band) const
 
 double* vtkAccelVolumeShearWarpMapper::GetBounds()
 {
-  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
-  {
-    this->MissingInputReportTime.Modified();
-    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
-  }
+  vtkAccelVolumeReportMissingInput(this, this->MissingInputReportTime);
   return this->Superclass::GetBounds();
 }
 
@@ -149,17 +145,9 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     return;
   }
   vtkImageData* input = nullptr;
-  if (this->GetNumberOfInputConnections(0) > 0)
-  {
-    this->GetInputAlgorithm()->Update();
-    input = vtkImageData::SafeDownCast(this->GetInput());
-  }
-  int cellFlag = 0;
-  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
-                                : nullptr;
+  vtkDataArray* scalars = nullptr;
   std::string error;
-  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
+  if (!vtkAccelVolumeFetchInput(this, input, scalars, error))
   {
     vtkErrorMacro(<< error);
     return;
@@ -206,36 +194,9 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
 
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
-  int dims[3];
-  input->GetDimensions(dims);
   accelvolume::VolumeView view;
-  view.data = scalars->GetVoidPointer(0);
-  switch (scalars->GetDataType())
-  {
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      view.type = accelvolume::ScalarType::Int8;
-      break;
-    case VTK_UNSIGNED_CHAR:
-      view.type = accelvolume::ScalarType::UInt8;
-      break;
-    case VTK_SHORT:
-      view.type = accelvolume::ScalarType::Int16;
-      break;
-    case VTK_UNSIGNED_SHORT:
-      view.type = accelvolume::ScalarType::UInt16;
-      break;
-    case VTK_INT:
-      view.type = accelvolume::ScalarType::Int32;
-      break;
-    case VTK_FLOAT:
-      view.type = accelvolume::ScalarType::Float32;
-      break;
-    default:
-      view.type = accelvolume::ScalarType::Float64;
-      break;
-  }
-  std::copy(dims, dims + 3, view.dims);
+  vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
+  const int* dims = view.dims;
 
   // Cache keys: encodings are rebuilt only when these change.
   if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||

@@ -195,11 +195,7 @@ bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
 
 double* vtkAccelVolumeSliceMapper::GetBounds()
 {
-  if (this->GetNumberOfInputConnections(0) == 0 && this->GetMTime() > this->MissingInputReportTime)
-  {
-    this->MissingInputReportTime.Modified();
-    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
-  }
+  vtkAccelVolumeReportMissingInput(this, this->MissingInputReportTime);
   return this->Superclass::GetBounds();
 }
 

@@ -5,6 +5,8 @@
 #include "accelvolume/RayCastEngine.h"
 #include "accelvolume/ReferenceComposite.h"
 
+#include "ShearWarpTestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,54 +23,11 @@ using namespace accelvolume;
 namespace
 {
 
-// Row-major 4x4 helpers to build VTK-like view and projection matrices.
-using Matrix = std::array<std::array<double, 4>, 4>;
-
-Matrix Multiply(const Matrix& a, const Matrix& b)
-{
-  Matrix m{};
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k < 4; ++k)
-        m[r][c] += a[r][k] * b[k][c];
-  return m;
-}
-
-Matrix Invert(const Matrix& m)
-{
-  // Gauss-Jordan with partial pivoting.
-  Matrix a = m;
-  Matrix inv{};
-  for (int i = 0; i < 4; ++i)
-    inv[i][i] = 1;
-  for (int c = 0; c < 4; ++c)
-  {
-    int pivot = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::abs(a[r][c]) > std::abs(a[pivot][c]))
-        pivot = r;
-    std::swap(a[c], a[pivot]);
-    std::swap(inv[c], inv[pivot]);
-    const double d = a[c][c];
-    for (int k = 0; k < 4; ++k)
-    {
-      a[c][k] /= d;
-      inv[c][k] /= d;
-    }
-    for (int r = 0; r < 4; ++r)
-    {
-      if (r == c)
-        continue;
-      const double f = a[r][c];
-      for (int k = 0; k < 4; ++k)
-      {
-        a[r][k] -= f * a[c][k];
-        inv[r][k] -= f * inv[c][k];
-      }
-    }
-  }
-  return inv;
-}
+// Row-major 4x4 helpers (shared with the shear-warp tests) for VTK-like view and projection
+// matrices.
+using Matrix = accelvolume_test::Matrix4;
+using accelvolume_test::Invert;
+using accelvolume_test::Multiply;
 
 // A camera looking at `focal` from `position` (VTK conventions), as NDC -> world.
 RayCastView MakeView(
