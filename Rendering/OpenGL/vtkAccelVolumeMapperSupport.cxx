@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeMapperSupport.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -9,6 +10,7 @@
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
@@ -329,5 +331,70 @@ void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& rep
   {
     reported.Modified();
     vtkErrorWithObjectMacro(mapper, "No input: connect a vtkImageData to the mapper");
+  }
+}
+
+void vtkAccelVolumeCPUInputs::UpdateVolume(vtkImageData* input, vtkDataArray* scalars)
+{
+  if (scalars != this->Scalars || scalars->GetMTime() != this->ScalarsTime ||
+    input->GetMTime() != this->InputTime)
+  {
+    this->Scalars = scalars;
+    this->ScalarsTime = scalars->GetMTime();
+    this->InputTime = input->GetMTime();
+    ++this->VolumeVersion;
+  }
+}
+
+void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const double range[2],
+  bool composite, double voxelSpacing, accelvolume::RayCastTransfer& transfer, double& high)
+{
+  high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
+  transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
+  transfer.gradientOpacity.clear();
+  if (composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
+  {
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : (high - range[0]) / voxelSpacing;
+    transfer.gradientOpacity.resize(TableSize);
+    property->GetGradientOpacity(0)->GetTable(
+      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
+  }
+  if (transfer.rgba != this->Table || transfer.gradientOpacity != this->GradientTable ||
+    range[0] != this->TableRange[0] || high != this->TableRange[1])
+  {
+    this->Table = transfer.rgba;
+    this->GradientTable = transfer.gradientOpacity;
+    this->TableRange[0] = range[0];
+    this->TableRange[1] = high;
+    ++this->TransferVersion;
+  }
+}
+
+void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToWorld, vtkCamera* camera, bool shade, accelvolume::RayCastLighting& lighting)
+{
+  lighting.shade = shade;
+  vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
+  vtkNew<vtkMatrix4x4> indexToEye;
+  vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
+  vtkAccelVolumeLights lights;
+  vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
+  lighting.ambient = lights.Lighting[0];
+  lighting.diffuse = lights.Lighting[1];
+  lighting.specular = lights.Lighting[2];
+  lighting.specularPower = lights.Lighting[3];
+  lighting.lightCount = lights.Count;
+  std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
+  std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
+      lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
+    }
   }
 }

@@ -5,7 +5,10 @@
 #define vtkAccelVolumeMapperSupport_h
 
 #include "accelvolume/Geometry.h"
-#include "accelvolume/MinMaxOctree.h" // ScalarType, VolumeView
+#include "accelvolume/MinMaxOctree.h"  // ScalarType, VolumeView
+#include "accelvolume/RayCastEngine.h" // RayCastTransfer, RayCastLighting
+
+#include <cstdint>
 
 #include <string>
 #include <vector>
@@ -14,6 +17,7 @@ class vtkDataArray;
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkPlaneCollection;
+class vtkCamera;
 class vtkRenderer;
 class vtkTimeStamp;
 class vtkVolumeMapper;
@@ -73,5 +77,37 @@ struct vtkAccelVolumeLights
 };
 void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
   vtkMatrix4x4* indexToEye, vtkMatrix4x4* view, vtkAccelVolumeLights& lights);
+
+// The CPU mappers' inputs to their engines: the transfer tables (TableSize entries over the data
+// range, gradient opacity, unit distance) and versions that change when the scalars or the
+// tables do, so engines rebuild their caches only then.
+class vtkAccelVolumeCPUInputs
+{
+public:
+  static constexpr int TableSize = 1024; // as the slice mapper, so all classify alike
+
+  // Bumps VolumeVersion when the scalars array, its MTime or the input's MTime changed.
+  void UpdateVolume(vtkImageData* input, vtkDataArray* scalars);
+  // Fills transfer for [range[0], high] (high: range[1], or range[0] + 1 for a constant volume),
+  // with gradient opacity when the composite property uses it (domain: the function's own, or
+  // the steepest gradient over the smallest voxel spacing); bumps TransferVersion on change.
+  void UpdateTransfer(vtkVolumeProperty* property, const double range[2], bool composite,
+    double voxelSpacing, accelvolume::RayCastTransfer& transfer, double& high);
+
+  std::uint64_t VolumeVersion = 0;
+  std::uint64_t TransferVersion = 0;
+
+private:
+  vtkDataArray* Scalars = nullptr;
+  unsigned long ScalarsTime = 0;
+  unsigned long InputTime = 0;
+  std::vector<float> Table;
+  std::vector<float> GradientTable;
+  double TableRange[2] = { 0, 0 };
+};
+
+// VTK's lights and lighting coefficients in eye space for the CPU engines (shade: Phong on).
+void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToWorld, vtkCamera* camera, bool shade, accelvolume::RayCastLighting& lighting);
 
 #endif

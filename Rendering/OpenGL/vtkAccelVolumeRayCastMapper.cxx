@@ -29,8 +29,6 @@
 
 namespace
 {
-constexpr int TableSize = 1024; // as the slice mapper, so both classify alike
-
 accelvolume::RayCastBlend ToBlend(int blendMode)
 {
   switch (blendMode)
@@ -71,14 +69,7 @@ public:
   std::vector<float> Image;
   std::vector<float> Depth;
   std::vector<float> RayDepth;
-  // What the caster's caches were built from: versions bump when these change.
-  vtkDataArray* Scalars = nullptr;
-  vtkMTimeType ScalarsTime = 0;
-  vtkMTimeType InputTime = 0;
-  std::uint64_t VolumeVersion = 0;
-  std::vector<float> Table;
-  double TableRange[2] = { 0, 0 };
-  std::uint64_t TransferVersion = 0;
+  vtkAccelVolumeCPUInputs Inputs; // tables and the versions the caster's caches were built from
   bool ReportedError = false;
 };
 
@@ -177,33 +168,17 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
   const int* dims = view.dims;
 
-  // Cache keys: the caster rebuilds its octree / classification only when these change.
-  if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||
-    input->GetMTime() != internals.InputTime)
-  {
-    internals.Scalars = scalars;
-    internals.ScalarsTime = scalars->GetMTime();
-    internals.InputTime = input->GetMTime();
-    ++internals.VolumeVersion;
-  }
-  accelvolume::RayCastTransfer transfer;
-  transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
-  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  if (transfer.rgba != internals.Table || range[0] != internals.TableRange[0] ||
-    high != internals.TableRange[1])
-  {
-    internals.Table = transfer.rgba;
-    internals.TableRange[0] = range[0];
-    internals.TableRange[1] = high;
-    ++internals.TransferVersion;
-  }
-  transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
-
+  // The caster rebuilds its octree / classification only when the versions change.
+  internals.Inputs.UpdateVolume(input, scalars);
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
   vtkNew<vtkMatrix4x4> worldToIndex;
   vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  accelvolume::RayCastTransfer transfer;
+  double high = 0;
+  internals.Inputs.UpdateTransfer(property, range, composite, voxelSpacing, transfer, high);
 
   int width = 0;
   int height = 0;
@@ -290,43 +265,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   settings.clip = vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
 
   accelvolume::RayCastLighting lighting;
-  const bool composite = this->BlendMode == COMPOSITE_BLEND;
-  lighting.shade = composite && property->GetShade(0) != 0;
-  const bool gradientOpacity =
-    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
-  if (lighting.shade || gradientOpacity)
+  const bool shade = composite && property->GetShade(0) != 0;
+  if (shade || !transfer.gradientOpacity.empty())
   {
-    vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
-    vtkNew<vtkMatrix4x4> indexToEye;
-    vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
-    vtkAccelVolumeLights lights;
-    vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
-    lighting.ambient = lights.Lighting[0];
-    lighting.diffuse = lights.Lighting[1];
-    lighting.specular = lights.Lighting[2];
-    lighting.specularPower = lights.Lighting[3];
-    lighting.lightCount = lights.Count;
-    std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
-    std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
-        lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
-      }
-    }
-  }
-  if (gradientOpacity)
-  {
-    // Same table domain as the slice mapper: the function's own, or the steepest gradient.
-    double domain[2];
-    property->GetGradientOpacity(0)->GetRange(domain);
-    const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
-    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : rangeWidth / voxelSpacing;
-    transfer.gradientOpacity.resize(TableSize);
-    property->GetGradientOpacity(0)->GetTable(
-      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
+    // Gradient opacity needs the normal matrix too (gradients in world units).
+    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, shade, lighting);
   }
 
   accelvolume::ParallelFor parallel =
@@ -340,8 +283,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   {
     try
     {
-      ok = internals.Caster.Render(view, range[0], high, internals.VolumeVersion, transfer,
-        internals.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
+      ok = internals.Caster.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
+        internals.Inputs.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
         error);
     }
     catch (const std::bad_alloc&)

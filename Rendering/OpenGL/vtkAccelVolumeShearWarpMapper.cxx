@@ -39,7 +39,6 @@
 
 namespace
 {
-constexpr int TableSize = 1024; // as the other mappers, so all classify alike
 constexpr int BandRowsTag = 78231;
 
 // Cores in this process's affinity mask (vtkSMPTools' estimate follows its own settings).
@@ -70,15 +69,7 @@ public:
   vtkAccelVolumeImageDisplay Display;
   std::vector<float> Image;
   std::vector<double> BandTimes;
-  // What the encodings were built from: versions bump when these change.
-  vtkDataArray* Scalars = nullptr;
-  vtkMTimeType ScalarsTime = 0;
-  vtkMTimeType InputTime = 0;
-  std::uint64_t VolumeVersion = 0;
-  std::vector<float> Table;
-  std::vector<float> GradientTable;
-  double TableRange[2] = { 0, 0 };
-  std::uint64_t TransferVersion = 0;
+  vtkAccelVolumeCPUInputs Inputs; // tables and the versions the encodings were built from
   bool WarnedUnsupported = false;
 };
 
@@ -198,45 +189,15 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
   const int* dims = view.dims;
 
-  // Cache keys: encodings are rebuilt only when these change.
-  if (scalars != internals.Scalars || scalars->GetMTime() != internals.ScalarsTime ||
-    input->GetMTime() != internals.InputTime)
-  {
-    internals.Scalars = scalars;
-    internals.ScalarsTime = scalars->GetMTime();
-    internals.InputTime = input->GetMTime();
-    ++internals.VolumeVersion;
-  }
+  internals.Inputs.UpdateVolume(input, scalars); // encodings are rebuilt only on change
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
 
   accelvolume::RayCastTransfer transfer;
-  transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
-  transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
-  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  double high = 0;
   const bool composite = this->BlendMode == COMPOSITE_BLEND;
-  const bool gradientOpacity =
-    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
-  if (gradientOpacity)
-  {
-    // Same table domain as the other mappers: the function's own, or the steepest gradient.
-    double domain[2];
-    property->GetGradientOpacity(0)->GetRange(domain);
-    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : (high - range[0]) / voxelSpacing;
-    transfer.gradientOpacity.resize(TableSize);
-    property->GetGradientOpacity(0)->GetTable(
-      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
-  }
-  if (transfer.rgba != internals.Table || transfer.gradientOpacity != internals.GradientTable ||
-    range[0] != internals.TableRange[0] || high != internals.TableRange[1])
-  {
-    internals.Table = transfer.rgba;
-    internals.GradientTable = transfer.gradientOpacity;
-    internals.TableRange[0] = range[0];
-    internals.TableRange[1] = high;
-    ++internals.TransferVersion;
-  }
+  internals.Inputs.UpdateTransfer(property, range, composite, voxelSpacing, transfer, high);
 
   int width = 0;
   int height = 0;
@@ -276,28 +237,9 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   frame.voxelToImage[1][3] += centre[1] * height / 2.0;
 
   accelvolume::RayCastLighting lighting;
-  lighting.shade = composite && property->GetShade(0) != 0;
-  if (lighting.shade)
+  if (composite && property->GetShade(0) != 0)
   {
-    vtkNew<vtkMatrix4x4> indexToEye;
-    vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
-    vtkAccelVolumeLights lights;
-    vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
-    lighting.ambient = lights.Lighting[0];
-    lighting.diffuse = lights.Lighting[1];
-    lighting.specular = lights.Lighting[2];
-    lighting.specularPower = lights.Lighting[3];
-    lighting.lightCount = lights.Count;
-    std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
-    std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
-        lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
-      }
-    }
+    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, true, lighting);
   }
 
   vtkMultiProcessController* controller = this->Controller;
@@ -329,15 +271,15 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     {
       if (ranks == 1)
       {
-        ok = engine.Render(view, range[0], high, internals.VolumeVersion, transfer,
-          internals.TransferVersion, lighting, frame, settings, parallel, internals.Image,
+        ok = engine.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
+          internals.Inputs.TransferVersion, lighting, frame, settings, parallel, internals.Image,
           rectangle, stats, error);
         return;
       }
       // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
       // (split among its threads), and rank 0 gathers the bands and warps.
-      ok = engine.BeginFrame(view, range[0], high, internals.VolumeVersion, transfer,
-        internals.TransferVersion, lighting, frame, settings, parallel, stats, error);
+      ok = engine.BeginFrame(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
+        internals.Inputs.TransferVersion, lighting, frame, settings, parallel, stats, error);
       // A rank that cannot render must not leave the others waiting for its band.
       int localOk = ok ? 1 : 0;
       int allOk = 0;
