@@ -8,6 +8,7 @@ set(_av_classes
   OpenGL/vtkAccelVolumeMinMaxOctree
   OpenGL/vtkAccelVolumeRayCastMapper
   OpenGL/vtkAccelVolumeShearWarpMapper
+  OpenGL/vtkAccelVolumeSmartMapper
   OpenGL/vtkAccelVolumeSliceMapper)
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.

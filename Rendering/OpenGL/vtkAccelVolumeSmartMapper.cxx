@@ -1,0 +1,351 @@
+// Picks the slice, ray cast or shear-warp mapper for the context and renders with it.
+#include "vtkAccelVolumeSmartMapper.h"
+
+#include "vtkAccelVolumeMapperSupport.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPlaneCollection.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+#include <string>
+
+vtkStandardNewMacro(vtkAccelVolumeSmartMapper);
+
+namespace
+{
+const char* BlendName(int blend)
+{
+  switch (blend)
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      return "composite";
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "MIP";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "MinIP";
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return "average";
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return "additive";
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return "isosurface";
+    case vtkVolumeMapper::SLICE_BLEND:
+      return "slice";
+    default:
+      return "unknown";
+  }
+}
+
+// Mesa's software rasterizers: the slice mapper's fragment work would run on the CPU.
+bool IsSoftwareRenderer(const std::string& name)
+{
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower.find("llvmpipe") != std::string::npos ||
+    lower.find("softpipe") != std::string::npos || lower.find("swrast") != std::string::npos;
+}
+}
+
+vtkAccelVolumeSmartMapper::vtkAccelVolumeSmartMapper()
+{
+  this->Relayer->SetCallback(&vtkAccelVolumeSmartMapper::Relay);
+  this->Relayer->SetClientData(this);
+  vtkVolumeMapper* mappers[3] = { this->SliceMapper, this->RayCastMapper, this->ShearWarpMapper };
+  for (vtkVolumeMapper* mapper : mappers)
+  {
+    mapper->AddObserver(vtkCommand::ErrorEvent, this->Relayer);
+    mapper->AddObserver(vtkCommand::WarningEvent, this->Relayer);
+  }
+}
+
+vtkAccelVolumeSmartMapper::~vtkAccelVolumeSmartMapper()
+{
+  vtkVolumeMapper* mappers[3] = { this->SliceMapper, this->RayCastMapper, this->ShearWarpMapper };
+  for (vtkVolumeMapper* mapper : mappers)
+  {
+    mapper->RemoveObserver(this->Relayer);
+  }
+}
+
+const char* vtkAccelVolumeSmartMapper::GetRenderModeAsString(int mode)
+{
+  switch (mode)
+  {
+    case DEFAULT_RENDER:
+      return "Default";
+    case SLICE_RENDER:
+      return "Slice";
+    case RAYCAST_RENDER:
+      return "RayCast";
+    case SHEARWARP_RENDER:
+      return "ShearWarp";
+    default:
+      return "Undefined";
+  }
+}
+
+int vtkAccelVolumeSmartMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+double* vtkAccelVolumeSmartMapper::GetBounds()
+{
+  vtkAccelVolumeReportMissingInput(this, this->MissingInputReportTime);
+  return this->Superclass::GetBounds();
+}
+
+void vtkAccelVolumeSmartMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->SliceMapper->ReleaseGraphicsResources(window);
+  this->RayCastMapper->ReleaseGraphicsResources(window);
+  this->ShearWarpMapper->ReleaseGraphicsResources(window);
+}
+
+void vtkAccelVolumeSmartMapper::Relay(vtkObject* caller, unsigned long event, void* client, void* data)
+{
+  auto* self = static_cast<vtkAccelVolumeSmartMapper*>(client);
+  std::string message = data ? static_cast<const char*>(data) : "";
+  // Keep the owned mapper's own text: drop its "vtkClass (0x...): " prefix and trailing blanks.
+  const size_t start = message.find("): ");
+  if (start != std::string::npos)
+  {
+    message = message.substr(start + 3);
+  }
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())))
+  {
+    message.pop_back();
+  }
+  const char* name = caller ? caller->GetClassName() : "mapper";
+  if (event == vtkCommand::ErrorEvent)
+  {
+    vtkErrorWithObjectMacro(self, << name << ": " << message);
+  }
+  else
+  {
+    vtkWarningWithObjectMacro(self, << name << ": " << message);
+  }
+}
+
+void vtkAccelVolumeSmartMapper::Forward(vtkVolumeMapper* mapper)
+{
+  mapper->SetInputConnection(
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputConnection(0, 0) : nullptr);
+  mapper->SetBlendMode(this->BlendMode);
+  mapper->SetCropping(this->Cropping);
+  mapper->SetCroppingRegionPlanes(this->CroppingRegionPlanes);
+  mapper->SetCroppingRegionFlags(this->CroppingRegionFlags);
+  mapper->SetClippingPlanes(this->ClippingPlanes);
+  mapper->SetAverageIPScalarRange(this->AverageIPScalarRange);
+  mapper->SetScalarMode(this->ScalarMode);
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID)
+  {
+    mapper->SelectScalarArray(this->ArrayId);
+  }
+  else
+  {
+    mapper->SelectScalarArray(this->ArrayName);
+  }
+  mapper->SetArrayAccessMode(this->ArrayAccessMode);
+}
+
+int vtkAccelVolumeSmartMapper::ChooseMode(
+  vtkRenderer* renderer, vtkVolume* volume, const int dims[3])
+{
+  // Can the slice mapper render here, and is its GL hardware?
+  std::string sliceBlocker;
+  std::string glRenderer;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    sliceBlocker = "no OpenGL render window";
+  }
+  else
+  {
+    if (!window->IsCurrent())
+    {
+      window->MakeCurrent();
+    }
+    const int maximum = vtkTextureObject::GetMaximumTextureSize3D(window);
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    glRenderer = name ? name : "unknown";
+    if (maximum <= 0)
+    {
+      sliceBlocker = "the OpenGL context has no 3D textures";
+    }
+    else if (dims[0] > maximum || dims[1] > maximum || dims[2] > maximum)
+    {
+      std::ostringstream text;
+      text << "volume " << dims[0] << "x" << dims[1] << "x" << dims[2]
+           << " exceeds GL_MAX_3D_TEXTURE_SIZE " << maximum;
+      sliceBlocker = text.str();
+    }
+  }
+  const bool sliceUsable = sliceBlocker.empty();
+  const bool hardware = sliceUsable && !IsSoftwareRenderer(glRenderer);
+
+  // Can the shear-warp mapper render this scene?
+  std::string shearWarpBlocker;
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const int blend = this->BlendMode;
+  if (blend != COMPOSITE_BLEND && blend != MAXIMUM_INTENSITY_BLEND &&
+    blend != MINIMUM_INTENSITY_BLEND)
+  {
+    shearWarpBlocker = std::string(BlendName(blend)) + " blend: shear-warp cannot (composite, "
+                                                       "MIP, MinIP only)";
+  }
+  else if (!camera || !camera->GetParallelProjection())
+  {
+    shearWarpBlocker = "perspective camera: shear-warp is parallel only";
+  }
+  else if (this->Cropping)
+  {
+    shearWarpBlocker = "cropping: shear-warp ignores it";
+  }
+  else if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0)
+  {
+    shearWarpBlocker = "clipping planes: shear-warp ignores them";
+  }
+  const bool shearWarpUsable = shearWarpBlocker.empty();
+  const double allocated = volume->GetAllocatedRenderTime();
+  const bool interactive = allocated < 1.0 / this->InteractiveUpdateRate;
+
+  // The automatic choice, optionally without one mapper (the refused requested one).
+  auto automatic = [&](int excluded, std::string& reason) -> int
+  {
+    if (hardware && excluded != SLICE_RENDER)
+    {
+      reason += "hardware OpenGL (" + glRenderer + ") with 3D textures -> slice";
+      return SLICE_RENDER;
+    }
+    reason += sliceUsable ? "software OpenGL (" + glRenderer + ")" : sliceBlocker;
+    if (shearWarpUsable && interactive && excluded != SHEARWARP_RENDER)
+    {
+      reason += std::string("; parallel ") + BlendName(blend) +
+        ", no cropping or clipping, interactive frame -> shear-warp";
+      return SHEARWARP_RENDER;
+    }
+    if (excluded == SHEARWARP_RENDER)
+    {
+      // The requested shear-warp's blocker already leads the reason.
+    }
+    else if (!shearWarpUsable)
+    {
+      reason += "; " + shearWarpBlocker;
+    }
+    else if (!interactive)
+    {
+      reason += "; still frame (allocated time >= 1 / InteractiveUpdateRate)";
+    }
+    reason += " -> ray cast";
+    return RAYCAST_RENDER;
+  };
+
+  std::string reason;
+  int mode = RAYCAST_RENDER;
+  switch (this->RequestedRenderMode)
+  {
+    case SLICE_RENDER:
+      if (sliceUsable)
+      {
+        reason = "requested slice";
+        mode = SLICE_RENDER;
+      }
+      else
+      {
+        reason = "requested slice, but " + sliceBlocker + "; falling back: ";
+        mode = automatic(SLICE_RENDER, reason);
+      }
+      break;
+    case RAYCAST_RENDER:
+      reason = "requested ray cast";
+      mode = RAYCAST_RENDER;
+      break;
+    case SHEARWARP_RENDER:
+      if (shearWarpUsable)
+      {
+        reason = "requested shear-warp";
+        mode = SHEARWARP_RENDER;
+      }
+      else
+      {
+        reason = "requested shear-warp, but " + shearWarpBlocker + "; falling back: ";
+        mode = automatic(SHEARWARP_RENDER, reason);
+      }
+      break;
+    default:
+      mode = automatic(DEFAULT_RENDER, reason);
+      break;
+  }
+  const bool fellBack =
+    this->RequestedRenderMode != DEFAULT_RENDER && mode != this->RequestedRenderMode;
+  if (fellBack && reason != this->LastWarning)
+  {
+    this->LastWarning = reason;
+    vtkWarningMacro(<< reason);
+  }
+  this->LastChoiceReason = reason;
+  return mode;
+}
+
+void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  if (!renderer || !volume)
+  {
+    vtkErrorMacro("Render needs a renderer and a volume");
+    return;
+  }
+  if (this->GetNumberOfInputConnections(0) == 0)
+  {
+    this->LastRenderMode = UNDEFINED_RENDER;
+    this->LastChoiceReason = "no input: nothing rendered";
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+    return;
+  }
+  this->GetInputAlgorithm()->Update();
+  int dims[3] = { 0, 0, 0 };
+  if (auto* image = vtkImageData::SafeDownCast(this->GetInput()))
+  {
+    image->GetDimensions(dims);
+  }
+  const int mode = this->ChooseMode(renderer, volume, dims);
+  vtkVolumeMapper* mapper = this->RayCastMapper;
+  if (mode == SLICE_RENDER)
+  {
+    mapper = this->SliceMapper;
+  }
+  else if (mode == SHEARWARP_RENDER)
+  {
+    mapper = this->ShearWarpMapper;
+  }
+  this->LastRenderMode = mode;
+  this->Forward(mapper);
+  // The owned mapper's errors come back through Relay as this mapper's errors.
+  mapper->Render(renderer, volume);
+}
+
+void vtkAccelVolumeSmartMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RequestedRenderMode: " << GetRenderModeAsString(this->RequestedRenderMode)
+     << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "LastRenderMode: " << GetRenderModeAsString(this->LastRenderMode) << "\n";
+  os << indent << "LastChoiceReason: " << this->LastChoiceReason << "\n";
+  os << indent << "SliceMapper: " << this->SliceMapper.GetPointer() << "\n";
+  os << indent << "RayCastMapper: " << this->RayCastMapper.GetPointer() << "\n";
+  os << indent << "ShearWarpMapper: " << this->ShearWarpMapper.GetPointer() << "\n";
+}
