@@ -16,6 +16,7 @@ packages=(
   libvolpack1-dev                   # VolPack (Lacroute's shear-warp), the shear-warp benchmark's anchor
   openmpi-bin                       # mpirun for the MPI shear-warp tests
   xvfb xauth                        # X-window tests under xvfb-run
+  python3-dev                       # Python wrapping (package accelvolume) for VTK's /usr/bin/python3
 )
 
 missing=()

@@ -119,7 +119,9 @@ public:
 
   /** Core access for the module's mappers (not wrapped). */
   class vtkInternals;
+#ifndef __VTK_WRAP__ // returns a private type: the Python wrapper cannot wrap it
   vtkInternals* GetInternals() { return this->Internals.get(); }
+#endif
 
   /** Releases GPU buffers (call while the context is current, or before it goes away). */
   void ReleaseGraphicsResources();
