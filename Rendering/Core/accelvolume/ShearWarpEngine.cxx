@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -268,32 +269,26 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
       classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
       classification.normals = lighting.shade;
       // World gradient = inverse transpose of the index -> world linear map times the index one.
-      double inverse[3][3];
+      Affine indexToWorld = Affine::Identity();
+      for (int r = 0; r < 3; ++r)
       {
-        const double(*m)[3] = view.indexToWorld;
-        const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-          m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-        if (!(std::abs(det) > 1e-300))
-        {
-          error = "shear-warp: the index-to-world map is singular";
-          return false;
-        }
-        for (int r = 0; r < 3; ++r)
-        {
-          for (int c = 0; c < 3; ++c)
-          {
-            // cofactor(c, r) / det is inverse[r][c]; the transpose swaps them back.
-            const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-            inverse[r][c] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
-          }
-        }
+        std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
+      }
+      Affine worldToIndex;
+      try
+      {
+        worldToIndex = indexToWorld.Inverse();
+      }
+      catch (const std::domain_error&)
+      {
+        error = "shear-warp: the index-to-world map is singular";
+        return false;
       }
       for (int r = 0; r < 3; ++r)
       {
         for (int c = 0; c < 3; ++c)
         {
-          classification.gradientToWorld[r][c] = inverse[c][r];
+          classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
         }
       }
       slot = EncodingSlot<ShadedVoxel>();

@@ -1,36 +1,13 @@
 // Lacroute's shear-warp factorization of a parallel view.
 #include "accelvolume/ShearWarpFactorization.h"
 
+#include "accelvolume/ReferenceRenderer.h" // Affine
+
 #include <cmath>
+#include <stdexcept>
 
 namespace accelvolume
 {
-namespace
-{
-bool Invert3(const double m[3][3], double inverse[3][3])
-{
-  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
-  const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
-  const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
-  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
-  if (!(std::abs(det) > 1e-300) || !std::isfinite(det))
-  {
-    return false;
-  }
-  const double s = 1.0 / det;
-  inverse[0][0] = c00 * s;
-  inverse[1][0] = c01 * s;
-  inverse[2][0] = c02 * s;
-  inverse[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * s;
-  inverse[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * s;
-  inverse[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * s;
-  inverse[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * s;
-  inverse[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * s;
-  inverse[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * s;
-  return true;
-}
-}
-
 bool FactorizeShearWarp(const double voxelToImage[3][4], const int dims[3],
   ShearWarpFactorization& f, std::string& error)
 {
@@ -40,22 +17,31 @@ bool FactorizeShearWarp(const double voxelToImage[3][4], const int dims[3],
     error = "shear-warp: the volume has no voxels";
     return false;
   }
+  Affine map;
   double linear[3][3];
   for (int r = 0; r < 3; ++r)
   {
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 4; ++c)
     {
-      linear[r][c] = voxelToImage[r][c];
+      map.m[r][c] = voxelToImage[r][c];
+      if (c < 3)
+      {
+        linear[r][c] = voxelToImage[r][c];
+      }
     }
   }
-  double inverse[3][3];
-  if (!Invert3(linear, inverse))
+  Affine inverse;
+  try
+  {
+    inverse = map.Inverse();
+  }
+  catch (const std::domain_error&)
   {
     error = "shear-warp: the voxel-to-image map is singular";
     return false;
   }
   // The object-space direction the image's depth axis comes from: the rays.
-  const double ray[3] = { inverse[0][2], inverse[1][2], inverse[2][2] };
+  const double ray[3] = { inverse.m[0][2], inverse.m[1][2], inverse.m[2][2] };
   int k = 0;
   for (int a = 1; a < 3; ++a)
   {
