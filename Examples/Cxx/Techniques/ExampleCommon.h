@@ -4,7 +4,9 @@
 #ifndef ExampleCommon_h
 #define ExampleCommon_h
 
+#include <vtkAbstractVolumeMapper.h>
 #include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -16,6 +18,8 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cmath>
@@ -183,6 +187,70 @@ inline int WritePNG(vtkRenderWindow* window, vtkRenderer* renderer, const std::s
     static_cast<long long>(foreground), static_cast<long long>(pixels->GetNumberOfTuples()));
   return 0;
 }
+// The scene every example shows: the volume in a renderer with the examples' background, in a
+// 256x256 offscreen window from the module's factory (headless EGL / OSMesa without a display),
+// with the mapper's and the window's errors counted.
+struct Scene
+{
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  ErrorWatch Errors;
+
+  Scene(vtkAbstractVolumeMapper* mapper, vtkVolumeProperty* property, bool parallel = false)
+  {
+    this->Volume->SetMapper(mapper);
+    this->Volume->SetProperty(property);
+    this->Renderer->AddVolume(this->Volume);
+    this->Renderer->SetBackground(0.1, 0.1, 0.2);
+    this->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0); // volume mappers draw into their own targets
+    this->Window->SetSize(256, 256);
+    this->Window->AddRenderer(this->Renderer);
+    this->Errors.Watch(mapper);
+    this->Errors.Watch(this->Window);
+  }
+
+  // Fits the camera to the volume, turns it and zooms in (the bounding sphere leaves a wide
+  // margin).
+  void Frame(double azimuth, double elevation, double zoom)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    this->Renderer->ResetCamera();
+    camera->Azimuth(azimuth);
+    camera->Elevation(elevation);
+    camera->OrthogonalizeViewUp();
+    camera->Zoom(zoom);
+    this->Renderer->ResetCameraClippingRange();
+  }
+
+  // Renders `frames` frames (turning by `turn` degrees before each when non-zero); false, with
+  // "<name>: rendering failed", once the mapper or the window reported an error.
+  bool Render(const char* name, int frames = 1, double turn = 0)
+  {
+    for (int frame = 0; frame < frames && this->Errors.GetErrors() == 0; ++frame)
+    {
+      if (turn != 0)
+      {
+        this->Renderer->GetActiveCamera()->Azimuth(turn);
+        this->Renderer->ResetCameraClippingRange();
+      }
+      this->Window->Render();
+    }
+    if (this->Errors.GetErrors() > 0)
+    {
+      std::fprintf(stderr, "%s: rendering failed\n", name);
+      return false;
+    }
+    return true;
+  }
+
+  int Write(const Options& options)
+  {
+    return WritePNG(this->Window, this->Renderer, options.Output, options.Check);
+  }
+};
 } // namespace example
 
 #endif

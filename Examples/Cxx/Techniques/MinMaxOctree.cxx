@@ -8,13 +8,9 @@
 
 #include <vtkAccelVolumeMinMaxOctree.h>
 #include <vtkAccelVolumeSliceMapper.h>
-#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <cstdio>
@@ -70,35 +66,13 @@ int main(int argc, char* argv[])
   property->SetInterpolationTypeToLinear();
   property->ShadeOn();
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.2);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Azimuth(-40);
-  renderer->GetActiveCamera()->Elevation(25);
-  renderer->GetActiveCamera()->Zoom(1.5); // the bounding sphere leaves a wide margin
-  renderer->ResetCameraClippingRange();
-
-  // Headless EGL / OSMesa through the module's factory when there is no display.
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-
-  example::ErrorWatch errors;
-  errors.Watch(mapper);
-  errors.Watch(window);
-  window->Render();
-  if (errors.GetErrors() > 0)
+  example::Scene scene(mapper, property);
+  scene.Frame(-40, 25, 1.5);
+  if (!scene.Render("MinMaxOctree"))
   {
-    std::fprintf(stderr, "MinMaxOctree: rendering failed\n");
     return 1;
   }
-  if (example::WritePNG(window, renderer, options.Output, options.Check) != 0)
+  if (scene.Write(options) != 0)
   {
     return 1;
   }

@@ -7,13 +7,9 @@
 #include "ExampleCommon.h"
 
 #include <vtkAccelVolumeRayCastMapper.h>
-#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <cstdio>
@@ -49,36 +45,13 @@ int main(int argc, char* argv[])
   property->SetDiffuse(0.7);
   property->SetSpecular(0.2);
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.2);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Azimuth(30);
-  renderer->GetActiveCamera()->Elevation(20);
-  renderer->GetActiveCamera()->Zoom(1.5); // the bounding sphere leaves a wide margin
-  renderer->ResetCameraClippingRange();
-
-  // The mapper casts rays on the CPU and shows the image in the window as a textured quad, so
-  // it still needs an OpenGL window: a headless one through the module's factory.
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-
-  example::ErrorWatch errors;
-  errors.Watch(mapper);
-  errors.Watch(window);
-  window->Render();
-  if (errors.GetErrors() > 0)
+  example::Scene scene(mapper, property);
+  scene.Frame(30, 20, 1.5);
+  if (!scene.Render("RayCast"))
   {
-    std::fprintf(stderr, "RayCast: rendering failed\n");
     return 1;
   }
-  if (example::WritePNG(window, renderer, options.Output, options.Check) != 0)
+  if (scene.Write(options) != 0)
   {
     return 1;
   }

@@ -7,13 +7,9 @@
 #include "ExampleCommon.h"
 
 #include <vtkAccelVolumeSliceMapper.h>
-#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <zlib.h>
@@ -73,35 +69,13 @@ int main(int argc, char* argv[])
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.2);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Elevation(-90); // the view of the CLI's dataset test
-  renderer->GetActiveCamera()->OrthogonalizeViewUp();
-  renderer->GetActiveCamera()->Zoom(1.3);
-  renderer->ResetCameraClippingRange();
-
-  // Headless EGL / OSMesa through the module's factory when there is no display.
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-
-  example::ErrorWatch errors;
-  errors.Watch(mapper);
-  errors.Watch(window);
-  window->Render();
-  if (errors.GetErrors() > 0)
+  example::Scene scene(mapper, property);
+  scene.Frame(0, -90, 1.3);
+  if (!scene.Render("ReadRealVolume"))
   {
-    std::fprintf(stderr, "ReadRealVolume: rendering failed\n");
     return 1;
   }
-  if (example::WritePNG(window, renderer, options.Output, options.Check) != 0)
+  if (scene.Write(options) != 0)
   {
     return 1;
   }

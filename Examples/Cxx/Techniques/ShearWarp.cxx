@@ -8,13 +8,9 @@
 #include "ExampleCommon.h"
 
 #include <vtkAccelVolumeShearWarpMapper.h>
-#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <cstdio>
@@ -48,41 +44,16 @@ int main(int argc, char* argv[])
   property->SetInterpolationTypeToLinear();
   property->ShadeOn();
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.2);
-  renderer->GetActiveCamera()->ParallelProjectionOn(); // required: shear-warp is parallel only
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Elevation(20);
-  renderer->GetActiveCamera()->Zoom(1.5); // the bounding sphere leaves a wide margin
-
-  // The warped image is shown as a textured quad: a headless OpenGL window from the factory.
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-
-  example::ErrorWatch errors;
-  errors.Watch(mapper);
-  errors.Watch(window);
+  // shear-warp renders parallel projections only
+  example::Scene scene(mapper, property, true);
+  scene.Frame(0, 20, 1.5);
   // Three frames turning 15 degrees each: the first encodes the volume, the later ones reuse
   // the encoding and balance their bands with the previous frame's per-scanline times.
-  for (int frame = 0; frame < 3 && errors.GetErrors() == 0; ++frame)
+  if (!scene.Render("ShearWarp", 3, 15))
   {
-    renderer->GetActiveCamera()->Azimuth(15);
-    renderer->ResetCameraClippingRange();
-    window->Render();
-  }
-  if (errors.GetErrors() > 0)
-  {
-    std::fprintf(stderr, "ShearWarp: rendering failed\n");
     return 1;
   }
-  if (example::WritePNG(window, renderer, options.Output, options.Check) != 0)
+  if (scene.Write(options) != 0)
   {
     return 1;
   }

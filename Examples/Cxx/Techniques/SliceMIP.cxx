@@ -6,13 +6,9 @@
 #include "ExampleCommon.h"
 
 #include <vtkAccelVolumeSliceMapper.h>
-#include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderer.h>
-#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <cstdio>
@@ -45,37 +41,13 @@ int main(int argc, char* argv[])
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.2);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Azimuth(30); // oblique, so the crop faces are not axis aligned
-  renderer->GetActiveCamera()->Elevation(20);
-  renderer->GetActiveCamera()->Zoom(1.5); // the bounding sphere leaves a wide margin
-  renderer->ResetCameraClippingRange();
-
-  // The module's object factory makes this a headless EGL / OSMesa window when there is no
-  // DISPLAY or ACCELVOLUME_GL=egl|osmesa is set.
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0); // no MSAA: volume mappers draw into their own targets
-  window->SetSize(256, 256);
-  window->AddRenderer(renderer);
-
-  example::ErrorWatch errors;
-  errors.Watch(mapper);
-  errors.Watch(window);
-  window->Render();
-  if (errors.GetErrors() > 0)
+  example::Scene scene(mapper, property);
+  scene.Frame(30, 20, 1.5);
+  if (!scene.Render("SliceMIP"))
   {
-    std::fprintf(stderr, "SliceMIP: rendering failed\n");
     return 1;
   }
-  if (example::WritePNG(window, renderer, options.Output, options.Check) != 0)
+  if (scene.Write(options) != 0)
   {
     return 1;
   }
