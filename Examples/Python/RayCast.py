@@ -9,8 +9,7 @@ jumps that far in one step. Every leap is exact: the image equals LEAP_NONE's.
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "RayCast"
 args = ex.parse_arguments(NAME)
@@ -40,20 +39,9 @@ prop.SetAmbient(0.2)
 prop.SetDiffuse(0.7)
 prop.SetSpecular(0.2)
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-renderer.ResetCamera()
-renderer.GetActiveCamera().Azimuth(30)
-renderer.GetActiveCamera().Elevation(20)
-renderer.GetActiveCamera().Zoom(1.5)
-renderer.ResetCameraClippingRange()
-
 # Rays are cast on the CPU; the image is shown as a textured quad, so an OpenGL window is still
 # needed: a headless one through the module's factory.
-window = ex.make_window(renderer)
+_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 samples = mapper.GetLastNumberOfSamples()

@@ -15,8 +15,7 @@ import sys
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "ReadRealVolume"
 args = ex.parse_arguments(NAME, data=True)
@@ -59,18 +58,7 @@ prop.SetColor(color)
 prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-renderer.ResetCamera()
-renderer.GetActiveCamera().Elevation(-90)  # the view of the CLI's dataset test
-renderer.GetActiveCamera().OrthogonalizeViewUp()
-renderer.GetActiveCamera().Zoom(1.3)
-renderer.ResetCameraClippingRange()
-
-window = ex.make_window(renderer)
+_, renderer, window = ex.make_scene(mapper, prop, 0, -90, 1.3)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: MIP of %s (%dx%dx%d, values %g..%g), %.1f ms -> %s%s"

@@ -9,8 +9,7 @@ Three turning frames: the later ones reuse the encoding and balance the threads'
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "ShearWarp"
 args = ex.parse_arguments(NAME)
@@ -39,19 +38,9 @@ prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 prop.ShadeOn()
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-camera = renderer.GetActiveCamera()
-camera.ParallelProjectionOn()  # required: shear-warp renders parallel projections only
-renderer.ResetCamera()
-camera.Elevation(20)
-camera.Zoom(1.5)
-
-window = ex.make_window(renderer)
-ex.render(NAME, window, mapper, frames=3, camera=camera)  # Azimuth(15) before each frame
+# shear-warp renders parallel projections only
+_, renderer, window = ex.make_scene(mapper, prop, 0, 20, 1.5, parallel=True)
+ex.render(NAME, window, mapper, frames=3, camera=renderer.GetActiveCamera())  # Azimuth(15) before each frame
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: shaded composite, parallel, %d bands, last frame %.1f ms, imbalance %.2f, principal "
       "axis %d, %d voxels stored, %d encoded bytes, %d pixel visits skipped -> %s%s"

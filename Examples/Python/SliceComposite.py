@@ -8,8 +8,7 @@ empty-space skipping with a min-max octree (slices clipped to the non-empty octr
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "SliceComposite"
 args = ex.parse_arguments(NAME)
@@ -42,18 +41,7 @@ prop.SetDiffuse(0.7)
 prop.SetSpecular(0.3)
 prop.SetSpecularPower(20)
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-renderer.ResetCamera()
-renderer.GetActiveCamera().Azimuth(30)
-renderer.GetActiveCamera().Elevation(20)
-renderer.GetActiveCamera().Zoom(1.5)
-renderer.ResetCameraClippingRange()
-
-window = ex.make_window(renderer)
+_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: shaded composite, %d slices, %d termination passes, %.0f%% of octree leaves empty, "

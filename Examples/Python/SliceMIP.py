@@ -8,8 +8,7 @@ show no slice aliasing even with few slices.
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "SliceMIP"
 args = ex.parse_arguments(NAME)
@@ -36,19 +35,8 @@ prop.SetColor(color)
 prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-renderer.ResetCamera()
-camera = renderer.GetActiveCamera()
-camera.Azimuth(30)  # oblique, so the crop faces are not axis aligned
-camera.Elevation(20)
-camera.Zoom(1.5)
-renderer.ResetCameraClippingRange()
-
-window = ex.make_window(renderer)
+# oblique, so the crop faces are not axis aligned
+volume, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: MIP of a 64^3 volume cropped to a sub-volume, %d slices, %d cut faces re-rendered, "

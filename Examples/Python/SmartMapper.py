@@ -9,8 +9,7 @@ then an interactive one (a high desired update rate) and prints both choices.
 import _accelvolume_example as ex  # first: imports accelvolume before VTK's OpenGL modules
 import accelvolume
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer, vtkVolume,
-                                         vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 NAME = "SmartMapper"
 Mapper = accelvolume.vtkAccelVolumeSmartMapper
@@ -36,20 +35,8 @@ prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 prop.ShadeOn()
 
-volume = vtkVolume()
-volume.SetMapper(mapper)
-volume.SetProperty(prop)
-renderer = vtkRenderer()
-renderer.AddVolume(volume)
-camera = renderer.GetActiveCamera()
-camera.ParallelProjectionOn()  # lets the automatic choice consider shear-warp
-renderer.ResetCamera()
-camera.Azimuth(30)
-camera.Elevation(20)
-camera.Zoom(1.5)
-renderer.ResetCameraClippingRange()
-
-window = ex.make_window(renderer)
+# parallel projection lets the automatic choice consider shear-warp
+_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5, parallel=True)
 choices = []
 for rate in (0.0001, 20.0):  # a still frame, then an interactive one (as an interactor does)
     window.SetDesiredUpdateRate(rate)

@@ -15,7 +15,8 @@ from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkImageImport
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkWindowToImageFilter
+from vtkmodules.vtkRenderingCore import (vtkRenderer, vtkRenderWindow, vtkVolume,
+                                         vtkWindowToImageFilter)
 
 SIZE = 256
 BACKGROUND = (0.1, 0.1, 0.2)
@@ -102,6 +103,25 @@ def make_window(renderer):
     window.AddRenderer(renderer)
     renderer.SetBackground(*BACKGROUND)
     return window
+
+
+def make_scene(mapper, prop, azimuth, elevation, zoom, parallel=False):
+    """The volume in a renderer, the camera fitted, turned and zoomed (the bounding sphere leaves
+    a wide margin), in the examples' window. Returns (volume, renderer, window)."""
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer = vtkRenderer()
+    renderer.AddVolume(volume)
+    camera = renderer.GetActiveCamera()
+    camera.SetParallelProjection(parallel)
+    renderer.ResetCamera()
+    camera.Azimuth(azimuth)
+    camera.Elevation(elevation)
+    camera.OrthogonalizeViewUp()
+    camera.Zoom(zoom)
+    renderer.ResetCameraClippingRange()
+    return volume, renderer, make_window(renderer)
 
 
 def render(name, window, mapper, frames=1, camera=None):
