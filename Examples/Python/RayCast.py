@@ -41,7 +41,7 @@ prop.SetSpecular(0.2)
 
 # Rays are cast on the CPU; the image is shown as a textured quad, so an OpenGL window is still
 # needed: a headless one through the module's factory.
-_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
+_, _, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 samples = mapper.GetLastNumberOfSamples()

@@ -58,7 +58,7 @@ prop.SetColor(color)
 prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 
-_, renderer, window = ex.make_scene(mapper, prop, 0, -90, 1.3)
+_, _, window = ex.make_scene(mapper, prop, 0, -90, 1.3)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: MIP of %s (%dx%dx%d, values %g..%g), %.1f ms -> %s%s"

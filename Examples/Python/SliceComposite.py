@@ -41,7 +41,7 @@ prop.SetDiffuse(0.7)
 prop.SetSpecular(0.3)
 prop.SetSpecularPower(20)
 
-_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
+_, _, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: shaded composite, %d slices, %d termination passes, %.0f%% of octree leaves empty, "

@@ -36,7 +36,7 @@ prop.SetScalarOpacity(opacity)
 prop.SetInterpolationTypeToLinear()
 
 # oblique, so the crop faces are not axis aligned
-volume, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
+_, _, window = ex.make_scene(mapper, prop, 30, 20, 1.5)
 ex.render(NAME, window, mapper)
 note = ex.write_png(NAME, window, args.output, args.check)
 print("%s: MIP of a 64^3 volume cropped to a sub-volume, %d slices, %d cut faces re-rendered, "

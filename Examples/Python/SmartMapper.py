@@ -36,7 +36,7 @@ prop.SetInterpolationTypeToLinear()
 prop.ShadeOn()
 
 # parallel projection lets the automatic choice consider shear-warp
-_, renderer, window = ex.make_scene(mapper, prop, 30, 20, 1.5, parallel=True)
+_, _, window = ex.make_scene(mapper, prop, 30, 20, 1.5, parallel=True)
 choices = []
 for rate in (0.0001, 20.0):  # a still frame, then an interactive one (as an interactor does)
     window.SetDesiredUpdateRate(rate)
