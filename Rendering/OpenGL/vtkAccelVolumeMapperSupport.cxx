@@ -11,11 +11,13 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkRenderer.h"
 #include "vtkTimeStamp.h"
+#include "vtkVolume.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -397,4 +399,29 @@ void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* propert
       lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
     }
   }
+}
+
+vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtkRenderer* renderer,
+  vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorWithObjectMacro(mapper,
+      << mapper->GetClassName() << " needs an OpenGL render window to show its image");
+    return nullptr;
+  }
+  std::string error;
+  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error))
+  {
+    vtkErrorWithObjectMacro(mapper, << error);
+    return nullptr;
+  }
+  property = volume->GetProperty();
+  if (!property)
+  {
+    vtkErrorWithObjectMacro(mapper, "The volume has no property");
+    return nullptr;
+  }
+  return window;
 }

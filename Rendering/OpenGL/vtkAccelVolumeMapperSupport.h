@@ -18,7 +18,9 @@ class vtkImageData;
 class vtkMatrix4x4;
 class vtkPlaneCollection;
 class vtkCamera;
+class vtkOpenGLRenderWindow;
 class vtkRenderer;
+class vtkVolume;
 class vtkTimeStamp;
 class vtkVolumeMapper;
 class vtkVolumeProperty;
@@ -36,6 +38,12 @@ bool vtkAccelVolumeFetchInput(
 // For GetBounds: a vtkErrorMacro on the mapper when it has no input, once per change of the
 // mapper (GetBounds is called many times per frame).
 void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported);
+
+// The checks a CPU mapper's Render starts with: an OpenGL window to show the image in, a
+// renderable input (vtkAccelVolumeFetchInput) and a volume property. Null, after a
+// vtkErrorMacro on the mapper, when one is missing.
+vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtkRenderer* renderer,
+  vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
 
 // The core's view of VTK scalars (no copy); false for a type the mappers do not render.
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);

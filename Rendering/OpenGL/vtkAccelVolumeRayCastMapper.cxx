@@ -126,26 +126,16 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
   vtkInternals& internals = *this->Internals;
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window)
-  {
-    vtkErrorMacro("vtkAccelVolumeRayCastMapper needs an OpenGL render window to show its image");
-    return;
-  }
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
+  vtkVolumeProperty* property = nullptr;
+  vtkOpenGLRenderWindow* window =
+    vtkAccelVolumeBeginCPURender(this, renderer, volume, input, scalars, property);
+  if (!window)
+  {
+    return;
+  }
   std::string error;
-  if (!vtkAccelVolumeFetchInput(this, input, scalars, error))
-  {
-    vtkErrorMacro(<< error);
-    return;
-  }
-  vtkVolumeProperty* property = volume->GetProperty();
-  if (!property)
-  {
-    vtkErrorMacro("The volume has no property");
-    return;
-  }
   if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
     this->BlendMode == vtkVolumeMapper::SLICE_BLEND)
   {

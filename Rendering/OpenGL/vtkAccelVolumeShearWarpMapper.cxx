@@ -129,26 +129,16 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
 {
   const double start = Now();
   vtkInternals& internals = *this->Internals;
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window)
-  {
-    vtkErrorMacro("vtkAccelVolumeShearWarpMapper needs an OpenGL render window to show its image");
-    return;
-  }
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
+  vtkVolumeProperty* property = nullptr;
+  vtkOpenGLRenderWindow* window =
+    vtkAccelVolumeBeginCPURender(this, renderer, volume, input, scalars, property);
+  if (!window)
+  {
+    return;
+  }
   std::string error;
-  if (!vtkAccelVolumeFetchInput(this, input, scalars, error))
-  {
-    vtkErrorMacro(<< error);
-    return;
-  }
-  vtkVolumeProperty* property = volume->GetProperty();
-  if (!property)
-  {
-    vtkErrorMacro("The volume has no property");
-    return;
-  }
   accelvolume::ShearWarpSettings settings;
   switch (this->BlendMode)
   {
