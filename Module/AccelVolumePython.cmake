@@ -9,7 +9,8 @@
 #
 # Build tree: ${CMAKE_BINARY_DIR}/${ACCELVOLUME_PYTHON_MODULE_DESTINATION}/accelvolume/
 #   (run with PYTHONPATH=<that dir>:<VTK's vtkmodules dir>, e.g. /usr/lib/python3/dist-packages).
-# Install tree: the same relative path under CMAKE_INSTALL_PREFIX (not tested yet).
+# Install tree: the same relative path under CMAKE_INSTALL_PREFIX (tested by the packaging
+#   tests, label "install": Testing/Install/Downstream/downstream.py).
 
 set(_av_python_found OFF)
 # VTK imports every target whatever was found: test the components (Python needs Python3).

@@ -1,11 +1,15 @@
 # Packaging test driver (one ctest test per MODE):
 #   cmake -DMODE=install|build -DBUILD_DIR=<AccelVolume build> -DWORK_DIR=<scratch folder>
 #         [-DSOURCE_DIR=<Downstream project>] [-DGENERATOR=...] [-DCXX_COMPILER=...] [-DC_COMPILER=...]
-#         [-DBUILD_TYPE=Release] [-DGL=osmesa] [-DLIBDIR=lib] -P RunDownstream.cmake
+#         [-DBUILD_TYPE=Release] [-DGL=osmesa] [-DLIBDIR=lib]
+#         [-DPYTHON=/usr/bin/python3 -DPYTHON_DEST=<package folder, relative>
+#          -DVTK_PYTHONPATH=<folder of vtkmodules>] -P RunDownstream.cmake
 # MODE=install: `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`, checks the installed
 #   layout and the library's run path, then builds the downstream project against the prefix.
 # MODE=build: builds the downstream project against BUILD_DIR/LIBDIR/cmake/AccelVolume.
-# Either way it then runs the downstream program with ACCELVOLUME_GL=GL.
+# Either way it then runs the downstream program with ACCELVOLUME_GL=GL and, when PYTHON is
+# given (the module was wrapped), the downstream Python script Downstream/downstream.py with
+# PYTHONPATH = the prefix's (or build tree's) package folder + VTK's.
 cmake_minimum_required(VERSION 3.12)
 
 foreach (_var IN ITEMS MODE BUILD_DIR WORK_DIR)
@@ -149,3 +153,32 @@ endif ()
 
 av_step("run downstream (ACCELVOLUME_GL=${GL})" "${CMAKE_COMMAND}" -E env "ACCELVOLUME_GL=${GL}" "${_exe}")
 message("${av_step_output}")
+
+if (PYTHON AND PYTHON_DEST)
+  if (MODE STREQUAL "install")
+    set(_python_root "${_prefix}")
+    foreach (_file IN ITEMS "${PYTHON_DEST}/accelvolume/__init__.py")
+      if (NOT EXISTS "${_prefix}/${_file}")
+        message(FATAL_ERROR "[install] missing from ${_prefix}: ${_file}")
+      endif ()
+    endforeach ()
+    file(GLOB _extensions "${_prefix}/${PYTHON_DEST}/accelvolume/vtkRenderingAccelVolume*.so")
+    if (NOT _extensions)
+      message(FATAL_ERROR "[install] no extension module in ${_prefix}/${PYTHON_DEST}/accelvolume")
+    endif ()
+  else ()
+    set(_python_root "${BUILD_DIR}")
+  endif ()
+  set(_pythonpath "${_python_root}/${PYTHON_DEST}")
+  if (VTK_PYTHONPATH)
+    string(APPEND _pythonpath ":${VTK_PYTHONPATH}")
+  endif ()
+  # Run from the work folder so nothing in the source tree shadows the package.
+  av_step("run downstream Python (ACCELVOLUME_GL=${GL})" "${CMAKE_COMMAND}" -E chdir "${WORK_DIR}"
+    "${CMAKE_COMMAND}" -E env "PYTHONPATH=${_pythonpath}" PYTHONNOUSERSITE=1
+    "ACCELVOLUME_GL=${GL}" "ACCELVOLUME_EXPECT_DIR=${_python_root}"
+    "${PYTHON}" "${SOURCE_DIR}/downstream.py")
+  message("${av_step_output}")
+else ()
+  message(STATUS "[${MODE}] no Python wrapping: downstream Python script not run")
+endif ()
