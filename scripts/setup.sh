@@ -17,6 +17,8 @@ packages=(
   openmpi-bin                       # mpirun for the MPI shear-warp tests
   xvfb xauth                        # X-window tests under xvfb-run
   python3-dev                       # Python wrapping (package accelvolume) for VTK's /usr/bin/python3
+  paraview-dev                      # ParaView 5.11 plugin (its own VTK 9.2) and pvbatch
+  python3-matplotlib                # charts of the benchmark report (BENCHMARKS.md)
 )
 
 missing=()
