@@ -324,13 +324,26 @@ bool vtkAccelVolumeHeadlessRenderWindow::CreateContext()
       config = nullptr; // EGL_KHR_no_config_context: the context renders to FBOs only anyway
     }
     eglBindAPI(EGL_OPENGL_API);
-    const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
-      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
-    internals.EGLContextHandle =
-      eglCreateContext(internals.Display, config, EGL_NO_CONTEXT, contextAttributes);
+    // Ask for the newest core version first: NVIDIA's EGL gives exactly the version asked
+    // for (a 3.2 request yields 3.2, without compute shaders), Mesa the newest it has anyway.
+    // VTK needs 3.2; 4.3 enables the GPU octree builder.
+    static const EGLint coreVersions[][2] = { { 4, 6 }, { 4, 5 }, { 4, 3 }, { 3, 2 } };
+    for (const auto& version : coreVersions)
+    {
+      const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, version[0],
+        EGL_CONTEXT_MINOR_VERSION, version[1], EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+      internals.EGLContextHandle =
+        eglCreateContext(internals.Display, config, EGL_NO_CONTEXT, contextAttributes);
+      if (internals.EGLContextHandle != EGL_NO_CONTEXT)
+      {
+        break;
+      }
+    }
     if (internals.EGLContextHandle == EGL_NO_CONTEXT)
     {
-      vtkErrorMacro("EGL: could not create an OpenGL 3.2 core context (error 0x"
+      vtkErrorMacro("EGL: could not create an OpenGL core context of version 3.2 or newer "
+                    "(error 0x"
         << std::hex << eglGetError() << std::dec << ")");
       internals.CreationFailed = true;
       return false;
