@@ -23,6 +23,7 @@ set(_av_core_sources
   Core/accelvolume/MinMaxOctreeQueries
   Core/accelvolume/OpacityRange
   Core/accelvolume/Phantoms
+  Core/accelvolume/Progress
   Core/accelvolume/RayCastEngine
   Core/accelvolume/RayCastKernel
   Core/accelvolume/ReferenceRenderer
@@ -39,6 +40,7 @@ set(_av_private_sources
   OpenGL/vtkAccelVolumeMapperSupport
   OpenGL/vtkAccelVolumeObjectFactory
   OpenGL/vtkAccelVolumeOctreeGPUBuilder
+  OpenGL/vtkAccelVolumeRenderProgress
   OpenGL/vtkAccelVolumeScalarEncoding
   OpenGL/vtkAccelVolumeSlicePasses
   OpenGL/vtkAccelVolumeSliceResources)

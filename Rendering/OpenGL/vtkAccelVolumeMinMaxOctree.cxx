@@ -4,6 +4,7 @@
 #include "vtkAccelVolumeMapperSupport.h"
 
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
+#include "vtkAccelVolumeRenderProgress.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -167,6 +168,9 @@ bool vtkAccelVolumeMinMaxOctree::Update()
     return true;
   }
 
+  // A real build: StartEvent, ProgressEvent 0 and 1, EndEvent. No finer steps: the CPU builder
+  // takes ~30 ms for 512x512x275 on two cores (the reference builder is a test oracle).
+  vtkAccelVolumeRenderProgress progress(this);
   internals.Built = false;
   internals.Classified = false;
   internals.LevelsOnCPU = false;

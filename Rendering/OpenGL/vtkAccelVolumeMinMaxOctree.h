@@ -79,6 +79,7 @@ public:
   /**
    * Builds the octree if the input scalars, LeafSize or Builder changed since the last build.
    * Returns false (with a vtkErrorMacro) on bad input or when the GPU builder is unavailable.
+   * A build (not a reuse) fires StartEvent, ProgressEvent 0 and 1 and EndEvent.
    */
   bool Update();
 

@@ -3,6 +3,7 @@
 
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeMapperSupport.h"
+#include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -101,6 +102,9 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfRays: " << this->LastNumberOfRays << "\n";
   os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+  os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
+  os << indent << "LastNumberOfDistanceMapLeaps: " << this->LastNumberOfDistanceMapLeaps << "\n";
+  os << indent << "AccelerationBytes: " << this->AccelerationBytes << "\n";
 }
 
 double* vtkAccelVolumeRayCastMapper::GetBounds()
@@ -125,6 +129,9 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
 {
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
+  // StartEvent now; ProgressEvent from the caster's rebuilds and tiles (main thread only);
+  // ProgressEvent 1 and EndEvent on every return.
+  vtkAccelVolumeRenderProgress progress(this);
   vtkInternals& internals = *this->Internals;
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
@@ -271,6 +278,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   castTimer->StartTimer();
   auto cast = [&]()
   {
+    // The caster reports up to 0.95 (from this thread only); showing the image is the rest.
+    internals.Caster.SetProgressFunction(progress.Range(0.0, 0.95));
     try
     {
       ok = internals.Caster.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
@@ -284,6 +293,7 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
       error = "out of memory for the acceleration structures or the image (try LEAP_OCTREE, "
               "shading off or a smaller volume)";
     }
+    internals.Caster.SetProgressFunction(nullptr); // it refers to this render's progress
   };
   // More threads than cores only adds contention (and TBB refuses them with a warning).
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -310,6 +320,9 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   this->LastSamplesLeapedByCellTable = static_cast<vtkTypeInt64>(counters.leapedCell);
   this->LastSamplesInTransparentCells = static_cast<vtkTypeInt64>(counters.leapedEmptyCell);
   this->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
+  this->LastNumberOfOctreeLeaps = static_cast<vtkTypeInt64>(counters.octreeLeaps);
+  this->LastNumberOfDistanceMapLeaps = static_cast<vtkTypeInt64>(counters.distanceLeaps);
+  this->AccelerationBytes = static_cast<vtkTypeInt64>(internals.Caster.GetAccelerationBytes());
 
   int castRectangle[4];
   internals.Caster.GetLastCastRectangle(castRectangle);

@@ -159,6 +159,11 @@ public:
   vtkGetMacro(LastSamplesLeapedByCellTable, vtkTypeInt64);
   vtkGetMacro(LastSamplesInTransparentCells, vtkTypeInt64);
   vtkGetMacro(LastNumberOfTerminatedRays, vtkTypeInt64);
+  /** Last frame: leaps taken over octree nodes / by the distance map (each skips >= 1 sample). */
+  vtkGetMacro(LastNumberOfOctreeLeaps, vtkTypeInt64);
+  vtkGetMacro(LastNumberOfDistanceMapLeaps, vtkTypeInt64);
+  /** Bytes the acceleration structures (octree, cell table / distance map, gradients) hold. */
+  vtkGetMacro(AccelerationBytes, vtkTypeInt64);
   /** Wall-clock seconds: the whole Render(), the ray casting alone, the structure rebuild. */
   vtkGetMacro(LastRenderTime, double);
   vtkGetMacro(LastCastTime, double);
@@ -207,6 +212,9 @@ protected:
   vtkTypeInt64 LastSamplesLeapedByCellTable = 0;
   vtkTypeInt64 LastSamplesInTransparentCells = 0;
   vtkTypeInt64 LastNumberOfTerminatedRays = 0;
+  vtkTypeInt64 LastNumberOfOctreeLeaps = 0;
+  vtkTypeInt64 LastNumberOfDistanceMapLeaps = 0;
+  vtkTypeInt64 AccelerationBytes = 0;
   double LastRenderTime = 0.0;
   double LastCastTime = 0.0;
   double LastPrepareTime = 0.0;

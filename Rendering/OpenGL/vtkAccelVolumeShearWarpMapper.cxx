@@ -4,6 +4,7 @@
 
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeMapperSupport.h"
+#include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
@@ -128,6 +129,9 @@ void vtkAccelVolumeShearWarpMapper::ReleaseGraphicsResources(vtkWindow* window)
 void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   const double start = Now();
+  // StartEvent now; ProgressEvent from the encoding's slices and the frame's phases (main
+  // thread only); ProgressEvent 1 and EndEvent on every return.
+  vtkAccelVolumeRenderProgress progress(this);
   vtkInternals& internals = *this->Internals;
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
@@ -261,13 +265,17 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     {
       if (ranks == 1)
       {
+        // The engine reports up to 0.95; showing the image is the rest.
+        engine.SetProgressFunction(progress.Range(0.0, 0.95));
         ok = engine.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
           internals.Inputs.TransferVersion, lighting, frame, settings, parallel, internals.Image,
           rectangle, stats, error);
         return;
       }
       // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
-      // (split among its threads), and rank 0 gathers the bands and warps.
+      // (split among its threads), and rank 0 gathers the bands and warps. The encoding reports
+      // up to 0.6, then each phase once.
+      engine.SetProgressFunction(progress.Range(0.0, 0.6));
       ok = engine.BeginFrame(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
         internals.Inputs.TransferVersion, lighting, frame, settings, parallel, stats, error);
       // A rank that cannot render must not leave the others waiting for its band.
@@ -283,6 +291,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
         ok = false;
         return;
       }
+      progress.Report(0.6);
       const double compositeStart = Now();
       const std::vector<int> rankBounds = engine.Bands(ranks * threads, settings.balance);
       // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
@@ -299,6 +308,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
           }
         });
       stats.compositeSeconds = Now() - compositeStart;
+      progress.Report(0.75);
       const double gatherStart = Now();
       const accelvolume::ShearWarpFactorization& f = engine.GetFactorization();
       const vtkIdType rowValues = 4 * static_cast<vtkIdType>(f.intermediateSize[0]);
@@ -337,6 +347,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
       stats.bandBounds = rankBounds;
       stats.imbalance = accelvolume::Imbalance(allBands);
       gatherSeconds = Now() - gatherStart;
+      progress.Report(0.9);
       engine.GetCounters(stats);
       if (rank == 0)
       {
@@ -344,6 +355,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
         engine.Warp(parallel, internals.Image, rectangle);
         stats.warpSeconds = Now() - warpStart;
       }
+      progress.Report(0.95);
     }
     catch (const std::bad_alloc&)
     {
@@ -359,6 +371,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   {
     renderFrame();
   }
+  engine.SetProgressFunction(nullptr); // it refers to this render's progress
   if (!ok)
   {
     vtkErrorMacro("Shear-warp rendering failed: " << error);

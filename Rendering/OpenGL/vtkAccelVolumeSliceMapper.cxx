@@ -4,6 +4,7 @@
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
+#include "vtkAccelVolumeRenderProgress.h"
 #include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
@@ -252,6 +253,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
+  // StartEvent now; ProgressEvent after each stage (volume upload, octree and proxy geometry,
+  // slice passes, GPU finish); ProgressEvent 1 and EndEvent on every return.
+  vtkAccelVolumeRenderProgress progress(this);
   vtkInternals& internals = *this->Internals;
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window)
@@ -284,6 +288,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   internals.Resources.UpdateTransferTable(window, property, range);
+  progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
 
   int dims[3];
   input->GetDimensions(dims);
@@ -463,6 +468,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       }
     }
   }
+  progress.Report(0.45); // octree classification and proxy geometry
   this->LastSliceSpacing = spacing;
   this->LastNumberOfSlices = sliceCount;
   this->LastNumberOfProxyPolygons = proxyCount;
@@ -566,6 +572,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   const bool rendered = vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame);
   this->LastNumberOfTerminationPasses = frame.TerminationPasses;
+  progress.Report(0.6); // passes issued; the GPU may still be working on them
 
   // Wait for the GPU so the reported time is the frame's real cost.
   glFinish();

@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeSmartMapper.h"
 
 #include "vtkAccelVolumeMapperSupport.h"
+#include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkImageData.h"
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <sstream>
 #include <string>
 
@@ -303,6 +305,10 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
 
 void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
+  const auto start = std::chrono::steady_clock::now();
+  // StartEvent now, the chosen mapper's progress as this mapper's, ProgressEvent 1 and EndEvent
+  // on every return.
+  vtkAccelVolumeRenderProgress progress(this);
   if (!renderer || !volume)
   {
     vtkErrorMacro("Render needs a renderer and a volume");
@@ -333,8 +339,28 @@ void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   this->LastRenderMode = mode;
   this->Forward(mapper);
+  // Observed only while it renders for an observed smart mapper: an unobserved mapper keeps its
+  // single parallel calls.
+  vtkNew<vtkCallbackCommand> forward;
+  unsigned long forwardTag = 0;
+  if (progress.IsObserved())
+  {
+    forward->SetClientData(&progress);
+    forward->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void* data)
+      {
+        static_cast<vtkAccelVolumeRenderProgress*>(client)->Report(*static_cast<double*>(data));
+      });
+    forwardTag = mapper->AddObserver(vtkCommand::ProgressEvent, forward);
+  }
   // The owned mapper's errors come back through Relay as this mapper's errors.
   mapper->Render(renderer, volume);
+  if (forwardTag)
+  {
+    mapper->RemoveObserver(forwardTag);
+  }
+  this->LastRenderTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void vtkAccelVolumeSmartMapper::PrintSelf(ostream& os, vtkIndent indent)
@@ -345,6 +371,7 @@ void vtkAccelVolumeSmartMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
   os << indent << "LastRenderMode: " << GetRenderModeAsString(this->LastRenderMode) << "\n";
   os << indent << "LastChoiceReason: " << this->LastChoiceReason << "\n";
+  os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
   os << indent << "SliceMapper: " << this->SliceMapper.GetPointer() << "\n";
   os << indent << "RayCastMapper: " << this->RayCastMapper.GetPointer() << "\n";
   os << indent << "ShearWarpMapper: " << this->ShearWarpMapper.GetPointer() << "\n";

@@ -45,7 +45,8 @@
  *
  * GetLastRenderMode() and GetLastChoiceReason() describe the last Render. Errors and warnings
  * of the mapper used are re-issued by this mapper (vtkErrorMacro / vtkWarningMacro), prefixed
- * with its name.
+ * with its name. Each Render fires StartEvent, the chosen mapper's ProgressEvent values as this
+ * mapper's own (ending at 1) and EndEvent, all on the calling thread.
  */
 #ifndef vtkAccelVolumeSmartMapper_h
 #define vtkAccelVolumeSmartMapper_h
@@ -104,6 +105,12 @@ public:
 
   /** The mode the last Render used (UNDEFINED_RENDER before any). */
   vtkGetMacro(LastRenderMode, int);
+  /**
+   * Wall-clock seconds of the last Render (the choice and the chosen mapper's render). That
+   * mapper's own time and acceleration counters: GetLastRenderMode() says which of
+   * GetSliceMapper(), GetRayCastMapper() or GetShearWarpMapper() to ask.
+   */
+  vtkGetMacro(LastRenderTime, double);
   /** Why the last Render chose its mode (never empty). */
   const char* GetLastChoiceReason() const { return this->LastChoiceReason.c_str(); }
   /** "Default", "Slice", "RayCast", "ShearWarp" or "Undefined". */
@@ -137,6 +144,7 @@ protected:
   int RequestedRenderMode = DEFAULT_RENDER;
   double InteractiveUpdateRate = 1.0;
   int LastRenderMode = UNDEFINED_RENDER;
+  double LastRenderTime = 0.0;
   std::string LastChoiceReason = "not rendered yet";
   std::string LastWarning;
   vtkTimeStamp MissingInputReportTime;

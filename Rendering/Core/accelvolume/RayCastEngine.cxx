@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -52,6 +53,8 @@ struct RayCaster::Internals
   std::vector<float> SpecularTable;
   int CastRectangle[4] = { 0, -1, 0, -1 };
   double PrepareSeconds = 0;
+
+  ProgressFunction Progress;
 };
 
 RayCaster::RayCaster()
@@ -60,6 +63,11 @@ RayCaster::RayCaster()
 }
 
 RayCaster::~RayCaster() = default;
+
+void RayCaster::SetProgressFunction(ProgressFunction report)
+{
+  this->Impl->Progress = std::move(report);
+}
 
 void RayCaster::GetLastCastRectangle(int rectangle[4]) const
 {
@@ -439,6 +447,18 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   }
   Internals& impl = *this->Impl;
   const auto prepareStart = std::chrono::steady_clock::now();
+  // Rebuilds take [0, PrepareShare] of the frame; each one done halves what is left of it (which
+  // rebuilds a frame needs is known only as they run).
+  constexpr double PrepareShare = 0.25;
+  double prepared = 0;
+  const auto rebuilt = [&]()
+  {
+    prepared += (PrepareShare - prepared) / 2;
+    if (impl.Progress)
+    {
+      impl.Progress(prepared);
+    }
+  };
   const int tableSize = static_cast<int>(transfer.rgba.size() / 4);
   std::vector<float> alphas(tableSize);
   for (int i = 0; i < tableSize; ++i)
@@ -479,6 +499,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       impl.OctreeBuilt = true;
       impl.OctreeVolume = volumeVersion;
       impl.OctreeLeafSize = settings.octreeLeafSize;
+      rebuilt();
     }
     if (zeroOpacityAddsNothing &&
       (!impl.OctreeClassified || impl.OctreeTransfer != transferVersion))
@@ -487,6 +508,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       impl.OctreeOpaqueBox = NonTransparentLeafBox(impl.Octree, volume.dims);
       impl.OctreeClassified = true;
       impl.OctreeTransfer = transferVersion;
+      rebuilt();
     }
   }
   if (useCellLeap || useDistance)
@@ -532,6 +554,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       impl.CellsBuilt = true;
       impl.CellsVolume = volumeVersion;
       impl.CellsTransfer = transferVersion;
+      rebuilt();
     }
   }
 
@@ -553,6 +576,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       });
     impl.GradientsBuilt = true;
     impl.GradientsVolume = volumeVersion;
+    rebuilt();
   }
 
   // The table opacities hold for the unit distance; samples stand for sampleDistance.
@@ -659,7 +683,10 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   rgba.assign(4 * static_cast<std::size_t>(view.width) * view.height, 0.0f);
   std::vector<RayCastCounters> tileCounters(tileCount);
   float* image = rgba.data();
-  parallel(tileCount,
+  // With progress: the tiles as they finish, reported by this thread.
+  const ParallelFor tiles = ReportingParallelFor(
+    parallel, ProgressRange(impl.Progress, prepared > 0 ? PrepareShare : 0.0, 1.0));
+  tiles(tileCount,
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t t = begin; t < end; ++t)

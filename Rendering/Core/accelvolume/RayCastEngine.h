@@ -19,6 +19,7 @@
 #define accelvolume_RayCastEngine_h
 
 #include "accelvolume/MinMaxOctree.h"
+#include "accelvolume/Progress.h"
 #include "accelvolume/ReferenceRenderer.h" // Affine
 
 #include <cstdint>
@@ -130,6 +131,11 @@ public:
     const RayCastLighting& lighting, const RayCastView& view, const RayCastSettings& settings,
     const ParallelFor& parallel, std::vector<float>& rgba, RayCastCounters& counters,
     std::string& error);
+
+  // Progress of every later Render, reported from the thread that calls Render: the rebuild of
+  // acceleration structures (when any) up to 0.25, then the tiles as they finish
+  // (ReportingParallelFor: no extra barrier). The image does not depend on it. Empty: none.
+  void SetProgressFunction(ProgressFunction report);
 
   // Image pixels [x0, x1] x [y0, y1] (inclusive; x1 < x0 when none) whose rays the last frame
   // cast: every pixel outside it is transparent.

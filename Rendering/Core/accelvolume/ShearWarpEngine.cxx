@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -121,6 +122,8 @@ struct ShearWarpRenderer::Internals
   std::vector<double> costs;
   int costAxis = -1;
 
+  ProgressFunction progress;
+
   std::vector<double> EstimateCosts();
   void ClassifyExtremeRow(const float* values, float* rgba) const;
 };
@@ -186,10 +189,25 @@ ShearWarpRenderer::ShearWarpRenderer()
 
 ShearWarpRenderer::~ShearWarpRenderer() = default;
 
+void ShearWarpRenderer::SetProgressFunction(ProgressFunction report)
+{
+  this->Impl->progress = std::move(report);
+}
+
 bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, double rangeMax,
   std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
   const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
   const ParallelFor& parallel, ShearWarpStats& stats, std::string& error)
+{
+  return this->BeginFrameReporting(volume, rangeMin, rangeMax, volumeVersion, transfer,
+    transferVersion, lighting, view, settings, parallel, this->Impl->progress, stats, error);
+}
+
+bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double rangeMin,
+  double rangeMax, std::uint64_t volumeVersion, const RayCastTransfer& transfer,
+  std::uint64_t transferVersion, const RayCastLighting& lighting, const ShearWarpView& view,
+  const ShearWarpSettings& settings, const ParallelFor& parallel,
+  const ProgressFunction& encodeProgress, ShearWarpStats& stats, std::string& error)
 {
   Internals& impl = *this->Impl;
   stats = ShearWarpStats();
@@ -255,6 +273,8 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
   key.volumeVersion = volumeVersion;
   key.transferVersion = transferVersion;
   const Clock::time_point encodeStart = Clock::now();
+  // With progress: the slices as they are encoded, reported by this thread.
+  const ParallelFor encodeParallel = ReportingParallelFor(parallel, encodeProgress);
   if (composite)
   {
     key.normals = lighting.shade;
@@ -292,7 +312,8 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
         }
       }
       slot = EncodingSlot<ShadedVoxel>();
-      if (!EncodeComposite(volume, classification, axis, dense != 0, parallel, slot.encoded, error))
+      if (!EncodeComposite(
+            volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
       {
         return false;
       }
@@ -310,7 +331,7 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     {
       slot = EncodingSlot<ScalarVoxel>();
       if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
-            parallel, slot.encoded, error))
+            encodeParallel, slot.encoded, error))
       {
         return false;
       }
@@ -630,8 +651,13 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4], ShearWarpStats& stats,
   std::string& error)
 {
-  if (!this->BeginFrame(volume, rangeMin, rangeMax, volumeVersion, transfer, transferVersion,
-        lighting, view, settings, parallel, stats, error))
+  // Shares of the frame's progress: the encoding (when this frame encodes), then compositing.
+  constexpr double EncodeShare = 0.8;
+  constexpr double CompositeEnd = 0.95;
+  const ProgressFunction& progress = this->Impl->progress;
+  if (!this->BeginFrameReporting(volume, rangeMin, rangeMax, volumeVersion, transfer,
+        transferVersion, lighting, view, settings, parallel,
+        ProgressRange(progress, 0.0, EncodeShare), stats, error))
   {
     return false;
   }
@@ -654,9 +680,17 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   stats.imbalance = Imbalance(stats.bandSeconds);
   this->SetScanlineCosts(this->Impl->scanlineSeconds);
   this->GetCounters(stats);
+  if (progress)
+  {
+    progress(CompositeEnd);
+  }
   const Clock::time_point warpStart = Clock::now();
   this->Warp(parallel, rgba, rectangle);
   stats.warpSeconds = Seconds(warpStart);
+  if (progress)
+  {
+    progress(1.0);
+  }
   return true;
 }
 

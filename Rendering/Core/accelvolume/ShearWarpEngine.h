@@ -18,6 +18,7 @@
 #define accelvolume_ShearWarpEngine_h
 
 #include "accelvolume/MinMaxOctree.h"  // VolumeView, ParallelFor
+#include "accelvolume/Progress.h"
 #include "accelvolume/RayCastEngine.h" // RayCastTransfer, RayCastLighting
 #include "accelvolume/ShearWarpFactorization.h"
 
@@ -99,6 +100,13 @@ public:
     const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4], ShearWarpStats& stats,
     std::string& error);
 
+  // Progress of every later frame, reported from the thread that calls Render / BeginFrame.
+  // Render reports the whole frame: classification and encoding (when the frame needs them) up
+  // to 0.8 as the slices finish (ReportingParallelFor: no extra barrier); compositing 0.95; the
+  // warp 1. BeginFrame reports its encoding alone, 0 to 1, and nothing when it reuses an
+  // encoding. The image does not depend on it. Empty (the default): none.
+  void SetProgressFunction(ProgressFunction report);
+
   // The phases of Render, for distributed compositing:
   // BeginFrame factorizes, encodes when needed, builds the tables and clears the intermediate
   // image; Bands partitions its scanlines (balanced with the last costs given or measured);
@@ -129,6 +137,13 @@ public:
   struct Internals;
 
 private:
+  // BeginFrame, reporting the encoding (when it encodes) through encodeProgress.
+  bool BeginFrameReporting(const VolumeView& volume, double rangeMin, double rangeMax,
+    std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+    const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+    const ParallelFor& parallel, const ProgressFunction& encodeProgress, ShearWarpStats& stats,
+    std::string& error);
+
   std::unique_ptr<Internals> Impl;
 };
 
