@@ -1,6 +1,7 @@
 // Helpers shared by the benchmark programs (see BenchmarkCommon.h).
 #include "BenchmarkCommon.h"
 
+#include "ProgressBar.h" // the accelvolume CLI's bar
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 
 #include <vtkImageData.h>
@@ -23,6 +24,42 @@ namespace fs = std::filesystem;
 
 namespace accelvolume::benchmark
 {
+
+CaseProgress::CaseProgress(const std::string& program, int cases)
+  : Program(program)
+  , Cases(std::max(cases, 1))
+{
+  if (accelvolume::cli::StderrIsTerminal())
+  {
+    const std::string label = program.substr(program.rfind('_') + 1); // "raycast"
+    this->Bar = std::make_unique<accelvolume::cli::ProgressBar>(
+      label, accelvolume::cli::ProgressMode::On);
+  }
+}
+
+CaseProgress::~CaseProgress() = default;
+
+void CaseProgress::Begin(const std::string& name)
+{
+  std::cout << std::flush; // the tables so far come first
+  const int index = std::min(this->Index, this->Cases - 1);
+  if (this->Bar)
+  {
+    this->Bar->BeginTask(index, this->Cases, name);
+    this->Bar->Finish();
+  }
+  else
+  {
+    std::cerr << this->Program << ": case " << index + 1 << "/" << this->Cases << ": " << name
+              << std::endl;
+  }
+  ++this->Index;
+}
+
+void CaseProgress::Skip(int cases)
+{
+  this->Index += std::max(cases, 0);
+}
 
 void TakeValue(const char* text, std::string& value)
 {

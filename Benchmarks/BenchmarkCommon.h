@@ -6,14 +6,44 @@
 #include <chrono>
 #include <cstdint>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 class vtkAccelVolumeHeadlessRenderWindow;
 class vtkRenderWindow;
 
+namespace accelvolume::cli
+{
+class ProgressBar;
+}
+
 namespace accelvolume::benchmark
 {
+
+// Which case of how many a benchmark is on, one stderr line per case (stdout keeps the tables):
+// on a terminal the CLI's progress bar, drawn at the case's start and ended at once so the
+// tables printed meanwhile never land inside it ("raycast [####......]  33%  3/9  engine tf1");
+// otherwise "accelvolume_benchmark_raycast: case 3/9: engine tf1".
+class CaseProgress
+{
+public:
+  CaseProgress(const std::string& program, int cases);
+  ~CaseProgress();
+  CaseProgress(const CaseProgress&) = delete;
+  CaseProgress& operator=(const CaseProgress&) = delete;
+
+  // Announces the next case.
+  void Begin(const std::string& name);
+  // Counts cases that will not run (a dataset that failed to load, skipped sizes).
+  void Skip(int cases = 1);
+
+private:
+  std::string Program;
+  int Cases = 0;
+  int Index = 0;
+  std::unique_ptr<accelvolume::cli::ProgressBar> Bar; // on a terminal only
+};
 
 // One option value per field; the field's type picks the conversion. atoi / atof are kept from
 // the original parsers, so a malformed number still reads as 0 rather than being an error.

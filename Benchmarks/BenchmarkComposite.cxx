@@ -290,8 +290,12 @@ int main(int argc, char* argv[])
   std::vector<DatasetInfo> datasets;
   std::vector<CaseResult> cases;
   bool ok = true;
+  // A case per dataset here (its transfer functions and sizes run inside RunDataset).
+  CaseProgress progress(
+    "accelvolume_benchmark_composite", static_cast<int>(options.Datasets.size()));
   for (const std::string& name : options.Datasets)
   {
+    progress.Begin(name);
     DatasetInfo info;
     vtkSmartPointer<vtkImageData> image;
     if (!LoadDataset(options, name, info, image))

@@ -456,8 +456,11 @@ int main(int argc, char* argv[])
   std::vector<DatasetResult> datasets;
   bool ok = true;
   const auto start = Clock::now();
+  CaseProgress progress(
+    "accelvolume_benchmark_cropping", static_cast<int>(options.Datasets.size()));
   for (size_t i = 0; i < options.Datasets.size(); ++i)
   {
+    progress.Begin(options.Datasets[i]);
     DatasetResult result;
     if (RunDataset(options, options.Datasets[i], i == 0 && !options.Images.empty(), window, result))
     {

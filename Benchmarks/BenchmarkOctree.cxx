@@ -330,8 +330,11 @@ int main(int argc, char* argv[])
 
   std::vector<DatasetResult> results;
   bool ok = true;
+  CaseProgress progress(
+    "accelvolume_benchmark_octree", static_cast<int>(options.Datasets.size()));
   for (const std::string& name : options.Datasets)
   {
+    progress.Begin(name);
     DatasetResult d;
     if (name == "vessels")
     {

@@ -381,6 +381,9 @@ int main(int argc, char* argv[])
   std::vector<DatasetInfo> datasets;
   std::vector<CaseResult> cases;
   bool ok = true;
+  const int tfCount = static_cast<int>(options.TransferFunctions.size());
+  CaseProgress progress(
+    "accelvolume_benchmark_raycast", static_cast<int>(options.Datasets.size()) * tfCount);
   for (const std::string& name : options.Datasets)
   {
     DatasetInfo info;
@@ -388,10 +391,12 @@ int main(int argc, char* argv[])
     if (!LoadDataset(options, name, info, image))
     {
       ok = false;
+      progress.Skip(tfCount);
       continue;
     }
     for (const std::string& tf : options.TransferFunctions)
     {
+      progress.Begin(name + " " + tf);
       cases.push_back(RunCase(options, info, image, tf, window));
       const CaseResult& c = cases.back();
       std::cout << "--- " << name << " " << tf << ": sample distance " << c.SampleDistance << ", "

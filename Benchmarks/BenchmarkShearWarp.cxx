@@ -447,12 +447,17 @@ int main(int argc, char* argv[])
   std::vector<DatasetInfo> datasets;
   std::vector<CaseResult> cases;
   bool ok = true;
+  const int perDataset = static_cast<int>(
+    options.TransferFunctions.size() * options.Shades.size() * options.Sizes.size());
+  CaseProgress progress(
+    "accelvolume_benchmark_shearwarp", static_cast<int>(options.Datasets.size()) * perDataset);
   for (const std::string& name : options.Datasets)
   {
     const std::string file = FindDatasetFile(options.DataDir, name);
     if (options.SkipLarge && VoxelsOfFile(file) > LargeVoxels)
     {
       std::cout << "=== " << name << ": skipped (--skip-large)\n";
+      progress.Skip(perDataset);
       continue;
     }
     DatasetInfo info;
@@ -460,6 +465,7 @@ int main(int argc, char* argv[])
     if (!LoadDataset(options, name, info, image, false))
     {
       ok = false;
+      progress.Skip(perDataset);
       continue;
     }
     std::map<int, std::map<std::string, RunResult>> mpiRuns;
@@ -485,6 +491,7 @@ int main(int argc, char* argv[])
         for (int size : options.Sizes)
         {
           Image ours;
+          progress.Begin(name + " " + tf + (shade ? " shaded " : " ") + std::to_string(size));
           CaseResult c =
             RunCase(options, info, image, tf, shade, size, backend, volpack.get(), ours);
           for (auto& [ranks, runs] : mpiRuns)

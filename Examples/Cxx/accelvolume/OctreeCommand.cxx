@@ -10,6 +10,8 @@
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
 #include <vtkAccelVolumeMinMaxOctree.h>
 
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
@@ -150,6 +152,15 @@ OctreeOptions ParseOctreeOptions(const std::vector<std::string>& arguments, bool
     else if (flag == "--quiet")
     {
       options.quiet = true;
+    }
+    else if (flag == "--progress")
+    {
+      const std::string mode = value(i, flag);
+      if (!ParseProgressMode(mode, options.progress))
+      {
+        throw CliError(
+          ExitUsage, "invalid value '" + mode + "' for --progress (expected auto|off|on)");
+      }
     }
     else
     {
@@ -319,11 +330,22 @@ int RunOctreeCommand(const std::vector<std::string>& arguments)
     octree->SetRenderWindow(window);
   }
 
+  // The bar (stderr; see --progress): one task per build, filled by the octree's ProgressEvent.
+  ProgressBar bar("octree", options.progress);
+  vtkNew<vtkCallbackCommand> onProgress;
+  if (bar.IsShown())
+  {
+    onProgress->SetClientData(&bar);
+    onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data)
+      { static_cast<ProgressBar*>(client)->Update(*static_cast<double*>(data)); });
+    octree->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  }
   for (int k = 0; k < options.repeat; ++k)
   {
     // The octree rebuilds only when the scalars changed: mark them as a new time step would.
     scalars->Modified();
     image->Modified();
+    bar.BeginTask(k, options.repeat, "build");
     const auto start = std::chrono::steady_clock::now();
     const bool built = octree->Update();
     result.buildMs.push_back(MillisecondsSince(start));
@@ -333,6 +355,8 @@ int RunOctreeCommand(const std::vector<std::string>& arguments)
       throw CliError(ExitRuntime, "octree build failed");
     }
   }
+  bar.Finish();
+  octree->RemoveObserver(onProgress);
   result.nodes = octree->GetNumberOfNodes();
   result.depth = octree->GetDepth();
   octree->GetLeafGridSize(result.leafGrid);
@@ -431,6 +455,8 @@ std::string OctreeHelp()
          "\n"
          "Output:\n"
          "  --stats FILE.json          write the results as JSON ('-' = stdout)\n"
+         "  --progress auto|on|off     progress bar of the builds on stderr (default auto: only\n"
+         "                             when stderr is a terminal)\n"
          "  --quiet                    no summary line\n"
          "  --help                     this text\n";
 }

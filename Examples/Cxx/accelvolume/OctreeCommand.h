@@ -2,6 +2,7 @@
 #ifndef accelvolume_cli_OctreeCommand_h
 #define accelvolume_cli_OctreeCommand_h
 
+#include "ProgressBar.h"
 #include "VolumeIO.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
@@ -28,6 +29,7 @@ struct OctreeOptions
   int glBackend = vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC;
   std::string statsPath;
   bool quiet = false;
+  ProgressMode progress = ProgressMode::Automatic; // --progress: a bar on stderr
 };
 
 struct OctreeResult

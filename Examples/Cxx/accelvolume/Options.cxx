@@ -174,7 +174,7 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         options.mapper = ParseChoice<MapperKind>(f, reader.Value(f),
           { { "slice", MapperKind::Slice }, { "raycast", MapperKind::RayCast },
             { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed },
-            { "shearwarp", MapperKind::ShearWarp } });
+            { "shearwarp", MapperKind::ShearWarp }, { "smart", MapperKind::Smart } });
       } },
     { "--blend",
       [&](const std::string& f)
@@ -443,6 +443,15 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         }
       } },
     { "--quiet", [&](const std::string&) { options.quiet = true; } },
+    { "--progress",
+      [&](const std::string& f)
+      {
+        const std::string mode = reader.Value(f);
+        if (!ParseProgressMode(mode, options.progress))
+        {
+          throw Usage("invalid value '" + mode + "' for --progress (expected auto|off|on)");
+        }
+      } },
   };
   while (!reader.Done())
   {
@@ -466,7 +475,9 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
     throw Usage("--mapper vtk-fixed does not support --blend average (VTK's fixed-point mapper "
                 "has composite, MIP, MinIP and additive only)");
   }
-  const bool rayCast = options.mapper == MapperKind::RayCast;
+  // The smart mapper takes the flags of the mappers it may pick (each configures that one).
+  const bool smart = options.mapper == MapperKind::Smart;
+  const bool rayCast = options.mapper == MapperKind::RayCast || smart;
   const bool shearWarp = options.mapper == MapperKind::ShearWarp;
   const bool cpu = rayCast || shearWarp || options.mapper == MapperKind::VTKFixed;
   // Mapper-specific flags that would silently do nothing elsewhere are usage errors.
@@ -478,15 +489,16 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         MapperName(options.mapper));
     }
   };
-  onlyFor(options.haveLeap, "--leap", rayCast, "--mapper raycast");
-  onlyFor(options.haveCellLeap, "--cell-leap", rayCast, "--mapper raycast");
-  onlyFor(
-    options.haveThreads, "--threads", cpu, "the CPU mappers (raycast, shearwarp, vtk-fixed)");
+  onlyFor(options.haveLeap, "--leap", rayCast, "--mapper raycast and smart");
+  onlyFor(options.haveCellLeap, "--cell-leap", rayCast, "--mapper raycast and smart");
+  onlyFor(options.haveThreads, "--threads", cpu,
+    "the CPU mappers (raycast, shearwarp, vtk-fixed) and smart");
   onlyFor(options.haveImageSampleDistance, "--image-sample-distance", cpu && !shearWarp,
-    "--mapper raycast and vtk-fixed");
-  onlyFor(options.haveBalance, "--balance", shearWarp, "--mapper shearwarp");
-  onlyFor(options.haveRunLengthEncoding, "--rle", shearWarp, "--mapper shearwarp");
-  onlyFor(options.haveShading, "--shading", shearWarp, "--mapper shearwarp");
+    "--mapper raycast, vtk-fixed and smart");
+  onlyFor(options.haveBalance, "--balance", shearWarp || smart, "--mapper shearwarp and smart");
+  onlyFor(options.haveRunLengthEncoding, "--rle", shearWarp || smart,
+    "--mapper shearwarp and smart");
+  onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
   if (shearWarp)
   {
@@ -545,6 +557,8 @@ const char* MapperName(MapperKind mapper)
       return "vtk-fixed";
     case MapperKind::ShearWarp:
       return "shearwarp";
+    case MapperKind::Smart:
+      return "smart";
   }
   return "unknown";
 }

@@ -2,6 +2,7 @@
 #ifndef accelvolume_cli_Options_h
 #define accelvolume_cli_Options_h
 
+#include "ProgressBar.h"
 #include "VolumeIO.h"
 
 #include <stdexcept>
@@ -33,7 +34,8 @@ enum class MapperKind
   RayCast, // vtkAccelVolumeRayCastMapper (CPU)
   VTKGPU,  // vtkGPUVolumeRayCastMapper
   VTKFixed, // vtkFixedPointVolumeRayCastMapper
-  ShearWarp // vtkAccelVolumeShearWarpMapper (CPU, parallel projection only)
+  ShearWarp, // vtkAccelVolumeShearWarpMapper (CPU, parallel projection only)
+  Smart      // vtkAccelVolumeSmartMapper (picks slice, raycast or shearwarp per frame)
 };
 
 // vtkAccelVolumeRayCastMapper::LEAP_* (empty-space leaping of --mapper raycast).
@@ -121,6 +123,7 @@ struct Options
   int glBackend = -1;    // vtkAccelVolumeHeadlessRenderWindow::Backends value once parsed
   double background[3] = { 0, 0, 0 };
   bool quiet = false;
+  ProgressMode progress = ProgressMode::Automatic; // --progress: a bar on stderr
 };
 
 // Parses argv (argv[0] is the program). Throws CliError(ExitUsage, ...) for unknown flags, missing

@@ -1,19 +1,18 @@
 // Render: the accelvolume scene (volume, transfer functions, camera), frame timing and PNG output.
 #include "Render.h"
 
+#include "MapperSetup.h"
+#include "ProgressBar.h"
+
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
-#include <vtkAccelVolumeRayCastMapper.h>
-#include <vtkAccelVolumeShearWarpMapper.h>
 #include <vtkAccelVolumeSliceMapper.h>
 
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
-#include <vtkFixedPointVolumeRayCastMapper.h>
-#include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkCommunicator.h>
 #include <vtkLogger.h>
-#include <vtkMatrix3x3.h>
-#include <vtkMatrix4x4.h>
 #include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
@@ -208,100 +207,6 @@ double Milliseconds(std::chrono::steady_clock::duration duration)
   return std::chrono::duration<double, std::milli>(duration).count();
 }
 
-// The ray caster's settings as it holds them and its last frame's counters and timings.
-void ReadRayCastResult(vtkAccelVolumeRayCastMapper* mapper, RenderResult& result)
-{
-  RayCastResult& out = result.rayCast;
-  result.rayCastUsed = true;
-  const int leap = mapper->GetLeapMode();
-  out.leap = leap == vtkAccelVolumeRayCastMapper::LEAP_NONE  ? LeapKind::None
-    : leap == vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP ? LeapKind::DistanceMap
-                                                             : LeapKind::Octree;
-  out.cellLeap = mapper->GetCellLeaping() != 0;
-  out.threads = mapper->GetNumberOfThreads();
-  out.octreeLeafSize = mapper->GetOctreeLeafSize();
-  out.imageSampleDistance = mapper->GetLastImageSampleDistance();
-  out.rays = mapper->GetLastNumberOfRays();
-  out.samples = mapper->GetLastNumberOfSamples();
-  out.leapedOctree = mapper->GetLastSamplesLeapedByOctree();
-  out.leapedDistanceMap = mapper->GetLastSamplesLeapedByDistanceMap();
-  out.leapedCellTable = mapper->GetLastSamplesLeapedByCellTable();
-  out.transparentCellSamples = mapper->GetLastSamplesInTransparentCells();
-  out.terminatedRays = mapper->GetLastNumberOfTerminatedRays();
-  out.renderMs = 1000 * mapper->GetLastRenderTime();
-  out.castMs = 1000 * mapper->GetLastCastTime();
-  out.prepareMs = 1000 * mapper->GetLastPrepareTime();
-  result.sampleDistance = mapper->GetLastSampleDistance();
-}
-
-// The shear-warp mapper's settings as it holds them and its last frame's counters and timings.
-void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper,
-  vtkMultiProcessController* controller, RenderResult& result)
-{
-  ShearWarpResult& out = result.shearWarp;
-  result.shearWarpUsed = true;
-  out.runLengthEncoding = mapper->GetRunLengthEncoding() != 0;
-  out.earlyRayTermination = mapper->GetEarlyRayTermination() != 0;
-  out.balance = mapper->GetLoadBalancing() != 0;
-  out.phongShading = mapper->GetShadingMode() == vtkAccelVolumeShearWarpMapper::SHADING_PHONG;
-  out.threads = mapper->GetNumberOfThreads();
-  out.ranks = controller ? controller->GetNumberOfProcesses() : 1;
-  out.renderMs = 1000 * mapper->GetLastRenderTime();
-  out.encodeMs = 1000 * mapper->GetLastEncodeTime();
-  out.tableMs = 1000 * mapper->GetLastTableTime();
-  out.compositeMs = 1000 * mapper->GetLastCompositeTime();
-  out.gatherMs = 1000 * mapper->GetLastGatherTime();
-  out.warpMs = 1000 * mapper->GetLastWarpTime();
-  out.imbalance = mapper->GetLastImbalance();
-  out.bandMs.clear();
-  for (int band = 0; band < mapper->GetLastNumberOfBands(); ++band)
-  {
-    out.bandMs.push_back(1000 * mapper->GetLastBandTime(band));
-  }
-  out.voxels = mapper->GetLastNumberOfVoxels();
-  out.samples = mapper->GetLastNumberOfSamples();
-  out.skippedPixels = mapper->GetLastNumberOfSkippedPixels();
-  if (out.ranks > 1)
-  {
-    // The mapper counts this rank's bands; the stats report the whole frame (collective: every
-    // rank reads its result).
-    const long long local[3] = { out.voxels, out.samples, out.skippedPixels };
-    long long total[3] = { 0, 0, 0 };
-    controller->AllReduce(local, total, 3, vtkCommunicator::SUM_OP);
-    out.voxels = total[0];
-    out.samples = total[1];
-    out.skippedPixels = total[2];
-  }
-  out.principalAxis = mapper->GetLastPrincipalAxis();
-  out.storedVoxels = mapper->GetLastNumberOfStoredVoxels();
-  out.encodedBytes = mapper->GetEncodedBytes();
-}
-
-// World distance between shear-warp's samples along a ray: one sample per slice of the principal
-// axis, so the ray length across one index step of that axis (0 when unknown).
-double ShearWarpSliceDistance(vtkImageData* image, vtkCamera* camera, int axis)
-{
-  if (axis < 0 || axis > 2)
-  {
-    return 0;
-  }
-  double direction[3];
-  camera->GetDirectionOfProjection(direction);
-  vtkMatrix4x4* indexToWorld = image->GetIndexToPhysicalMatrix();
-  vtkNew<vtkMatrix3x3> linear;
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      linear->SetElement(r, c, indexToWorld->GetElement(r, c));
-    }
-  }
-  linear->Invert();
-  double inIndex[3];
-  linear->MultiplyPoint(direction, inIndex);
-  return std::fabs(inIndex[axis]) > 1e-12 ? 1.0 / std::fabs(inIndex[axis]) : 0;
-}
-
 } // namespace
 
 bool AnyRankFailed(vtkMultiProcessController* controller, bool failed)
@@ -383,104 +288,8 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.sampleDistanceSource = "min-spacing";
   }
 
-  vtkSmartPointer<vtkVolumeMapper> mapper;
-  vtkAccelVolumeSliceMapper* sliceMapper = nullptr;
-  vtkAccelVolumeRayCastMapper* rayCastMapper = nullptr;
-  vtkAccelVolumeShearWarpMapper* shearWarpMapper = nullptr;
-  switch (options.mapper)
-  {
-    case MapperKind::Slice:
-    {
-      auto slice = vtkSmartPointer<vtkAccelVolumeSliceMapper>::New();
-      slice->SetAutoAdjustSampleDistances(0);
-      slice->SetSampleDistance(result.sampleDistance);
-      slice->SetNumberOfSlices(options.slices);
-      slice->SetBoundaryRerendering(options.boundaryRerender);
-      slice->SetEarlyRayTermination(options.earlyRayTermination);
-      if (options.ertInterval > 0)
-      {
-        slice->SetEarlyRayTerminationInterval(options.ertInterval);
-      }
-      slice->SetEmptySpaceSkipping(options.emptySpaceSkipping);
-      slice->SetPrecomputeGradients(options.precomputeGradients);
-      slice->SetJittering(options.jitter);
-      if (options.slabSamples > 0)
-      {
-        slice->SetSlabSamples(options.slabSamples);
-      }
-      slice->SetAdditiveUnitDistance(result.raysumUnit);
-      sliceMapper = slice;
-      mapper = slice;
-      break;
-    }
-    case MapperKind::RayCast:
-    {
-      auto rayCast = vtkSmartPointer<vtkAccelVolumeRayCastMapper>::New();
-      // Deterministic frames: always the still-frame sample distances, whatever the frame time.
-      rayCast->SetAutoAdjustSampleDistances(0);
-      rayCast->SetSampleDistance(result.sampleDistance);
-      rayCast->SetInteractiveSampleDistance(result.sampleDistance);
-      rayCast->SetImageSampleDistance(options.imageSampleDistance);
-      rayCast->SetEarlyRayTermination(options.earlyRayTermination);
-      rayCast->SetAdditiveUnitDistance(result.raysumUnit);
-      rayCast->SetNumberOfThreads(options.threads);
-      // --leap and --cell-leap default to the mapper's own defaults (distance map, on).
-      if (options.haveCellLeap)
-      {
-        rayCast->SetCellLeaping(options.cellLeap);
-      }
-      if (options.haveLeap)
-      {
-        rayCast->SetLeapMode(options.leap == LeapKind::None ? vtkAccelVolumeRayCastMapper::LEAP_NONE
-            : options.leap == LeapKind::Octree ? vtkAccelVolumeRayCastMapper::LEAP_OCTREE
-                                               : vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP);
-      }
-      rayCastMapper = rayCast;
-      mapper = rayCast;
-      break;
-    }
-    case MapperKind::VTKGPU:
-    {
-      auto gpu = vtkSmartPointer<vtkGPUVolumeRayCastMapper>::New();
-      gpu->SetAutoAdjustSampleDistances(0);
-      gpu->SetSampleDistance(static_cast<float>(result.sampleDistance));
-      mapper = gpu;
-      break;
-    }
-    case MapperKind::VTKFixed:
-    {
-      auto fixed = vtkSmartPointer<vtkFixedPointVolumeRayCastMapper>::New();
-      fixed->SetAutoAdjustSampleDistances(0);
-      fixed->SetSampleDistance(static_cast<float>(result.sampleDistance));
-      fixed->SetInteractiveSampleDistance(static_cast<float>(result.sampleDistance));
-      fixed->SetImageSampleDistance(static_cast<float>(options.imageSampleDistance));
-      if (options.threads > 0)
-      {
-        fixed->SetNumberOfThreads(options.threads);
-      }
-      mapper = fixed;
-      break;
-    }
-    case MapperKind::ShearWarp:
-    {
-      auto shearWarp = vtkSmartPointer<vtkAccelVolumeShearWarpMapper>::New();
-      shearWarp->SetNumberOfThreads(options.threads);
-      shearWarp->SetEarlyRayTermination(options.earlyRayTermination);
-      shearWarp->SetRunLengthEncoding(options.runLengthEncoding);
-      shearWarp->SetLoadBalancing(options.balance);
-      shearWarp->SetShadingMode(options.phongShading
-          ? vtkAccelVolumeShearWarpMapper::SHADING_PHONG
-          : vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE);
-      if (controller)
-      {
-        shearWarp->SetController(controller);
-      }
-      result.sampleDistanceSource = "slice-spacing";
-      shearWarpMapper = shearWarp;
-      mapper = shearWarp;
-      break;
-    }
-  }
+  const MapperSet mappers = CreateMapper(options, result, controller);
+  vtkVolumeMapper* mapper = mappers.Mapper;
   switch (options.blend)
   {
     case BlendKind::MIP:
@@ -557,26 +366,34 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   };
   agree("cannot set up the render window");
 
-  vtkNew<vtkUnsignedCharArray> pixel;
-  auto renderFrame = [&]()
+  // The bar (stderr; see options.progress): one task per frame, the warm-up first, each filled by
+  // the mapper's ProgressEvent (VTK's own mappers send none: their frames fill at once).
+  ProgressBar bar("render", options.progress);
+  vtkNew<vtkCallbackCommand> onProgress;
+  if (bar.IsShown())
   {
+    onProgress->SetClientData(&bar);
+    onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data)
+      { static_cast<ProgressBar*>(client)->Update(*static_cast<double*>(data)); });
+    mapper->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  }
+  const int tasks = options.frames + 1;
+
+  vtkNew<vtkUnsignedCharArray> pixel;
+  auto renderFrame = [&](int task)
+  {
+    bar.BeginTask(task, tasks, task == 0 ? "first frame" : "frame");
     const auto start = std::chrono::steady_clock::now();
     window->Render();
     // Reading one pixel back waits for the GPU, so the frame time includes its work.
     window->GetPixelData(0, 0, 0, 0, 0, pixel, 0);
     const double ms = Milliseconds(std::chrono::steady_clock::now() - start);
+    bar.Update(1.0);
     agree("render failed");
     return ms;
   };
-  result.firstFrameMs = renderFrame();
-  if (rayCastMapper)
-  {
-    result.rayCast.firstPrepareMs = 1000 * rayCastMapper->GetLastPrepareTime();
-  }
-  if (shearWarpMapper)
-  {
-    result.shearWarp.firstEncodeMs = 1000 * shearWarpMapper->GetLastEncodeTime();
-  }
+  result.firstFrameMs = renderFrame(0);
+  ReadFirstFrame(mappers, result);
   for (int frame = 0; frame < options.frames; ++frame)
   {
     if (frame > 0)
@@ -584,8 +401,10 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
       camera->Azimuth(2.0);
       renderer->ResetCameraClippingRange();
     }
-    result.frameMs.push_back(renderFrame());
+    result.frameMs.push_back(renderFrame(frame + 1));
   }
+  bar.Finish();
+  mapper->RemoveObserver(onProgress);
 
   auto* headless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
   if (headless)
@@ -598,30 +417,15 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     const std::string name = window->GetClassName();
     result.glBackend = name.find("XOpenGL") != std::string::npos ? "x" : name;
   }
+  ReadMapperResults(mappers, image, camera, controller, result);
   const char* rendererName = nullptr;
-  if (sliceMapper)
+  if (result.sliceUsed)
   {
-    rendererName = sliceMapper->GetOpenGLRenderer();
-    result.sampleDistance = sliceMapper->GetLastSliceSpacing();
-    result.slices = sliceMapper->GetLastNumberOfSlices();
-    result.slabSamples = sliceMapper->GetSlabSamples();
-    result.terminationPasses = sliceMapper->GetLastNumberOfTerminationPasses();
-    result.transparentLeafFraction = sliceMapper->GetLastTransparentLeafFraction();
-    result.proxyAreaFraction = sliceMapper->GetLastProxyAreaFraction();
+    rendererName = mappers.Slice->GetOpenGLRenderer();
   }
   else if (headless)
   {
     rendererName = headless->GetOpenGLRendererString();
-  }
-  if (rayCastMapper)
-  {
-    ReadRayCastResult(rayCastMapper, result);
-  }
-  if (shearWarpMapper)
-  {
-    ReadShearWarpResult(shearWarpMapper, controller, result);
-    result.sampleDistance =
-      ShearWarpSliceDistance(image, camera, shearWarpMapper->GetLastPrincipalAxis());
   }
   result.glRenderer =
     rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);

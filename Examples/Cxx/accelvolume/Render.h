@@ -57,6 +57,9 @@ struct RayCastResult
   long long leapedCellTable = 0;
   long long transparentCellSamples = 0;
   long long terminatedRays = 0;
+  long long octreeLeaps = 0;      // leaps taken (each skips >= 1 sample)
+  long long distanceMapLeaps = 0;
+  long long accelerationBytes = 0; // held by the octree, cell table / distance map, gradients
   double renderMs = 0;
   double castMs = 0;
   double prepareMs = 0;
@@ -91,6 +94,23 @@ struct ShearWarpResult
   long long encodedBytes = 0;
 };
 
+// The slice mapper's last frame (--mapper slice, or smart when it chose slice); its slice count,
+// passes and skipping fractions are RenderResult's own fields.
+struct SliceResult
+{
+  double renderMs = 0;
+  int proxyPolygons = 0;
+  int boundaryFaces = 0;
+};
+
+// --mapper smart: what the last frame chose and why, and the smart mapper's own time.
+struct SmartResult
+{
+  std::string mode = "none"; // slice, raycast or shearwarp
+  std::string reason;
+  double renderMs = 0;
+};
+
 struct RenderResult
 {
   double firstFrameMs = 0;
@@ -114,12 +134,18 @@ struct RenderResult
   RayCastResult rayCast; // when rayCastUsed
   bool shearWarpUsed = false;
   ShearWarpResult shearWarp; // when shearWarpUsed
+  bool sliceUsed = false;
+  SliceResult slice; // when sliceUsed
+  bool smartUsed = false;
+  SmartResult smart; // when smartUsed
+  double mapperRenderMs = 0; // the mapper's own time for the last frame (every mapper)
 };
 
 // Throws CliError(ExitUsage) when the crop box lies outside the volume or is inverted.
 void CheckCrop(const Options& options, vtkImageData* image);
 
-// Renders one warm-up frame and options.frames timed frames, writing options.outPath if set, with
+// Renders one warm-up frame and options.frames timed frames (a progress bar on stderr as
+// options.progress says, fed by the mapper's ProgressEvent), writing options.outPath if set, with
 // the transfer function tf (LoadTransferFunction). Throws CliError(ExitRuntime) when VTK reports an
 // error while rendering or writing. controller (--mpi, shear-warp only): every rank calls this
 // with the same arguments; the ranks agree after every frame whether one of them failed (so none

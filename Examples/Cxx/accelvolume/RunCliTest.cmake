@@ -34,6 +34,16 @@
 #   SHEARWARP_SAME_AS another --stats file under WORK whose shearwarp samples and skipped_pixels
 #            must equal these (e.g. one process's against the MPI ranks' sum)
 #   PARALLEL expected camera.parallel (true or false) (optional)
+#   SLICE    OBJECT or NULL: expected type of the --stats "slice" object (optional); OBJECT also
+#            requires its keys, render_ms and slices > 0
+#   SMART    OBJECT or NULL: expected type of the --stats "smart" object (optional); OBJECT also
+#            requires mode, reason and render_ms > 0
+#   SMART_MODE expected smart.mode (slice, raycast or shearwarp) (optional)
+#   (every --stats file must hold mapper_render_ms > 0, the mapper's own last render time)
+#   PTY      the `script` program (util-linux): the first command runs under a pseudo-terminal,
+#            so stderr is a terminal; stdout and stderr then both arrive in PTY output (optional)
+#   PTY_REGEX, PTY_NOT_REGEX regular expressions the PTY output must / must not match
+#   STDERR_REGEX a regular expression stderr must match, instead of being empty (optional)
 cmake_minimum_required(VERSION 3.19)
 
 if (NOT DEFINED EXPECT)
@@ -70,8 +80,20 @@ string(REPLACE "@WORK@" "${WORK}" TF "${TF}")
 string(REPLACE "|" ";" arguments "${ARGS}")
 string(REPLACE "|" ";" launcher "${LAUNCHER}")
 
-execute_process(COMMAND ${launcher} "${EXE}" ${arguments}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+if (PTY)
+  # script -e returns the command's exit code; each argument is single-quoted for its shell.
+  set(command_line "")
+  foreach (argument IN LISTS arguments)
+    string(REPLACE "'" "'\\''" argument "${argument}")
+    string(APPEND command_line " '${argument}'")
+  endforeach ()
+  execute_process(COMMAND "${PTY}" -qec "'${EXE}'${command_line}" /dev/null
+    RESULT_VARIABLE rc OUTPUT_VARIABLE pty_out ERROR_VARIABLE err TIMEOUT 240)
+  set(out "")
+else ()
+  execute_process(COMMAND ${launcher} "${EXE}" ${arguments}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 240)
+endif ()
 if (LAUNCHER)
   # mpiexec's own notes (a rank exited non-zero, ...) come between lines of dashes.
   string(REPLACE ";" "\\;" lines "${err}")
@@ -144,7 +166,21 @@ function(check_stderr text)
     fail("expected no stderr output (VTK messages must not reach the terminal)")
   endif ()
 endfunction()
-check_stderr("${err}")
+if (STDERR_REGEX)
+  if (NOT err MATCHES "${STDERR_REGEX}")
+    fail("stderr does not match '${STDERR_REGEX}'")
+  endif ()
+else ()
+  check_stderr("${err}")
+endif ()
+if (PTY)
+  if (PTY_REGEX AND NOT pty_out MATCHES "${PTY_REGEX}")
+    fail("the terminal output does not match '${PTY_REGEX}':\n${pty_out}")
+  endif ()
+  if (PTY_NOT_REGEX AND pty_out MATCHES "${PTY_NOT_REGEX}")
+    fail("the terminal output matches '${PTY_NOT_REGEX}':\n${pty_out}")
+  endif ()
+endif ()
 
 foreach (run RANGE 1 4)
   if (DEFINED EXTRA_RUN_${run})
@@ -199,7 +235,7 @@ if (STATS)
   endif ()
   foreach (key IN ITEMS mapper blend width height frames first_frame_ms gl_renderer gl_backend
       dims type spacing input sample_distance slices boundary_rerender tf shade gradient_opacity
-      lighting crop camera threads image_sample_distance raycast shearwarp)
+      lighting crop camera threads image_sample_distance raycast shearwarp slice smart)
     string(JSON value ERROR_VARIABLE json_error GET "${json}" ${key})
     if (json_error)
       fail("--stats lacks '${key}': ${json_error}\n${json}")
@@ -211,6 +247,40 @@ if (STATS)
       fail("--stats ms_per_frame.${key} missing or not positive ('${value}')\n${json}")
     endif ()
   endforeach ()
+  string(JSON value ERROR_VARIABLE json_error GET "${json}" mapper_render_ms)
+  if (json_error OR NOT value GREATER 0)
+    fail("--stats mapper_render_ms missing or not positive ('${value}')\n${json}")
+  endif ()
+  foreach (section IN ITEMS SLICE SMART)
+    if (DEFINED ${section})
+      string(TOLOWER "${section}" key)
+      string(JSON section_type TYPE "${json}" ${key})
+      if (NOT section_type STREQUAL "${${section}}")
+        fail("--stats ${key} is ${section_type}, expected ${${section}}\n${json}")
+      endif ()
+    endif ()
+  endforeach ()
+  if (SLICE STREQUAL "OBJECT")
+    check_stats_section("${json}" slice "render_ms"
+      "slices;proxy_polygons;boundary_faces;termination_passes" "slices")
+    string(JSON value GET "${json}" slice render_ms)
+    if (NOT value GREATER 0)
+      fail("--stats slice.render_ms is '${value}', expected > 0\n${json}")
+    endif ()
+  endif ()
+  if (SMART STREQUAL "OBJECT")
+    check_stats_section("${json}" smart "mode;reason;render_ms" "" "")
+    string(JSON value GET "${json}" smart render_ms)
+    if (NOT value GREATER 0)
+      fail("--stats smart.render_ms is '${value}', expected > 0\n${json}")
+    endif ()
+    if (SMART_MODE)
+      string(JSON value GET "${json}" smart mode)
+      if (NOT value STREQUAL "${SMART_MODE}")
+        fail("--stats smart.mode is '${value}', expected '${SMART_MODE}'\n${json}")
+      endif ()
+    endif ()
+  endif ()
   foreach (key IN ITEMS azimuth elevation roll zoom parallel)
     string(JSON value ERROR_VARIABLE json_error GET "${json}" camera ${key})
     if (json_error)
@@ -299,7 +369,7 @@ if (STATS)
     # rays are always positive: a raycast render that casts none drew nothing.
     check_stats_section("${json}" raycast
       "leap;cell_leap;threads;octree_leaf_size;image_sample_distance;cast_ms;prepare_ms"
-      "rays;samples;leaped_octree;leaped_distance_map;leaped_cell_table;transparent_cell_samples;terminated_rays"
+      "rays;samples;leaped_octree;leaped_distance_map;leaped_cell_table;transparent_cell_samples;terminated_rays;octree_leaps;distance_map_leaps;acceleration_bytes"
       "rays,${RAYCAST_POSITIVE}")
     string(REPLACE "," ";" zero "${RAYCAST_ZERO}")
     list(REMOVE_ITEM zero "")

@@ -99,6 +99,9 @@ std::string RayCastObject(const RenderResult& result)
        << ", \"leaped_cell_table\": " << r.leapedCellTable
        << ", \"transparent_cell_samples\": " << r.transparentCellSamples
        << ", \"terminated_rays\": " << r.terminatedRays
+       << ", \"octree_leaps\": " << r.octreeLeaps
+       << ", \"distance_map_leaps\": " << r.distanceMapLeaps
+       << ", \"acceleration_bytes\": " << r.accelerationBytes
        << ",\n    \"render_ms\": " << Number(r.renderMs) << ", \"cast_ms\": " << Number(r.castMs)
        << ", \"prepare_ms\": " << Number(r.prepareMs)
        << ", \"first_prepare_ms\": " << Number(r.firstPrepareMs) << "}";
@@ -139,6 +142,38 @@ std::string ShearWarpObject(const RenderResult& result)
                                                        : std::string("null"))
        << ", \"stored_voxels\": " << w.storedVoxels << ", \"encoded_bytes\": " << w.encodedBytes
        << "}";
+  return text.str();
+}
+
+// The "slice" object: the slice mapper's last frame (its slice count, passes and skipping
+// fractions are top-level keys), or null.
+std::string SliceObject(const RenderResult& result)
+{
+  if (!result.sliceUsed)
+  {
+    return "null";
+  }
+  const SliceResult& s = result.slice;
+  std::ostringstream text;
+  text << "{\"render_ms\": " << Number(s.renderMs) << ", \"slices\": " << result.slices
+       << ", \"proxy_polygons\": " << s.proxyPolygons
+       << ", \"boundary_faces\": " << s.boundaryFaces
+       << ", \"termination_passes\": " << result.terminationPasses << "}";
+  return text.str();
+}
+
+// The "smart" object: the smart mapper's choice for the last frame, why, and its own time (the
+// chosen mapper's counters are in its own object), or null.
+std::string SmartObject(const RenderResult& result)
+{
+  if (!result.smartUsed)
+  {
+    return "null";
+  }
+  const SmartResult& s = result.smart;
+  std::ostringstream text;
+  text << "{\"mode\": " << JsonString(s.mode) << ", \"reason\": " << JsonString(s.reason)
+       << ", \"render_ms\": " << Number(s.renderMs) << "}";
   return text.str();
 }
 
@@ -199,8 +234,9 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
   const double dimsDouble[3] = { double(dims[0]), double(dims[1]), double(dims[2]) };
   const bool phantom = options.volume.inputPath.empty();
   const std::string input = phantom ? options.volume.phantom : options.volume.inputPath;
+  const bool smart = options.mapper == MapperKind::Smart;
   const bool sampledImage =
-    options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed;
+    options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed || smart;
   const bool cpu = sampledImage || options.mapper == MapperKind::ShearWarp;
   std::string frameList;
   for (std::size_t i = 0; i < result.frameMs.size() && i < 10000; ++i)
@@ -219,6 +255,7 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << ", \"min\": " << Number(frames.min) << ", \"max\": " << Number(frames.max)
          << ", \"mean\": " << Number(frames.mean) << "},\n"
          << "  \"first_frame_ms\": " << Number(result.firstFrameMs) << ",\n"
+         << "  \"mapper_render_ms\": " << Number(result.mapperRenderMs) << ",\n"
          << "  \"frame_ms\": [" << frameList << "],\n"
          << "  \"gl_renderer\": " << JsonString(result.glRenderer) << ",\n"
          << "  \"gl_backend\": " << JsonString(result.glBackend) << ",\n"
@@ -231,7 +268,7 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"scalar_range\": " << Array(result.scalarRange, 2) << ",\n"
          << "  \"window\": " << Array(result.window, 2) << ",\n"
          << "  \"raysum_unit\": "
-         << (options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast
+         << (options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast || smart
                 ? Number(result.raysumUnit)
                 : "null")
          << ",\n"
@@ -247,8 +284,9 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << "  \"slab_samples\": "
          << (result.slabSamples >= 0 ? std::to_string(result.slabSamples) : "null") << ",\n"
          << "  \"boundary_rerender\": "
-         << (options.mapper == MapperKind::Slice ? (options.boundaryRerender ? "true" : "false")
-                                                 : "null")
+         << (options.mapper == MapperKind::Slice || smart
+                ? (options.boundaryRerender ? "true" : "false")
+                : "null")
          << ",\n"
          << "  \"tf\": "
          << (options.transferFunction.empty() ? "null" : JsonString(options.transferFunction))
@@ -276,6 +314,8 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
          << ",\n"
          << "  \"raycast\": " << RayCastObject(result) << ",\n"
          << "  \"shearwarp\": " << ShearWarpObject(result) << ",\n"
+         << "  \"slice\": " << SliceObject(result) << ",\n"
+         << "  \"smart\": " << SmartObject(result) << ",\n"
          << "  \"vtk_warnings\": " << warnings << "\n"
          << "}\n";
 }
@@ -295,6 +335,10 @@ std::string Summary(const Options& options, vtkImageData* image, const RenderRes
   if (result.slices >= 0)
   {
     text << ", " << result.slices << " slices";
+  }
+  if (result.smartUsed)
+  {
+    text << ", chose " << result.smart.mode;
   }
   if (result.rayCastUsed)
   {

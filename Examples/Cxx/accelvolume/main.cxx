@@ -268,6 +268,7 @@ int Run(int argc, char* argv[])
       options.outPath.clear();
       options.statsPath.clear();
       options.quiet = true;
+      options.progress = ProgressMode::Off; // one bar: rank 0's
     }
   }
   vtkMultiProcessController* controller = mpi ? mpi->Get() : nullptr;
