@@ -1,0 +1,218 @@
+// ParaView's image volume representation with AccelVolume's smart mapper as the volume mapper.
+#include "vtkAccelVolumeRepresentation.h"
+
+#include "vtkAccelVolumeRayCastMapper.h"
+#include "vtkAccelVolumeShearWarpMapper.h"
+#include "vtkAccelVolumeSliceMapper.h"
+#include "vtkAccelVolumeSmartMapper.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkAccelVolumeRepresentation);
+
+vtkAccelVolumeRepresentation::vtkAccelVolumeRepresentation()
+{
+  // The superclass made a vtkMultiBlockVolumeMapper; every later use (input, scalar array,
+  // blend mode, cropping, Actor->SetMapper in UpdateMapperParameters) goes through this
+  // pointer, so replacing it is all it takes to render with our mapper.
+  this->VolumeMapper = this->Mapper.GetPointer();
+}
+
+vtkAccelVolumeRepresentation::~vtkAccelVolumeRepresentation() = default;
+
+vtkAccelVolumeSmartMapper* vtkAccelVolumeRepresentation::GetAccelVolumeMapper()
+{
+  return this->Mapper;
+}
+
+void vtkAccelVolumeRepresentation::SetMapperType(int type)
+{
+  type =
+    std::min(std::max(type, static_cast<int>(MAPPER_SMART)), static_cast<int>(MAPPER_SHEARWARP));
+  if (type != this->MapperType)
+  {
+    this->MapperType = type;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeRepresentation::SetEarlyRayTermination(bool enable)
+{
+  if (enable != this->EarlyRayTermination)
+  {
+    this->EarlyRayTermination = enable;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeRepresentation::SetEmptySpaceSkipping(int mode)
+{
+  mode = std::min(std::max(mode, static_cast<int>(vtkAccelVolumeSliceMapper::SKIP_NONE)),
+    static_cast<int>(vtkAccelVolumeSliceMapper::SKIP_BOTH));
+  if (mode != this->EmptySpaceSkipping)
+  {
+    this->EmptySpaceSkipping = mode;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeRepresentation::SetBoundaryRerendering(bool enable)
+{
+  if (enable != this->BoundaryRerendering)
+  {
+    this->BoundaryRerendering = enable;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeRepresentation::SetNumberOfThreads(int threads)
+{
+  threads = std::min(std::max(threads, 0), 1024);
+  if (threads != this->NumberOfThreads)
+  {
+    this->NumberOfThreads = threads;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeRepresentation::SetSampleDistance(double distance)
+{
+  distance = std::max(distance, 0.0);
+  if (distance != this->SampleDistance)
+  {
+    this->SampleDistance = distance;
+    this->Modified();
+  }
+}
+
+int vtkAccelVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const int result = this->Superclass::RequestData(request, inputVector, outputVector);
+  auto* image = vtkImageData::SafeDownCast(this->Cache);
+  if (!image)
+  {
+    return result;
+  }
+  int extent[6];
+  image->GetExtent(extent);
+  if (extent[0] == 0 && extent[2] == 0 && extent[4] == 0)
+  {
+    return result;
+  }
+  // A shallow copy (same arrays, same point order) whose first point keeps its world position;
+  // NewInstance keeps a vtkUniformGrid's blanking.
+  vtkSmartPointer<vtkImageData> shifted = vtkSmartPointer<vtkImageData>::Take(image->NewInstance());
+  shifted->ShallowCopy(image);
+  double origin[3];
+  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], origin);
+  shifted->SetOrigin(origin);
+  shifted->SetExtent(0, extent[1] - extent[0], 0, extent[3] - extent[2], 0, extent[5] - extent[4]);
+  this->Cache = shifted;
+  this->VolumeMapper->SetInputData(shifted);
+  return result;
+}
+
+void vtkAccelVolumeRepresentation::UpdateMapperParameters()
+{
+  this->Superclass::UpdateMapperParameters();
+
+  this->Mapper->SetRequestedRenderMode(this->MapperType);
+
+  // The automatic sample distance is the smallest voxel spacing. Only ranks holding data
+  // have the cache; the others render the outline only.
+  double distance = this->SampleDistance;
+  if (distance <= 0.0)
+  {
+    if (auto* image = vtkImageData::SafeDownCast(this->Cache))
+    {
+      const double* spacing = image->GetSpacing();
+      distance = std::min({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
+    }
+  }
+
+  vtkAccelVolumeSliceMapper* slice = this->Mapper->GetSliceMapper();
+  slice->SetEarlyRayTermination(this->EarlyRayTermination);
+  slice->SetEmptySpaceSkipping(this->EmptySpaceSkipping);
+  slice->SetBoundaryRerendering(this->BoundaryRerendering);
+  // Automatic: the slice mapper's own adjustment (smallest spacing, coarser while interacting).
+  slice->SetAutoAdjustSampleDistances(this->SampleDistance <= 0.0);
+  if (this->SampleDistance > 0.0)
+  {
+    slice->SetSampleDistance(this->SampleDistance);
+  }
+
+  vtkAccelVolumeRayCastMapper* rayCast = this->Mapper->GetRayCastMapper();
+  rayCast->SetEarlyRayTermination(this->EarlyRayTermination);
+  rayCast->SetNumberOfThreads(this->NumberOfThreads);
+  if (distance > 0.0)
+  {
+    // Still frames use SampleDistance; interactive ones twice it, as the mapper's defaults.
+    rayCast->SetSampleDistance(distance);
+    rayCast->SetInteractiveSampleDistance(2.0 * distance);
+  }
+
+  vtkAccelVolumeShearWarpMapper* shearWarp = this->Mapper->GetShearWarpMapper();
+  shearWarp->SetEarlyRayTermination(this->EarlyRayTermination);
+  shearWarp->SetNumberOfThreads(this->NumberOfThreads);
+}
+
+int vtkAccelVolumeRepresentation::GetLastRenderMode()
+{
+  return this->Mapper->GetLastRenderMode();
+}
+
+const char* vtkAccelVolumeRepresentation::GetLastChoiceReason()
+{
+  return this->Mapper->GetLastChoiceReason();
+}
+
+double vtkAccelVolumeRepresentation::GetLastRenderTime()
+{
+  switch (this->Mapper->GetLastRenderMode())
+  {
+    case MAPPER_SLICE:
+      return this->Mapper->GetSliceMapper()->GetLastRenderTime();
+    case MAPPER_RAYCAST:
+      return this->Mapper->GetRayCastMapper()->GetLastRenderTime();
+    case MAPPER_SHEARWARP:
+      return this->Mapper->GetShearWarpMapper()->GetLastRenderTime();
+    default:
+      return 0.0;
+  }
+}
+
+double vtkAccelVolumeRepresentation::GetLastRenderWork()
+{
+  switch (this->Mapper->GetLastRenderMode())
+  {
+    case MAPPER_SLICE:
+      return this->Mapper->GetSliceMapper()->GetLastNumberOfSlices();
+    case MAPPER_RAYCAST:
+      return static_cast<double>(this->Mapper->GetRayCastMapper()->GetLastNumberOfSamples());
+    case MAPPER_SHEARWARP:
+      return static_cast<double>(this->Mapper->GetShearWarpMapper()->GetLastNumberOfSamples());
+    default:
+      return 0.0;
+  }
+}
+
+void vtkAccelVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent
+     << "MapperType: " << vtkAccelVolumeSmartMapper::GetRenderModeAsString(this->MapperType)
+     << "\n";
+  os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "Mapper:\n";
+  this->Mapper->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,43 @@
+#!/bin/sh
+# Runs a pvbatch script under a private X server: the ctest of the ParaView plugin.
+#   run-pvbatch.sh <paraview-python root> <pvbatch> <xvfb-run> <script> [script arguments...]
+# <paraview-python root> is Debian's python3-paraview unpacked with dpkg -x (scripts/setup.sh):
+# pvbatch imports ParaView's Python package from <root>/usr/lib/python3/dist-packages.
+# Exits 125 (ctest: skipped) with the reason when something it needs is missing. Debian's
+# pvbatch aborts without an X display, hence xvfb-run; concurrent xvfb-run calls can race for
+# a display number ("bad X server connection", "Xvfb failed to start"), so such a start is
+# retried.
+set -u
+root=$1 pvbatch=$2 xvfb_run=$3
+shift 3
+
+skip() {
+  echo "SKIPPED: $*"
+  exit 125
+}
+python_dir="$root/usr/lib/python3/dist-packages"
+[ -f "$python_dir/paraview/simple.py" ] ||
+  skip "ParaView's Python package is not in $python_dir: run scripts/setup.sh as root (it" \
+    "unpacks python3-paraview there) or configure with -DACCELVOLUME_PARAVIEW_PYTHON_ROOT=<dir>"
+[ -x "$pvbatch" ] || skip "pvbatch not found ($pvbatch): install Debian's paraview package"
+[ -x "$xvfb_run" ] || skip "xvfb-run not found ($xvfb_run): install xvfb and xauth"
+
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+attempt=1
+while :; do
+  # A display number of our own (from the process id) makes collisions unlikely to begin with.
+  PYTHONPATH="$python_dir${PYTHONPATH:+:$PYTHONPATH}" \
+    "$xvfb_run" -a -n $((100 + $$ % 800)) -s "-screen 0 1024x768x24" \
+    "$pvbatch" "$@" >"$log" 2>&1
+  status=$?
+  cat "$log"
+  if [ "$status" -ne 0 ] && [ "$attempt" -lt 3 ] &&
+    grep -q -e "bad X server connection" -e "Xvfb failed to start" "$log"; then
+    echo "run-pvbatch.sh: the X server could not be reached; trying again"
+    attempt=$((attempt + 1))
+    sleep 2
+    continue
+  fi
+  exit "$status"
+done
