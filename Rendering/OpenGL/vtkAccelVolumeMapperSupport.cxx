@@ -132,6 +132,19 @@ accelvolume::Box vtkAccelVolumeIndexBox(const int dims[3])
   return box;
 }
 
+void vtkAccelVolumeIndexToWorld(vtkVolume* volume, vtkImageData* input, vtkMatrix4x4* indexToWorld)
+{
+  const int* extent = input->GetExtent();
+  vtkNew<vtkMatrix4x4> extentShift;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    extentShift->SetElement(axis, 3, extent[2 * axis]);
+  }
+  vtkNew<vtkMatrix4x4> indexToPhysical;
+  vtkMatrix4x4::Multiply4x4(input->GetIndexToPhysicalMatrix(), extentShift, indexToPhysical);
+  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), indexToPhysical, indexToWorld);
+}
+
 std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox)
 {
@@ -144,12 +157,14 @@ std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   double spacing[3];
   input->GetOrigin(origin);
   input->GetSpacing(spacing);
+  const int* extent = input->GetExtent();
   const double* planes = mapper->GetCroppingRegionPlanes();
   double indexPlanes[6];
   for (int i = 0; i < 6; ++i)
   {
     const int axis = i / 2;
-    indexPlanes[i] = (planes[i] - origin[axis]) / spacing[axis];
+    // Structured coordinate (extent-based) to 0-based index.
+    indexPlanes[i] = (planes[i] - origin[axis]) / spacing[axis] - extent[2 * axis];
   }
   return accelvolume::CroppingRegionBoxes(volumeBox, indexPlanes, mapper->GetCroppingRegionFlags());
 }

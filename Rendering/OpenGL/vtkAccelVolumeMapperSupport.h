@@ -60,6 +60,11 @@ std::vector<float> vtkAccelVolumeTransferTable(
 // The volume's index-space box; a one-voxel axis becomes a slab one voxel thick.
 accelvolume::Box vtkAccelVolumeIndexBox(const int dims[3]);
 
+// Index (0-based voxel numbers, as the mappers' textures and encodings count them) to world: the
+// prop's matrix times the image's index-to-physical matrix, which VTK indexes by extent (voxel
+// (0,0,0) of the array is structured point (extent[0], extent[2], extent[4])).
+void vtkAccelVolumeIndexToWorld(vtkVolume* volume, vtkImageData* input, vtkMatrix4x4* indexToWorld);
+
 // The visible cropping regions (or the whole box) in index coordinates.
 std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox);

@@ -168,7 +168,7 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   // The caster rebuilds its octree / classification only when the versions change.
   internals.Inputs.UpdateVolume(input, scalars);
   vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
   vtkNew<vtkMatrix4x4> worldToIndex;
   vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);

@@ -185,7 +185,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
 
   internals.Inputs.UpdateVolume(input, scalars); // encodings are rebuilt only on change
   vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
 
   accelvolume::RayCastTransfer transfer;

@@ -295,7 +295,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 
   // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
   vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkMatrix4x4::Multiply4x4(volume->GetMatrix(), input->GetIndexToPhysicalMatrix(), indexToWorld);
+  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
   int width = 0;
   int height = 0;
   int lowerLeft[2] = { 0, 0 };
