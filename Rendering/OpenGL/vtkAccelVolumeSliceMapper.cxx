@@ -107,7 +107,8 @@ vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
 vtkAccelVolumeSliceMapper::vtkAccelVolumeSliceMapper()
   : Internals(new vtkInternals)
 {
-  this->BlendMode = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
+  // BlendMode keeps vtkVolumeMapper's default, composite, like every VTK volume mapper: a
+  // drop-in replacement must draw the same picture without being told the blend mode.
 }
 
 vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper() = default;

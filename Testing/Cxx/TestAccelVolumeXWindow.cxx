@@ -22,6 +22,7 @@ int TestAccelVolumeXWindow(int, char*[])
   auto image = MakePhantom("vessels", 40, 36, 32);
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
+  mapper->SetBlendModeToMaximumIntensity();
   mapper->SetAutoAdjustSampleDistances(0);
   mapper->SetSampleDistance(0.25);
   vtkNew<vtkVolume> volume;

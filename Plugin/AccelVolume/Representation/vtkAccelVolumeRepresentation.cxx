@@ -90,34 +90,6 @@ void vtkAccelVolumeRepresentation::SetSampleDistance(double distance)
   }
 }
 
-int vtkAccelVolumeRepresentation::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  const int result = this->Superclass::RequestData(request, inputVector, outputVector);
-  auto* image = vtkImageData::SafeDownCast(this->Cache);
-  if (!image)
-  {
-    return result;
-  }
-  int extent[6];
-  image->GetExtent(extent);
-  if (extent[0] == 0 && extent[2] == 0 && extent[4] == 0)
-  {
-    return result;
-  }
-  // A shallow copy (same arrays, same point order) whose first point keeps its world position;
-  // NewInstance keeps a vtkUniformGrid's blanking.
-  vtkSmartPointer<vtkImageData> shifted = vtkSmartPointer<vtkImageData>::Take(image->NewInstance());
-  shifted->ShallowCopy(image);
-  double origin[3];
-  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], origin);
-  shifted->SetOrigin(origin);
-  shifted->SetExtent(0, extent[1] - extent[0], 0, extent[3] - extent[2], 0, extent[5] - extent[4]);
-  this->Cache = shifted;
-  this->VolumeMapper->SetInputData(shifted);
-  return result;
-}
-
 void vtkAccelVolumeRepresentation::UpdateMapperParameters()
 {
   this->Superclass::UpdateMapperParameters();

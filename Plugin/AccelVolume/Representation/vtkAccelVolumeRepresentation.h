@@ -106,14 +106,6 @@ protected:
   vtkAccelVolumeRepresentation();
   ~vtkAccelVolumeRepresentation() override;
 
-  /**
-   * Gives the mapper the image with its extent moved to start at 0 (and the origin moved to
-   * match, so nothing moves in the world): AccelVolume's mappers take voxel (0, 0, 0) at the
-   * image's origin, but ParaView's data often starts elsewhere (the Wavelet source at -10).
-   */
-  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-    vtkInformationVector* outputVector) override;
-
   /** Also pushes the automatic sample distance, which depends on the data's spacing. */
   void UpdateMapperParameters() override;
 
