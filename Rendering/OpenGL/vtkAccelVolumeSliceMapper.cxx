@@ -71,6 +71,29 @@ void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
   }
 }
 
+// Appends a polygon as a triangle fan of proxy vertices (see vtkAccelVolumeSliceFrame::
+// VertexFloats); depth is the eye depth of the slice plane the polygon lies on minus the frame's
+// reference depth (0 for cut faces).
+void AppendProxyPolygon(
+  const accelvolume::Polygon& polygon, double depth, std::vector<float>& vertices)
+{
+  const float planeDepth = static_cast<float>(depth);
+  for (size_t i = 1; i + 1 < polygon.size(); ++i)
+  {
+    for (const accelvolume::Vec3* v : { &polygon[0], &polygon[i], &polygon[i + 1] })
+    {
+      vertices.insert(vertices.end(),
+        { static_cast<float>(v->x), static_cast<float>(v->y), static_cast<float>(v->z),
+          planeDepth });
+    }
+  }
+}
+
+int VertexCount(const std::vector<float>& vertices)
+{
+  return static_cast<int>(vertices.size() / vtkAccelVolumeSliceFrame::VertexFloats);
+}
+
 accelvolume::Vec3 MakeVec3(double x, double y, double z)
 {
   accelvolume::Vec3 v;
@@ -352,6 +375,8 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     depthMaximum = std::max(depthMaximum, depth);
   }
   const double depthExtent = std::max(depthMaximum - depthMinimum, 1.0e-9);
+  // Slice depths reach the shaders relative to the volume centre's (float precision).
+  const double referenceDepth = 0.5 * (depthMinimum + depthMaximum);
   double spacing = this->SampleDistance;
   if (this->NumberOfSlices > 0)
   {
@@ -416,11 +441,11 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     starts.clear();
     for (const auto& slice : ordered)
     {
-      starts.push_back(static_cast<int>(vertices.size() / 3));
-      accelvolume::AppendTriangleFan(slice.second, vertices);
+      starts.push_back(VertexCount(vertices));
+      AppendProxyPolygon(slice.second, slice.first - referenceDepth, vertices);
     }
-    starts.push_back(static_cast<int>(vertices.size() / 3));
-    draw.SliceCount = static_cast<int>(vertices.size() / 3);
+    starts.push_back(VertexCount(vertices));
+    draw.SliceCount = VertexCount(vertices);
     draw.FaceFirst = draw.SliceCount;
     sliceCount = proxyCount = static_cast<int>(ordered.size());
     if (draw.SliceCount > 0)
@@ -437,32 +462,44 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
         static_cast<float>(region.lower.z) };
       draw.Upper = { static_cast<float>(region.upper.x), static_cast<float>(region.upper.y),
         static_cast<float>(region.upper.z) };
-      draw.SliceFirst = static_cast<int>(vertices.size() / 3);
-      const std::vector<accelvolume::Polygon> polygons = slabSamples > 1
-        ? accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples)
-            .polygons
-        : accelvolume::ComputeViewAlignedSlices(region, clip, depthGradient, depthOffset, spacing,
-            phase, accelvolume::SliceOrder::BackToFront)
-            .polygons;
-      for (const accelvolume::Polygon& polygon : polygons)
+      draw.SliceFirst = VertexCount(vertices);
+      // Each polygon with the depth of its plane: slab proxies lie on their (possibly raised)
+      // front, slices on their depth.
+      std::vector<accelvolume::Polygon> polygons;
+      std::vector<double> depths;
+      if (slabSamples > 1)
       {
-        accelvolume::AppendTriangleFan(polygon, vertices);
+        accelvolume::SlabStack slabs =
+          accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples);
+        polygons = std::move(slabs.polygons);
+        depths = std::move(slabs.depths);
+      }
+      else
+      {
+        accelvolume::SliceStack slices = accelvolume::ComputeViewAlignedSlices(region, clip,
+          depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::BackToFront);
+        polygons = std::move(slices.polygons);
+        depths = std::move(slices.depths);
+      }
+      for (size_t n = 0; n < polygons.size(); ++n)
+      {
+        AppendProxyPolygon(polygons[n], depths[n] - referenceDepth, vertices);
       }
       proxyCount += static_cast<int>(polygons.size());
       sliceCount += static_cast<int>(polygons.size()) * slabSamples;
-      draw.SliceCount = static_cast<int>(vertices.size() / 3) - draw.SliceFirst;
-      draw.FaceFirst = static_cast<int>(vertices.size() / 3);
+      draw.SliceCount = VertexCount(vertices) - draw.SliceFirst;
+      draw.FaceFirst = VertexCount(vertices);
       if (this->BoundaryRerendering)
       {
         const std::vector<accelvolume::Polygon> faces =
           accelvolume::ComputeRegionBoundaryFaces(region, clip);
         for (const accelvolume::Polygon& face : faces)
         {
-          accelvolume::AppendTriangleFan(face, vertices);
+          AppendProxyPolygon(face, 0.0, vertices);
         }
         faceCount += static_cast<int>(faces.size());
       }
-      draw.FaceCount = static_cast<int>(vertices.size() / 3) - draw.FaceFirst;
+      draw.FaceCount = VertexCount(vertices) - draw.FaceFirst;
       if (draw.SliceCount + draw.FaceCount > 0)
       {
         cells.push_back(draw);
@@ -489,7 +526,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.IndexToClip = indexToClip;
   frame.IndexToEye = indexToEye;
   frame.EyeToIndex = eyeToIndex;
+  frame.Projection = projection;
   frame.InverseProjection = inverseProjection;
+  frame.ReferenceDepth = referenceDepth;
   frame.ClipPlaneCount = static_cast<int>(clip.size());
   std::copy(
     &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);

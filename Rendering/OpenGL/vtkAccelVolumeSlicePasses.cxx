@@ -52,6 +52,92 @@ std::string BlendName(int blendMode)
   }
 }
 
+// True when the projection's w row depends on eye x or y (an explicit projection matrix): a
+// slice plane then maps to the window projectively rather than affinely.
+bool ProjectiveSlices(const vtkAccelVolumeSliceFrame& frame)
+{
+  return frame.Projection->GetElement(3, 0) != 0.0 || frame.Projection->GetElement(3, 1) != 0.0;
+}
+
+// Uploads the maps from a fragment's window position (x, y, 1) to the point it shows on a slice
+// plane z = -depth, as 3x3 matrices (columns: per x, per y, constant) at ReferenceDepth plus their
+// change per unit of depth; index and eye points are map * (x, y, 1) / dot(pixelWeight, (x, y, 1)).
+// With (nx, ny) the pixel's NDC, Cramer's rule on nx * w_clip = x_clip and ny * w_clip = y_clip
+// gives the homogeneous eye point (X, Y, W) linear in (nx, ny, 1), with coefficients linear in
+// (alpha, beta, omega) = (P02, P12, P32) z + (P03, P13, P33) and W free of z. Double precision
+// here, and depths relative to a depth near the volume, keep the float maps accurate.
+void SetSliceMapUniforms(vtkShaderProgram* program, const vtkAccelVolumeSliceFrame& frame)
+{
+  vtkMatrix4x4* p = frame.Projection;
+  auto P = [p](int r, int c) { return p->GetElement(r, c); };
+  auto eyeRows = [&P](double alpha, double beta, double omega, double rows[3][3])
+  {
+    const double x[3] = { omega * P(1, 1) - P(3, 1) * beta, alpha * P(3, 1) - P(0, 1) * omega,
+      P(0, 1) * beta - alpha * P(1, 1) };
+    const double y[3] = { P(3, 0) * beta - omega * P(1, 0), P(0, 0) * omega - alpha * P(3, 0),
+      alpha * P(1, 0) - P(0, 0) * beta };
+    std::copy(x, x + 3, rows[0]);
+    std::copy(y, y + 3, rows[1]);
+  };
+  const double weight[3] = { P(3, 1) * P(1, 0) - P(3, 0) * P(1, 1),
+    P(0, 1) * P(3, 0) - P(0, 0) * P(3, 1), P(0, 0) * P(1, 1) - P(0, 1) * P(1, 0) };
+  const double z = -frame.ReferenceDepth;
+  double eye[3][3];     // at the reference depth, in NDC
+  double eyePerZ[3][3]; // per unit of eye z
+  eyeRows(P(0, 3) + P(0, 2) * z, P(1, 3) + P(1, 2) * z, P(3, 3) + P(3, 2) * z, eye);
+  eyeRows(P(0, 2), P(1, 2), P(3, 2), eyePerZ);
+  for (int j = 0; j < 3; ++j)
+  {
+    eye[2][j] = z * weight[j]; // Z = z W
+    eyePerZ[2][j] = weight[j];
+  }
+  // Index = eyeToIndex applied to the homogeneous eye point.
+  vtkMatrix4x4* e = frame.EyeToIndex;
+  double index[3][3];
+  double indexPerZ[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      index[i][j] = e->GetElement(i, 3) * weight[j];
+      indexPerZ[i][j] = 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        index[i][j] += e->GetElement(i, k) * eye[k][j];
+        indexPerZ[i][j] += e->GetElement(i, k) * eyePerZ[k][j];
+      }
+    }
+  }
+  // Window (x, y, 1) -> NDC: nx = 2x / width - 1, likewise y. Scaled so that W is 1 at the
+  // viewport centre (everywhere, unless projective); per unit of depth = -(per unit of z).
+  const double sx = 2.0 / frame.Width;
+  const double sy = 2.0 / frame.Height;
+  const double scale = weight[2] != 0.0 ? 1.0 / weight[2] : 1.0;
+  auto toWindow = [sx, sy, scale](const double m[3][3], double sign, float out[9])
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      // GLSL mat3 is column-major: column j (the coefficient of x, y or 1) at 3j .. 3j+2.
+      out[i] = static_cast<float>(sign * scale * m[i][0] * sx);
+      out[3 + i] = static_cast<float>(sign * scale * m[i][1] * sy);
+      out[6 + i] = static_cast<float>(sign * scale * (m[i][2] - m[i][0] - m[i][1]));
+    }
+  };
+  float matrix[9];
+  toWindow(index, 1.0, matrix);
+  program->SetUniformMatrix3x3("indexMap", matrix);
+  toWindow(indexPerZ, -1.0, matrix);
+  program->SetUniformMatrix3x3("indexMapPerDepth", matrix);
+  toWindow(eye, 1.0, matrix);
+  program->SetUniformMatrix3x3("eyeMap", matrix);
+  toWindow(eyePerZ, -1.0, matrix);
+  program->SetUniformMatrix3x3("eyeMapPerDepth", matrix);
+  const float pixelWeight[3] = { static_cast<float>(scale * weight[0] * sx),
+    static_cast<float>(scale * weight[1] * sy),
+    static_cast<float>(scale * (weight[2] - weight[0] - weight[1])) };
+  program->SetUniform3f("pixelWeight", pixelWeight);
+}
+
 // Inserts the variant's #defines before the output declarations (after #version).
 std::string ShaderVariant(
   const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
@@ -68,7 +154,8 @@ std::string ShaderVariant(
     (composite && frame.SkipEmptyLeaves ? "1" : "0") + "\n#define ACCELVOLUME_TF2D " +
     (composite && frame.TransferFunction2D ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
-    "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") + "\n";
+    "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
+    "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -88,6 +175,7 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   SetMatrixUniform(program, "indexToEye", frame.IndexToEye);
   SetMatrixUniform(program, "eyeToIndex", frame.EyeToIndex);
   SetMatrixUniform(program, "inverseProjection", frame.InverseProjection);
+  SetSliceMapUniforms(program, frame);
   const float viewport[2] = { static_cast<float>(frame.Width), static_cast<float>(frame.Height) };
   program->SetUniform2f("viewportSize", viewport);
   program->SetUniformi("clipPlaneCount", frame.ClipPlaneCount);
@@ -178,8 +266,15 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
   // The vertex layout is bound per program (slices and faces use different variants).
   resources.SliceArray->ShaderProgramChanged();
   resources.SliceArray->Bind();
+  constexpr int Stride = vtkAccelVolumeSliceFrame::VertexFloats * sizeof(float);
   resources.SliceArray->AddAttributeArray(
-    program, resources.VertexBuffer, "vertexIndex", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
+    program, resources.VertexBuffer, "vertexIndex", 0, Stride, VTK_FLOAT, 3, false);
+  if (!faces)
+  {
+    // Cut faces sample where they are and never read the slice depth (compiled out there).
+    resources.SliceArray->AddAttributeArray(program, resources.VertexBuffer, "vertexDepth",
+      3 * sizeof(float), Stride, VTK_FLOAT, 1, false);
+  }
   SetFrameUniforms(program, resources, frame);
   const int sliceCount = static_cast<int>(frame.SliceStarts.size()) - 1;
   if (!faces && frame.EarlyTermination && sliceCount > frame.TerminationInterval)

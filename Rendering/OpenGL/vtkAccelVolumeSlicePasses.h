@@ -28,6 +28,9 @@ struct vtkAccelVolumeSliceFrame
     int FaceCount = 0;
   };
   static constexpr int MaximumClipPlanes = 8;
+  // Floats per proxy vertex: index x, y, z, then the eye depth of the vertex's slice plane minus
+  // ReferenceDepth (the same value for every vertex of a slice; unused by cut faces).
+  static constexpr int VertexFloats = 4;
 
   int BlendMode = 0; // vtkVolumeMapper blend mode (MIP, MinIP, additive, average)
   int SlabSamples = 1;
@@ -38,7 +41,9 @@ struct vtkAccelVolumeSliceFrame
   vtkMatrix4x4* IndexToClip = nullptr;
   vtkMatrix4x4* IndexToEye = nullptr;
   vtkMatrix4x4* EyeToIndex = nullptr;
+  vtkMatrix4x4* Projection = nullptr; // eye -> clip
   vtkMatrix4x4* InverseProjection = nullptr;
+  double ReferenceDepth = 0; // eye depth near the volume; slice depths are sent relative to it
   int ClipPlaneCount = 0;
   float ClipPlanes[MaximumClipPlanes][4] = {};
   float SliceSpacing = 1;
@@ -81,7 +86,7 @@ struct vtkAccelVolumeSliceFrame
   float LeafGridMaximum[3] = { 0, 0, 0 };
 
   std::vector<Cell> Cells;
-  const std::vector<float>* Vertices = nullptr; // xyz index coordinates, triangles
+  const std::vector<float>* Vertices = nullptr; // triangles, VertexFloats per vertex
 };
 
 /**

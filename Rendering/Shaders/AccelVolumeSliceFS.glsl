@@ -2,13 +2,25 @@
 // Proxy slice / boundary face fragment stage: samples the volume once and writes the
 // blend mode's accumulation value into an RG32F target (R: value, G: weight or coverage).
 // A prelude defines exactly one of ACCELVOLUME_BLEND_{MAXIMUM,MINIMUM,ADDITIVE,AVERAGE},
-// ACCELVOLUME_SLAB_SAMPLES (slice depths per fragment, MIP/MinIP) and
-// ACCELVOLUME_BOUNDARY_FACE (0: proxy slices, 1: cut faces). They are compile-time constants
+// ACCELVOLUME_SLAB_SAMPLES (slice depths per fragment, MIP/MinIP), ACCELVOLUME_BOUNDARY_FACE
+// (0: proxy slices, 1: cut faces) and ACCELVOLUME_PROJECTIVE_SLICES (1: the projection's w
+// depends on eye x or y, so slice points need a division). They are compile-time constants
 // because llvmpipe pays for every branch and loop it cannot resolve while compiling.
+// Sample points must round the same way in every shader variant (the skipping modes compare
+// images exactly): `precise` stops the compiler from fusing or reordering their arithmetic
+// differently per variant. (The extension makes `sample` a keyword: no variable is so named.)
+#extension GL_ARB_gpu_shader5 : enable
+#ifdef GL_ARB_gpu_shader5
+#define ACCELVOLUME_PRECISE precise
+#else
+#define ACCELVOLUME_PRECISE
+#endif
 //VTK::Output::Dec
 
-in vec3 indexPosition;
-in vec3 eyePosition;
+in vec3 interpolatedIndex;
+in vec3 interpolatedEye;
+flat in mat3 sliceIndexMap;        // proxy slices: (gl_FragCoord.xy, 1) -> index point
+flat in mat3 sliceEyeMap;          // ... -> eye point (homogeneous, see pixelWeight)
 
 uniform sampler3D volumeTexture;
 uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the data range
@@ -19,6 +31,7 @@ uniform float scalarBias;
 uniform float tableSize;
 uniform mat4 eyeToIndex;
 uniform mat4 inverseProjection;
+uniform vec3 pixelWeight;          // ACCELVOLUME_PROJECTIVE_SLICES: homogeneous weight
 uniform vec2 viewportSize;
 uniform vec3 regionLower;          // the convex cell being drawn, in index coordinates
 uniform vec3 regionUpper;
@@ -52,15 +65,20 @@ uniform sampler2D transferTable2D;
 uniform float gradient2DMaximum;
 uniform vec3 leafGridMaximum;       // leaf grid size - 1 per axis
 
+// This fragment's sample point, set first thing in main(): on a proxy slice, from the pixel and
+// the slice depth alone; on a cut face (not view-aligned), interpolated from the face.
+ACCELVOLUME_PRECISE vec3 indexPosition;
+ACCELVOLUME_PRECISE vec3 eyePosition;
+
 float normalizedScalarAt(vec3 position)
 {
-  vec3 textureCoordinate = (position + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate = (position + vec3(0.5)) / volumeDimensions;
   return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
 }
 
 float normalizedScalar()
 {
-  vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
   return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
 }
 
@@ -124,6 +142,25 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
 
 void main()
 {
+#if ACCELVOLUME_BOUNDARY_FACE
+  eyePosition = interpolatedEye;
+  indexPosition = interpolatedIndex;
+#else
+  // The projection restricted to the slice plane, inverted: a pixel's point there is linear in
+  // its window position (projective if the projection's w row slopes). Interpolating the
+  // polygon's vertex positions instead rounds differently for each polygon that covers the
+  // pixel (octree-clipped vs. whole slices), and texture units with 8-bit filter weights
+  // (NVIDIA) turn that rounding into visible steps.
+  vec2 pixel = gl_FragCoord.xy;
+  indexPosition = sliceIndexMap[0] * pixel.x + sliceIndexMap[1] * pixel.y + sliceIndexMap[2];
+  eyePosition = sliceEyeMap[0] * pixel.x + sliceEyeMap[1] * pixel.y + sliceEyeMap[2];
+#if ACCELVOLUME_PROJECTIVE_SLICES
+  ACCELVOLUME_PRECISE float weight =
+    pixelWeight.x * pixel.x + pixelWeight.y * pixel.y + pixelWeight.z;
+  indexPosition /= weight;
+  eyePosition /= weight;
+#endif
+#endif
 #if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
   // Order-independent extremes: opaque geometry is handled by the early depth test against
   // the scene depth attached to the target, so a plain slice costs one texture fetch.
@@ -140,7 +177,7 @@ void main()
   vec2 interval = regionInterval(rayOrigin, rayDirection);
   float enter = interval.x - 1.0e-3 * step;
   float exit = min(interval.y, sceneDistance(rayOrigin, rayDirection)) + 1.0e-3 * step;
-  vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
   vec3 textureStep = (mat3(eyeToIndex) * rayDirection) * step / volumeDimensions;
 #if defined(ACCELVOLUME_BLEND_MAXIMUM)
   float extreme = -1.0;
@@ -175,7 +212,7 @@ void main()
   // the slice count.
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
-  vec3 samplePosition = indexPosition;
+  ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
 #if ACCELVOLUME_JITTER
   // Per-pixel offset of up to half a slice along the ray (interleaved gradient noise) turns
   // wood-grain rings into fine noise.
@@ -193,19 +230,19 @@ void main()
 #endif
 #if ACCELVOLUME_TF2D
   float scalar2D = normalizedScalarAt(samplePosition);
-  vec4 sample = vec4(0.0);
+  vec4 classified = vec4(0.0);
 #else
-  vec4 sample = classify(normalizedScalarAt(samplePosition));
+  vec4 classified = classify(normalizedScalarAt(samplePosition));
 #endif
 #if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
   // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
-  if (sample.a <= 0.0)
+  if (classified.a <= 0.0)
   {
     discard;
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-  vec3 center = (samplePosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 center = (samplePosition + vec3(0.5)) / volumeDimensions;
 #if ACCELVOLUME_GRADIENT_TEXTURE
   vec3 indexGradient =
     (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
@@ -225,9 +262,10 @@ void main()
 #if ACCELVOLUME_TF2D
   // Value x gradient-magnitude classification (the paper's 2D transfer function).
   float magnitude2D = length(eyeGradient) * scalarRangeWidth / gradient2DMaximum;
-  sample = texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
+  classified =
+    texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
 #if ACCELVOLUME_SKIP_TRANSPARENT
-  if (sample.a <= 0.0)
+  if (classified.a <= 0.0)
   {
     discard;
   }
@@ -237,12 +275,12 @@ void main()
   // Gradient magnitude in data units per world unit, looked up like VTK's gradient opacity.
   float magnitude = length(eyeGradient) * scalarRangeWidth;
   float g = (clamp(magnitude / gradientTableMaximum, 0.0, 1.0) * 1023.0 + 0.5) / 1024.0;
-  sample.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
+  classified.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
 #endif
 #if ACCELVOLUME_SHADE
   // Phong with VTK's coefficients and lights (two-sided, lights as directions).
   float gradientLength = length(eyeGradient);
-  vec3 shaded = lighting.x * sample.rgb;
+  vec3 shaded = lighting.x * classified.rgb;
   if (gradientLength > 1.0e-8)
   {
     vec3 normal = -eyeGradient / gradientLength;
@@ -252,7 +290,7 @@ void main()
       float nDotL = dot(normal, lightDirections[i]);
       vec3 facing = nDotL < 0.0 ? -normal : normal;
       nDotL = abs(nDotL);
-      shaded += lighting.y * nDotL * sample.rgb * lightColors[i];
+      shaded += lighting.y * nDotL * classified.rgb * lightColors[i];
       vec3 reflected = 2.0 * nDotL * facing - lightDirections[i];
       float rDotV = dot(reflected, toViewer);
       if (rDotV > 0.0)
@@ -261,10 +299,10 @@ void main()
       }
     }
   }
-  sample.rgb = min(shaded, vec3(1.0));
+  classified.rgb = min(shaded, vec3(1.0));
 #endif
-  float alpha = 1.0 - pow(max(1.0 - sample.a, 0.0), step / opacityUnitDistance);
-  gl_FragData[0] = vec4(sample.rgb * alpha, alpha);
+  float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);
+  gl_FragData[0] = vec4(classified.rgb * alpha, alpha);
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);

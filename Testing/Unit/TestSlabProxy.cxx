@@ -293,9 +293,27 @@ void CheckStack(unsigned seed, double eyeDistanceLow, double eyeDistanceHigh)
     const int perSlab = std::uniform_int_distribution<int>(1, 6)(random);
     const SlabStack stack = ComputeSlabProxyPolygons(box, clip, rays, spacing, phase, perSlab);
     ASSERT_EQ(stack.polygons.size(), stack.fronts.size());
+    ASSERT_EQ(stack.polygons.size(), stack.depths.size());
     for (std::size_t i = 1; i < stack.fronts.size(); ++i)
     {
       EXPECT_GT(stack.fronts[i - 1], stack.fronts[i]);
+    }
+    // depths: the plane each polygon lies on (renderers sample there), the front unless raised.
+    for (std::size_t i = 0; i < stack.polygons.size(); ++i)
+    {
+      const double eyeDepth = Depth(rays, rays.eye);
+      if (!rays.perspective || stack.fronts[i] > eyeDepth)
+      {
+        EXPECT_EQ(stack.depths[i], stack.fronts[i]);
+      }
+      else
+      {
+        EXPECT_GT(stack.depths[i], eyeDepth);
+      }
+      for (const Vec3& v : stack.polygons[i])
+      {
+        EXPECT_NEAR(Depth(rays, v), stack.depths[i], Tolerance) << "trial " << trial;
+      }
     }
     const SliceStack slices = ComputeViewAlignedSlices(
       box, clip, rays.depthGradient, rays.depthOffset, spacing, phase, SliceOrder::FrontToBack);

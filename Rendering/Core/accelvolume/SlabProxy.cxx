@@ -32,6 +32,17 @@ double Depth(const ViewRays& rays, const Vec3& p)
   return Dot(rays.depthGradient, p) + rays.depthOffset;
 }
 
+// The plane a slab's polygon lies on: front, raised for a perspective front at or behind the eye.
+double PlaneDepth(const ViewRays& rays, double front, double back)
+{
+  if (!rays.perspective)
+  {
+    return front;
+  }
+  const double eyeDepth = Depth(rays, rays.eye);
+  return front > eyeDepth ? front : eyeDepth + MinimumFrontFraction * (back - eyeDepth);
+}
+
 // Distinct vertices of the region's boundary faces: the region's vertices. Computed once per stack
 // since ComputeRegionBoundaryFaces is the expensive part.
 std::vector<Vec3> RegionVertices(const Box& region, const std::vector<HalfSpace>& clip)
@@ -97,10 +108,7 @@ Polygon SlabPolygon(const std::vector<Vec3>& regionVertices, const Box& region,
     {
       return {};
     }
-    if (!(front > eyeDepth))
-    {
-      front = eyeDepth + MinimumFrontFraction * (back - eyeDepth);
-    }
+    front = PlaneDepth(rays, front, back);
   }
   else if (!(directionRate != 0))
   {
@@ -256,6 +264,7 @@ SlabStack ComputeSlabProxyPolygons(const Box& region, const std::vector<HalfSpac
     {
       stack.polygons.push_back(std::move(polygon));
       stack.fronts.push_back(front);
+      stack.depths.push_back(PlaneDepth(rays, front, back));
     }
   }
   return stack;

@@ -43,6 +43,8 @@ struct SlabStack
   // fronts[n] is the nominal front depth of slab n (its first sample depth). The polygon lies on
   // that plane, except where ComputeSlabProxyPolygon raises a perspective front to the eye.
   std::vector<double> fronts;
+  // depths[n] is the depth of the plane polygons[n] lies on: fronts[n], or the raised front.
+  std::vector<double> depths;
 };
 
 // Slabs of samplesPerSlab samples each: sample m sits at depth phase + m * spacing (computed with
