@@ -57,6 +57,9 @@ if (NOT ACCELVOLUME_VTK_PYTHONPATH) # retried while empty
   set(ACCELVOLUME_VTK_PYTHONPATH "${_av_vtk_pythonpath}" CACHE PATH
     "Folder holding VTK's vtkmodules package (tests' PYTHONPATH)" FORCE)
 endif ()
+# The tests' and examples' PYTHONPATH: the build tree's package, then VTK's.
+set(ACCELVOLUME_TEST_PYTHONPATH
+  "${CMAKE_BINARY_DIR}/${ACCELVOLUME_PYTHON_MODULE_DESTINATION}:${ACCELVOLUME_VTK_PYTHONPATH}")
 message(STATUS "AccelVolume: Python wrapping ON (${Python3_EXECUTABLE}, package accelvolume in "
   "${ACCELVOLUME_PYTHON_MODULE_DESTINATION}; vtkmodules from ${ACCELVOLUME_VTK_PYTHONPATH})")
 
