@@ -256,37 +256,29 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     return RAYCAST_RENDER;
   };
 
+  // A requested mapper that cannot render the scene falls back to the automatic choice.
   std::string reason;
+  auto requested = [&](int wanted, const char* name, bool usable, const std::string& blocker)
+  {
+    if (usable)
+    {
+      reason = std::string("requested ") + name;
+      return wanted;
+    }
+    reason = std::string("requested ") + name + ", but " + blocker + "; falling back: ";
+    return automatic(wanted, reason);
+  };
   int mode = RAYCAST_RENDER;
   switch (this->RequestedRenderMode)
   {
     case SLICE_RENDER:
-      if (sliceUsable)
-      {
-        reason = "requested slice";
-        mode = SLICE_RENDER;
-      }
-      else
-      {
-        reason = "requested slice, but " + sliceBlocker + "; falling back: ";
-        mode = automatic(SLICE_RENDER, reason);
-      }
+      mode = requested(SLICE_RENDER, "slice", sliceUsable, sliceBlocker);
       break;
     case RAYCAST_RENDER:
-      reason = "requested ray cast";
-      mode = RAYCAST_RENDER;
+      mode = requested(RAYCAST_RENDER, "ray cast", true, std::string());
       break;
     case SHEARWARP_RENDER:
-      if (shearWarpUsable)
-      {
-        reason = "requested shear-warp";
-        mode = SHEARWARP_RENDER;
-      }
-      else
-      {
-        reason = "requested shear-warp, but " + shearWarpBlocker + "; falling back: ";
-        mode = automatic(SHEARWARP_RENDER, reason);
-      }
+      mode = requested(SHEARWARP_RENDER, "shear-warp", shearWarpUsable, shearWarpBlocker);
       break;
     default:
       mode = automatic(DEFAULT_RENDER, reason);
