@@ -13,6 +13,7 @@ set(_av_classes
 
 # Plain C++17 algorithms: no VTK or GL headers, never in public headers.
 set(_av_core_sources
+  Core/accelvolume/Bricking
   Core/accelvolume/CellClassification
   Core/accelvolume/CellLeapTable
   Core/accelvolume/CompositeSlices
@@ -36,12 +37,14 @@ set(_av_core_sources
 
 # Thin OpenGL helpers, excluded from wrapping and installation.
 set(_av_private_sources
+  OpenGL/vtkAccelVolumeBrickCache
   OpenGL/vtkAccelVolumeImageDisplay
   OpenGL/vtkAccelVolumeMapperSupport
   OpenGL/vtkAccelVolumeObjectFactory
   OpenGL/vtkAccelVolumeOctreeGPUBuilder
   OpenGL/vtkAccelVolumeRenderProgress
   OpenGL/vtkAccelVolumeScalarEncoding
+  OpenGL/vtkAccelVolumeSliceGeometry
   OpenGL/vtkAccelVolumeSlicePasses
   OpenGL/vtkAccelVolumeSliceResources)
 

@@ -5,6 +5,7 @@
 #include "vtkAccelVolumeMinMaxOctree.h"
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeRenderProgress.h"
+#include "vtkAccelVolumeSliceGeometry.h"
 #include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
@@ -26,13 +27,12 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
-#include "accelvolume/CompositeSlices.h"
 #include "accelvolume/Geometry.h"
 #include "accelvolume/MinMaxOctree.h"
-#include "accelvolume/SlabProxy.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -69,29 +69,6 @@ void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
       frame.NormalMatrix[3 * c + r] = static_cast<float>(lights.NormalMatrix[r][c]);
     }
   }
-}
-
-// Appends a polygon as a triangle fan of proxy vertices (see vtkAccelVolumeSliceFrame::
-// VertexFloats); depth is the eye depth of the slice plane the polygon lies on minus the frame's
-// reference depth (0 for cut faces).
-void AppendProxyPolygon(
-  const accelvolume::Polygon& polygon, double depth, std::vector<float>& vertices)
-{
-  const float planeDepth = static_cast<float>(depth);
-  for (size_t i = 1; i + 1 < polygon.size(); ++i)
-  {
-    for (const accelvolume::Vec3* v : { &polygon[0], &polygon[i], &polygon[i + 1] })
-    {
-      vertices.insert(vertices.end(),
-        { static_cast<float>(v->x), static_cast<float>(v->y), static_cast<float>(v->z),
-          planeDepth });
-    }
-  }
-}
-
-int VertexCount(const std::vector<float>& vertices)
-{
-  return static_cast<int>(vertices.size() / vtkAccelVolumeSliceFrame::VertexFloats);
 }
 
 accelvolume::Vec3 MakeVec3(double x, double y, double z)
@@ -160,6 +137,13 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
   os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+  os << indent << "GPUMemoryBudget: " << this->GPUMemoryBudget << "\n";
+  os << indent << "MaximumBrickSize: " << this->MaximumBrickSize << "\n";
+  os << indent << "LastNumberOfBricks: " << this->LastNumberOfBricks << "\n";
+  os << indent << "LastNumberOfBricksDrawn: " << this->LastNumberOfBricksDrawn << "\n";
+  os << indent << "LastNumberOfBrickUploads: " << this->LastNumberOfBrickUploads << "\n";
+  os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
+  os << indent << "LastResidentBytes: " << this->LastResidentBytes << "\n";
 }
 
 bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
@@ -306,11 +290,13 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkVolumeProperty* property = volume->GetProperty();
   const bool linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
   std::string error;
-  if (!internals.Resources.UploadVolume(window, input, scalars, range, linear, error))
+  if (!internals.Resources.PrepareVolume(window, input, scalars, range,
+        static_cast<std::uint64_t>(this->GPUMemoryBudget), this->MaximumBrickSize, error))
   {
     vtkErrorMacro("Cannot upload the volume: " << error);
     return;
   }
+  const accelvolume::BrickLayout& layout = internals.Resources.GetBrickLayout();
   internals.Resources.UpdateTransferTable(window, property, range);
   progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
 
@@ -408,14 +394,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   rays.direction = MakeVec3(
     -eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
 
-  // Proxy geometry: per region, its slices then its boundary faces.
-  std::vector<vtkAccelVolumeSliceFrame::Cell>& cells = internals.Frame.Cells;
-  cells.clear();
-  std::vector<float>& vertices = internals.Vertices;
-  vertices.clear();
-  int sliceCount = 0;
-  int proxyCount = 0;
-  int faceCount = 0;
+  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
   const bool composite = this->BlendMode == COMPOSITE_BLEND;
   const bool transferFunction2D =
     composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
@@ -423,98 +402,39 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const bool skipEmptyLeaves = composite && !transferFunction2D &&
     (this->EmptySpaceSkipping & SKIP_OCTREE) &&
     this->UpdateEmptyLeaves(window, input, property, range);
+  vtkAccelVolumeSliceGeometryInput geometry;
+  geometry.Regions = &regions;
+  geometry.Clip = &clip;
+  geometry.VolumeBox = volumeBox;
+  geometry.Rays = rays;
+  geometry.ReferenceDepth = referenceDepth;
+  geometry.Spacing = spacing;
+  geometry.Phase = phase;
+  geometry.Composite = composite;
+  geometry.FrontToBack = this->FrontToBack != 0;
+  // A slab's samples run along the ray, across brick faces: bricks take plain slices.
+  geometry.SlabSamples = layout.Single() ? slabSamples : 1;
+  geometry.BoundaryFaces = this->BoundaryRerendering != 0;
+  geometry.NonEmpty =
+    skipEmptyLeaves && internals.HaveNonEmptyBoxes ? &internals.NonEmptyBoxes : nullptr;
+  geometry.Layout = &layout;
+  vtkAccelVolumeSliceGeometryStats geometryStats;
+  vtkAccelVolumeBuildSliceGeometry(geometry, internals.Frame, internals.Vertices, geometryStats);
   if (composite)
   {
-    // Octree skipping, geometry part: slices are clipped to the non-empty octree boxes'
-    // bounds at their depth; what is cut lies in transparent leaves (image unchanged).
-    const accelvolume::CompositeSlices composited = accelvolume::ComputeCompositeSlices(regions,
-      clip, depthGradient, depthOffset, spacing, phase, this->FrontToBack != 0,
-      skipEmptyLeaves && internals.HaveNonEmptyBoxes ? &internals.NonEmptyBoxes : nullptr);
-    const auto& ordered = composited.slices;
-    this->LastProxyAreaFraction = composited.keptAreaFraction;
-    vtkAccelVolumeSliceFrame::Cell draw;
-    draw.Lower = { static_cast<float>(volumeBox.lower.x), static_cast<float>(volumeBox.lower.y),
-      static_cast<float>(volumeBox.lower.z) };
-    draw.Upper = { static_cast<float>(volumeBox.upper.x), static_cast<float>(volumeBox.upper.y),
-      static_cast<float>(volumeBox.upper.z) };
-    std::vector<int>& starts = internals.Frame.SliceStarts;
-    starts.clear();
-    for (const auto& slice : ordered)
-    {
-      starts.push_back(VertexCount(vertices));
-      AppendProxyPolygon(slice.second, slice.first - referenceDepth, vertices);
-    }
-    starts.push_back(VertexCount(vertices));
-    draw.SliceCount = VertexCount(vertices);
-    draw.FaceFirst = draw.SliceCount;
-    sliceCount = proxyCount = static_cast<int>(ordered.size());
-    if (draw.SliceCount > 0)
-    {
-      cells.push_back(draw);
-    }
+    this->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
   }
-  else
-  {
-    for (const accelvolume::Box& region : regions)
-    {
-      vtkAccelVolumeSliceFrame::Cell draw;
-      draw.Lower = { static_cast<float>(region.lower.x), static_cast<float>(region.lower.y),
-        static_cast<float>(region.lower.z) };
-      draw.Upper = { static_cast<float>(region.upper.x), static_cast<float>(region.upper.y),
-        static_cast<float>(region.upper.z) };
-      draw.SliceFirst = VertexCount(vertices);
-      // Each polygon with the depth of its plane: slab proxies lie on their (possibly raised)
-      // front, slices on their depth.
-      std::vector<accelvolume::Polygon> polygons;
-      std::vector<double> depths;
-      if (slabSamples > 1)
-      {
-        accelvolume::SlabStack slabs =
-          accelvolume::ComputeSlabProxyPolygons(region, clip, rays, spacing, phase, slabSamples);
-        polygons = std::move(slabs.polygons);
-        depths = std::move(slabs.depths);
-      }
-      else
-      {
-        accelvolume::SliceStack slices = accelvolume::ComputeViewAlignedSlices(region, clip,
-          depthGradient, depthOffset, spacing, phase, accelvolume::SliceOrder::BackToFront);
-        polygons = std::move(slices.polygons);
-        depths = std::move(slices.depths);
-      }
-      for (size_t n = 0; n < polygons.size(); ++n)
-      {
-        AppendProxyPolygon(polygons[n], depths[n] - referenceDepth, vertices);
-      }
-      proxyCount += static_cast<int>(polygons.size());
-      sliceCount += static_cast<int>(polygons.size()) * slabSamples;
-      draw.SliceCount = VertexCount(vertices) - draw.SliceFirst;
-      draw.FaceFirst = VertexCount(vertices);
-      if (this->BoundaryRerendering)
-      {
-        const std::vector<accelvolume::Polygon> faces =
-          accelvolume::ComputeRegionBoundaryFaces(region, clip);
-        for (const accelvolume::Polygon& face : faces)
-        {
-          AppendProxyPolygon(face, 0.0, vertices);
-        }
-        faceCount += static_cast<int>(faces.size());
-      }
-      draw.FaceCount = VertexCount(vertices) - draw.FaceFirst;
-      if (draw.SliceCount + draw.FaceCount > 0)
-      {
-        cells.push_back(draw);
-      }
-    }
-  }
+  std::vector<float>& vertices = internals.Vertices;
   progress.Report(0.45); // octree classification and proxy geometry
   this->LastSliceSpacing = spacing;
-  this->LastNumberOfSlices = sliceCount;
-  this->LastNumberOfProxyPolygons = proxyCount;
-  this->LastNumberOfBoundaryFaces = faceCount;
+  this->LastNumberOfSlices = geometryStats.Slices;
+  this->LastNumberOfProxyPolygons = geometryStats.ProxyPolygons;
+  this->LastNumberOfBoundaryFaces = geometryStats.BoundaryFaces;
 
   vtkAccelVolumeSliceFrame& frame = internals.Frame;
   frame.BlendMode = this->BlendMode;
-  frame.SlabSamples = slabSamples;
+  frame.SlabSamples = geometry.SlabSamples;
+  frame.Linear = linear;
   frame.Width = width;
   frame.Height = height;
   frame.LowerLeft[0] = lowerLeft[0];
@@ -538,10 +458,6 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   frame.OpacityUnitDistance =
     static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
   frame.Parallel = camera->GetParallelProjection() != 0;
-  if (!composite)
-  {
-    frame.SliceStarts.clear();
-  }
   frame.FrontToBack = this->FrontToBack != 0;
   frame.Jitter = this->Jittering != 0;
   frame.EarlyTermination = composite && this->EarlyRayTermination && frame.FrontToBack;
@@ -580,7 +496,9 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     FillShading(frame, renderer, property, indexToEye, view);
     constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
     const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
-    frame.GradientTexture = this->PrecomputeGradients && gradientBytes <= GradientTextureBudget &&
+    // Bricks take central differences: their texels reach one voxel past what they own.
+    frame.GradientTexture = this->PrecomputeGradients && layout.Single() &&
+      gradientBytes <= GradientTextureBudget &&
       internals.Resources.UpdateGradients(window, input, scalars, range);
     frame.GradientTextureScale = internals.Resources.GradientScale;
   }
@@ -610,8 +528,18 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     internals.Renderer = name ? name : "unknown";
   }
-  const bool rendered = vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame);
+  internals.Resources.Bricks.BeginFrame();
+  std::string passError;
+  const bool rendered =
+    vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame, passError);
   this->LastNumberOfTerminationPasses = frame.TerminationPasses;
+  this->LastNumberOfBricks = static_cast<int>(layout.bricks.size());
+  this->LastNumberOfBricksDrawn = static_cast<int>(frame.Bricks.size());
+  this->LastNumberOfBrickUploads = internals.Resources.Bricks.GetFrameUploads();
+  this->LastUploadedBytes =
+    static_cast<vtkIdType>(internals.Resources.Bricks.GetFrameUploadedBytes());
+  this->LastResidentBytes = static_cast<vtkIdType>(internals.Resources.Bricks.GetResidentBytes());
+  internals.Resources.ReleaseEncodedScalarsIfResident();
   progress.Report(0.6); // passes issued; the GPU may still be working on them
 
   // Wait for the GPU so the reported time is the frame's real cost.
@@ -621,7 +549,6 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   if (!rendered && !internals.ReportedError)
   {
     internals.ReportedError = true;
-    vtkErrorMacro("Rendering failed: a shader did not compile or the float target ("
-      << width << "x" << height << ") could not be allocated; see the messages above");
+    vtkErrorMacro("Rendering failed: " << passError);
   }
 }

@@ -37,10 +37,20 @@
  *
  * Opaque geometry already in the depth buffer hides what lies behind it.
  *
+ * Large volumes: a volume with an axis longer than GL_MAX_3D_TEXTURE_SIZE (or
+ * MaximumBrickSize), or larger than GPUMemoryBudget, is split into bricks that share one voxel
+ * with each neighbour (so trilinear samples and central differences read the same texels as
+ * in one texture: no seams). Each sample point is taken by exactly one brick; composite draws
+ * the bricks in visibility order (front to back, or back to front), the other modes in any
+ * order. Bricks the min-max octree finds transparent (composite) are never uploaded. Within a
+ * budget, bricks stay resident once uploaded; beyond it, the bricks the budget cannot hold
+ * stream through one texture every frame (see GetLastNumberOfBrickUploads).
+ *
  * Limits: one-component scalars of type char, unsigned char, short, unsigned short, int,
  * float or double (int, float and double are sampled as 32-bit floats normalised to the
- * data range; NaN samples count as the minimum). Each axis must fit GL_MAX_3D_TEXTURE_SIZE.
- * Boundary re-rendering applies to the projection modes, not to composite.
+ * data range; NaN samples count as the minimum). Boundary re-rendering applies to the
+ * projection modes, not to composite. Bricked volumes take gradients by central differences
+ * (no precomputed gradient texture) and plain slices (SlabSamples is ignored).
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h
@@ -197,6 +207,39 @@ public:
 
   ///@{
   /**
+   * GPU memory the volume's bricks may hold at once, in bytes (default 0: no budget, as much as
+   * the volume needs). A volume larger than the budget is cut into bricks of at most 1/8 of it;
+   * 7/8 stay resident and the rest are streamed each frame. Transfer tables, the octree's leaf
+   * texture, the float target and a precomputed gradient texture (one-brick volumes only) are
+   * not counted. A budget smaller than a 16^3-cell brick is an error.
+   */
+  vtkSetClampMacro(GPUMemoryBudget, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(GPUMemoryBudget, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
+   * Largest brick texture per axis (default 0: GL_MAX_3D_TEXTURE_SIZE). Smaller values force
+   * bricking, e.g. to test it or to make octree brick culling finer; values below 4 are errors.
+   */
+  vtkSetClampMacro(MaximumBrickSize, int, 0, 1 << 16);
+  vtkGetMacro(MaximumBrickSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Last frame: bricks of the layout, bricks drawn (others were culled as empty or lay outside
+   * the crop), bricks uploaded and their bytes, and the bytes resident after the frame.
+   */
+  vtkGetMacro(LastNumberOfBricks, int);
+  vtkGetMacro(LastNumberOfBricksDrawn, int);
+  vtkGetMacro(LastNumberOfBrickUploads, int);
+  vtkGetMacro(LastUploadedBytes, vtkIdType);
+  vtkGetMacro(LastResidentBytes, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * Re-render the faces of the cropped / clipped volume after the slices (default on).
    */
   vtkSetMacro(BoundaryRerendering, vtkTypeBool);
@@ -267,6 +310,13 @@ protected:
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 
+  vtkIdType GPUMemoryBudget = 0;
+  int MaximumBrickSize = 0;
+  int LastNumberOfBricks = 0;
+  int LastNumberOfBricksDrawn = 0;
+  int LastNumberOfBrickUploads = 0;
+  vtkIdType LastUploadedBytes = 0;
+  vtkIdType LastResidentBytes = 0;
   double LastSliceSpacing = 0.0;
   int LastNumberOfSlices = 0;
   int LastNumberOfProxyPolygons = 0;

@@ -155,7 +155,8 @@ std::string ShaderVariant(
     (composite && frame.TransferFunction2D ? "1" : "0") +
     "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
     "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
-    "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") + "\n";
+    "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") +
+    "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -164,10 +165,8 @@ std::string ShaderVariant(
 void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame)
 {
-  program->SetUniformi("volumeTexture", resources.VolumeTexture->GetTextureUnit());
   program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
   program->SetUniformi("sceneDepth", resources.SceneDepth->GetTextureUnit());
-  program->SetUniform3f("volumeDimensions", frame.Dimensions);
   program->SetUniformf("scalarScale", resources.ScalarScale);
   program->SetUniformf("scalarBias", resources.ScalarBias);
   program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
@@ -251,19 +250,12 @@ bool MarkSaturatedPixels(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResou
   return true;
 }
 
-// Draws every cell's slices (faces == false) or cut faces (faces == true) with one program.
-bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame, bool faces)
+// Makes `program` current with the proxy vertex layout (slices and faces use different
+// variants, and the termination pass uses another program in between).
+void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  vtkShaderProgram* program, bool faces)
 {
-  const std::string fragment =
-    ShaderVariant(AccelVolumeSliceFS, frame, faces ? 1 : frame.SlabSamples, faces);
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeSliceVS, fragment.c_str(), "");
-  if (!program)
-  {
-    return false;
-  }
-  // The vertex layout is bound per program (slices and faces use different variants).
+  window->GetShaderCache()->ReadyShaderProgram(program);
   resources.SliceArray->ShaderProgramChanged();
   resources.SliceArray->Bind();
   constexpr int Stride = vtkAccelVolumeSliceFrame::VertexFloats * sizeof(float);
@@ -275,27 +267,23 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
     resources.SliceArray->AddAttributeArray(program, resources.VertexBuffer, "vertexDepth",
       3 * sizeof(float), Stride, VTK_FLOAT, 1, false);
   }
-  SetFrameUniforms(program, resources, frame);
-  const int sliceCount = static_cast<int>(frame.SliceStarts.size()) - 1;
-  if (!faces && frame.EarlyTermination && sliceCount > frame.TerminationInterval)
-  {
-    // Composite is one depth-major cell: draw it in batches with a mark pass between.
-    for (int first = 0; first < sliceCount; first += frame.TerminationInterval)
-    {
-      const int last = std::min(sliceCount, first + frame.TerminationInterval);
-      window->GetShaderCache()->ReadyShaderProgram(program);
-      resources.SliceArray->Bind();
-      glDrawArrays(
-        GL_TRIANGLES, frame.SliceStarts[first], frame.SliceStarts[last] - frame.SliceStarts[first]);
-      resources.SliceArray->Release();
-      if (last < sliceCount && !MarkSaturatedPixels(window, resources, frame))
-      {
-        return false;
-      }
-    }
-    return true;
-  }
-  for (const vtkAccelVolumeSliceFrame::Cell& cell : frame.Cells)
+}
+
+void SetBrickUniforms(vtkShaderProgram* program, vtkTextureObject* texture,
+  const vtkAccelVolumeSliceFrame::BrickDraw& brick)
+{
+  program->SetUniformi("volumeTexture", texture->GetTextureUnit());
+  program->SetUniform3f("volumeDimensions", brick.TextureSize);
+  program->SetUniform3f("textureOrigin", brick.TextureOrigin);
+  program->SetUniform3f("ownedLower", brick.OwnedLower);
+  program->SetUniform3f("ownedUpper", brick.OwnedUpper);
+}
+
+// The slices (or cut faces) of one brick's cells, with `program` current.
+void DrawBrickCells(vtkShaderProgram* program, const vtkAccelVolumeSliceFrame::BrickDraw& brick,
+  bool faces)
+{
+  for (const vtkAccelVolumeSliceFrame::Cell& cell : brick.Cells)
   {
     const int first = faces ? cell.FaceFirst : cell.SliceFirst;
     const int count = faces ? cell.FaceCount : cell.SliceCount;
@@ -306,13 +294,116 @@ bool DrawCells(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& reso
       glDrawArrays(GL_TRIANGLES, first, count);
     }
   }
-  resources.SliceArray->Release();
+}
+
+// Composite with early ray termination: a brick's slices in batches, with a mark pass after
+// every TerminationInterval slices of the frame (counted across bricks) but the last.
+bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, vtkShaderProgram* program,
+  const vtkAccelVolumeSliceFrame::BrickDraw& brick, int& slicesSinceMark, int& slicesLeft)
+{
+  const int sliceCount = static_cast<int>(brick.SliceStarts.size()) - 1;
+  int first = 0;
+  while (first < sliceCount)
+  {
+    const int last =
+      std::min(sliceCount, first + frame.TerminationInterval - slicesSinceMark);
+    glDrawArrays(
+      GL_TRIANGLES, brick.SliceStarts[first], brick.SliceStarts[last] - brick.SliceStarts[first]);
+    slicesSinceMark += last - first;
+    slicesLeft -= last - first;
+    first = last;
+    if (slicesSinceMark == frame.TerminationInterval && slicesLeft > 0)
+    {
+      resources.SliceArray->Release();
+      if (!MarkSaturatedPixels(window, resources, frame))
+      {
+        return false;
+      }
+      slicesSinceMark = 0;
+      window->GetShaderCache()->ReadyShaderProgram(program);
+      resources.SliceArray->Bind();
+    }
+  }
+  return true;
+}
+
+// Every brick in drawing order: acquire (upload) its texture, draw its slices, then its cut
+// faces, so a streamed brick is uploaded once per frame.
+bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, std::string& error)
+{
+  vtkOpenGLShaderCache* cache = window->GetShaderCache();
+  const std::string sliceSource = ShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
+  vtkShaderProgram* sliceProgram = cache->ReadyShaderProgram(AccelVolumeSliceVS, sliceSource.c_str(), "");
+  if (!sliceProgram)
+  {
+    error = "the slice shader did not compile";
+    return false;
+  }
+  SetFrameUniforms(sliceProgram, resources, frame);
+  vtkShaderProgram* faceProgram = nullptr;
+  if (frame.BoundaryRerendering)
+  {
+    const std::string faceSource = ShaderVariant(AccelVolumeSliceFS, frame, 1, true);
+    faceProgram = cache->ReadyShaderProgram(AccelVolumeSliceVS, faceSource.c_str(), "");
+    if (!faceProgram)
+    {
+      error = "the cut-face shader did not compile";
+      return false;
+    }
+    SetFrameUniforms(faceProgram, resources, frame);
+  }
+  const bool terminate = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND &&
+    frame.EarlyTermination;
+  int slicesLeft = 0;
+  for (const auto& brick : frame.Bricks)
+  {
+    slicesLeft += static_cast<int>(brick.SliceStarts.size()) - 1;
+  }
+  int slicesSinceMark = 0;
+  for (const vtkAccelVolumeSliceFrame::BrickDraw& brick : frame.Bricks)
+  {
+    vtkTextureObject* texture =
+      resources.Bricks.Acquire(window, brick.Brick, frame.Linear, error);
+    if (!texture)
+    {
+      return false;
+    }
+    texture->Activate();
+    UseProgram(window, resources, sliceProgram, false);
+    SetBrickUniforms(sliceProgram, texture, brick);
+    bool ok = true;
+    if (terminate)
+    {
+      ok = DrawCompositeBrick(
+        window, resources, frame, sliceProgram, brick, slicesSinceMark, slicesLeft);
+    }
+    else
+    {
+      DrawBrickCells(sliceProgram, brick, false);
+    }
+    resources.SliceArray->Release();
+    if (ok && faceProgram)
+    {
+      UseProgram(window, resources, faceProgram, true);
+      SetBrickUniforms(faceProgram, texture, brick);
+      DrawBrickCells(faceProgram, brick, true);
+      resources.SliceArray->Release();
+    }
+    texture->Deactivate();
+    if (!ok)
+    {
+      error = "the early-termination shader did not compile";
+      return false;
+    }
+  }
   return true;
 }
 
 // Pass 1: MAX / MIN / additive blending of one value per fragment into the float target.
 bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame)
+  const vtkAccelVolumeSliceFrame& frame, std::string& error)
 {
   vtkOpenGLState* state = window->GetState();
   resources.Framebuffer->SaveCurrentBindingsAndBuffers();
@@ -361,7 +452,6 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   }
 
   resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
-  resources.VolumeTexture->Activate();
   resources.TransferTable->Activate();
   resources.SceneDepth->Activate();
   if (frame.GradientOpacity)
@@ -380,13 +470,9 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.Gradients->Activate();
   }
-  // Slices then faces: every blend here is order-independent.
-  bool ok = DrawCells(window, resources, frame, false);
-  if (ok && frame.BoundaryRerendering)
-  {
-    ok = DrawCells(window, resources, frame, true);
-  }
-  resources.VolumeTexture->Deactivate();
+  // Per brick, slices then faces: every blend here but composite's is order-independent, and
+  // composite has no faces.
+  const bool ok = DrawBricks(window, resources, frame, error);
   resources.TransferTable->Deactivate();
   resources.SceneDepth->Deactivate();
   if (frame.GradientOpacity)
@@ -444,9 +530,10 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
 }
 
 bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
-  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame)
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame,
+  std::string& error)
 {
-  if (frame.Cells.empty())
+  if (frame.Bricks.empty())
   {
     return true; // everything cropped or clipped away
   }
@@ -466,7 +553,17 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
     resources.SceneDepth->CopyFromFrameBuffer(
       frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.Width, frame.Height);
     resources.SceneDepth->Deactivate();
-    ok = Accumulate(window, resources, frame) && Resolve(window, resources, frame);
+    ok = Accumulate(window, resources, frame, error);
+    if (ok && !Resolve(window, resources, frame))
+    {
+      error = "the resolve shader did not compile";
+      ok = false;
+    }
+  }
+  else
+  {
+    error = "the float target (" + std::to_string(frame.Width) + "x" +
+      std::to_string(frame.Height) + ") could not be allocated";
   }
   state->PopFramebufferBindings();
   state->Pop();

@@ -8,6 +8,7 @@
 #define vtkAccelVolumeSlicePasses_h
 
 #include <array>
+#include <string>
 #include <vector>
 
 class vtkAccelVolumeSliceResources;
@@ -27,6 +28,20 @@ struct vtkAccelVolumeSliceFrame
     int FaceFirst = 0;
     int FaceCount = 0;
   };
+  // One brick's share of the frame: which texture, where it sits in the volume, the samples it
+  // owns (the shaders discard the others) and its cells.
+  struct BrickDraw
+  {
+    int Brick = 0; // index into the brick layout / cache
+    float OwnedLower[3] = { 0, 0, 0 };
+    float OwnedUpper[3] = { 0, 0, 0 };
+    float TextureOrigin[3] = { 0, 0, 0 }; // index of the texture's first texel
+    float TextureSize[3] = { 1, 1, 1 };
+    std::vector<Cell> Cells;
+    // Composite: the first vertex of each slice, and the end, so slices can be drawn in
+    // batches for early ray termination.
+    std::vector<int> SliceStarts;
+  };
   static constexpr int MaximumClipPlanes = 8;
   // Floats per proxy vertex: index x, y, z, then the eye depth of the vertex's slice plane minus
   // ReferenceDepth (the same value for every vertex of a slice; unused by cut faces).
@@ -38,6 +53,8 @@ struct vtkAccelVolumeSliceFrame
   int Height = 0;
   int LowerLeft[2] = { 0, 0 };
   float Dimensions[3] = { 1, 1, 1 };
+  bool Linear = true;   // trilinear (else nearest) volume sampling
+  bool Bricked = false; // several bricks: the shaders test sample ownership
   vtkMatrix4x4* IndexToClip = nullptr;
   vtkMatrix4x4* IndexToEye = nullptr;
   vtkMatrix4x4* EyeToIndex = nullptr;
@@ -64,14 +81,12 @@ struct vtkAccelVolumeSliceFrame
   float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
-  // reached TerminationThreshold are closed for later slices. SliceStarts holds the first
-  // vertex of each composite slice (and the end), so slices can be drawn in batches.
+  // reached TerminationThreshold are closed for later slices (counted across bricks).
   bool FrontToBack = true; // composite order (back to front uses "over")
   bool Jitter = false;      // composite: per-pixel sample offsets against wood-grain
   bool EarlyTermination = false;
   int TerminationInterval = 16;
   float TerminationThreshold = 0.99f;
-  std::vector<int> SliceStarts;
   mutable int TerminationPasses = 0; // out: mark passes run
 
   // Composite empty-space skipping: per fragment (transparent samples skip the shading) and
@@ -85,15 +100,17 @@ struct vtkAccelVolumeSliceFrame
   float LeafSize = 8;
   float LeafGridMaximum[3] = { 0, 0, 0 };
 
-  std::vector<Cell> Cells;
+  std::vector<BrickDraw> Bricks; // in drawing order
   const std::vector<float>* Vertices = nullptr; // triangles, VertexFloats per vertex
 };
 
 /**
- * Runs both passes inside a saved/restored OpenGL state. Returns false when a shader did not
- * compile or the targets could not be allocated (the scene is left untouched then).
+ * Runs both passes inside a saved/restored OpenGL state, uploading bricks as the frame needs
+ * them. Returns false with `error` set when a shader did not compile, the targets could not be
+ * allocated or a brick could not be uploaded (the scene is left untouched then).
  */
 bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
-  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame);
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame,
+  std::string& error);
 
 #endif

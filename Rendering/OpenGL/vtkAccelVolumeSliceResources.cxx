@@ -26,8 +26,9 @@
 vtkAccelVolumeSliceResources::vtkAccelVolumeSliceResources() = default;
 vtkAccelVolumeSliceResources::~vtkAccelVolumeSliceResources() = default;
 
-bool vtkAccelVolumeSliceResources::UploadVolume(vtkOpenGLRenderWindow* window, vtkImageData* image,
-  vtkDataArray* scalars, const double range[2], bool linear, std::string& error)
+bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2], std::uint64_t budgetBytes,
+  int maximumBrickSize, std::string& error)
 {
   const bool contextChanged = this->Context != window;
   if (contextChanged && this->Context)
@@ -37,59 +38,77 @@ bool vtkAccelVolumeSliceResources::UploadVolume(vtkOpenGLRenderWindow* window, v
   this->Context = window;
   int dims[3];
   image->GetDimensions(dims);
-  const bool stale = contextChanged || !this->VolumeTexture->GetHandle() ||
-    this->UploadedScalars != scalars || scalars->GetMTime() > this->VolumeUploadTime ||
-    image->GetMTime() > this->VolumeUploadTime || dims[0] != this->Dimensions[0] ||
-    dims[1] != this->Dimensions[1] || dims[2] != this->Dimensions[2] ||
-    range[0] != this->UploadedRange[0] || range[1] != this->UploadedRange[1];
-  if (stale)
+  const bool stale = contextChanged || this->UploadedScalars != scalars ||
+    scalars->GetMTime() > this->VolumeUploadTime || image->GetMTime() > this->VolumeUploadTime ||
+    dims[0] != this->Dimensions[0] || dims[1] != this->Dimensions[1] ||
+    dims[2] != this->Dimensions[2] || range[0] != this->UploadedRange[0] ||
+    range[1] != this->UploadedRange[1] || budgetBytes != this->LayoutBudget ||
+    maximumBrickSize != this->LayoutMaximumBrickSize ||
+    (this->EncodedReleased && !this->Bricks.AllResident());
+  if (!stale)
   {
-    const int maximumSize = vtkTextureObject::GetMaximumTextureSize3D(window);
-    if (maximumSize > 0 &&
-      (dims[0] > maximumSize || dims[1] > maximumSize || dims[2] > maximumSize))
-    {
-      error = "volume " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-        std::to_string(dims[2]) + " exceeds GL_MAX_3D_TEXTURE_SIZE " + std::to_string(maximumSize);
-      return false;
-    }
-    const size_t count = static_cast<size_t>(dims[0]) * dims[1] * dims[2];
-    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
-    vtkAccelVolumeEncodedScalars encoded;
-    if (!vtkAccelVolumeEncodeScalars(scalars, range, encoded, error))
-    {
-      return false;
-    }
-    if (encoded.Normalized)
-    {
-      this->ScalarScale = 1.0f;
-      this->ScalarBias = 0.0f;
-    }
-    else
-    {
-      this->ScalarScale = static_cast<float>(encoded.DecodeScale / width);
-      this->ScalarBias = static_cast<float>((encoded.DecodeOffset - range[0]) / width);
-    }
-    this->VolumeTexture->SetContext(window);
-    window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (!this->VolumeTexture->Create3DFromRaw(
-          dims[0], dims[1], dims[2], 1, encoded.TextureType, const_cast<void*>(encoded.Data)))
-    {
-      error = "could not create the 3D texture (out of GPU memory?)";
-      return false;
-    }
-    this->VolumeTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->VolumeTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->VolumeTexture->SetWrapR(vtkTextureObject::ClampToEdge);
-    std::copy(dims, dims + 3, this->Dimensions);
-    this->UploadedScalars = scalars;
-    this->UploadedRange[0] = range[0];
-    this->UploadedRange[1] = range[1];
-    this->VolumeUploadTime.Modified();
+    return true;
   }
-  const int filter = linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
-  this->VolumeTexture->SetMinificationFilter(filter);
-  this->VolumeTexture->SetMagnificationFilter(filter);
+  this->UploadedScalars = nullptr; // until this succeeds
+  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  this->Encoded = vtkAccelVolumeEncodedScalars();
+  this->EncodedReleased = false;
+  if (!vtkAccelVolumeEncodeScalars(scalars, range, this->Encoded, error))
+  {
+    return false;
+  }
+  if (this->Encoded.Normalized)
+  {
+    this->ScalarScale = 1.0f;
+    this->ScalarBias = 0.0f;
+  }
+  else
+  {
+    this->ScalarScale = static_cast<float>(this->Encoded.DecodeScale / width);
+    this->ScalarBias = static_cast<float>((this->Encoded.DecodeOffset - range[0]) / width);
+  }
+  accelvolume::BrickRequest request;
+  request.dimensions = { { dims[0], dims[1], dims[2] } };
+  const int limit = vtkTextureObject::GetMaximumTextureSize3D(window);
+  request.maximumTextureSize = limit > 0 ? limit : 2048;
+  if (maximumBrickSize > 0)
+  {
+    request.maximumTextureSize = std::min(request.maximumTextureSize, maximumBrickSize);
+  }
+  request.bytesPerVoxel = this->Encoded.TextureType == VTK_UNSIGNED_CHAR
+    ? 1
+    : (this->Encoded.TextureType == VTK_UNSIGNED_SHORT ? 2 : 4);
+  request.budgetBytes = budgetBytes;
+  if (!accelvolume::ComputeBrickLayout(request, this->Layout, error))
+  {
+    return false;
+  }
+  const std::uint64_t capacity = budgetBytes == 0
+    ? this->Layout.bricks.size()
+    : std::max<std::uint64_t>(1, budgetBytes / this->Layout.largestBrickBytes);
+  this->Bricks.Reset(this->Layout, dims,  &this->Encoded,
+    static_cast<int>(std::min<std::uint64_t>(capacity, this->Layout.bricks.size())));
+  std::copy(dims, dims + 3, this->Dimensions);
+  this->UploadedScalars = scalars;
+  this->UploadedRange[0] = range[0];
+  this->UploadedRange[1] = range[1];
+  this->LayoutBudget = budgetBytes;
+  this->LayoutMaximumBrickSize = maximumBrickSize;
+  this->VolumeUploadTime.Modified();
   return true;
+}
+
+void vtkAccelVolumeSliceResources::ReleaseEncodedScalarsIfResident()
+{
+  if (!this->EncodedReleased && this->Bricks.AllResident())
+  {
+    // The textures hold everything now; a copy made for the encoding is dead weight.
+    std::vector<unsigned char>().swap(this->Encoded.Bytes);
+    std::vector<unsigned short>().swap(this->Encoded.Shorts);
+    std::vector<float>().swap(this->Encoded.Floats);
+    this->Encoded.Data = nullptr;
+    this->EncodedReleased = true;
+  }
 }
 
 void vtkAccelVolumeSliceResources::UpdateTransferTable(
@@ -305,7 +324,7 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
 
 void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->VolumeTexture->ReleaseGraphicsResources(window);
+  this->Bricks.ReleaseGraphicsResources(window);
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);
   this->EmptyLeaves->ReleaseGraphicsResources(window);

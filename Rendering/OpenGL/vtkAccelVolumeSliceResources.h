@@ -7,9 +7,14 @@
 #ifndef vtkAccelVolumeSliceResources_h
 #define vtkAccelVolumeSliceResources_h
 
+#include "vtkAccelVolumeBrickCache.h"
+#include "vtkAccelVolumeScalarEncoding.h"
 #include "vtkNew.h"
 #include "vtkTimeStamp.h"
 
+#include "accelvolume/Bricking.h"
+
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,12 +35,24 @@ public:
   ~vtkAccelVolumeSliceResources();
 
   /**
-   * (Re)uploads the scalars as a one-channel 3D texture when they changed since the last
-   * upload or the context changed. Sets ScalarScale / ScalarBias so that
-   * texel * scale + bias is the scalar normalised to `range`. False with `error` set on failure.
+   * Encodes the scalars and lays out their bricks when the scalars, the range, the context or
+   * the limits changed (a brick axis may span at most `maximumBrickSize` texels, 0 for
+   * GL_MAX_3D_TEXTURE_SIZE; `budgetBytes` caps the bricks resident at once, 0 for none). The
+   * textures are uploaded by Bricks.Acquire when a frame first needs them. Sets ScalarScale /
+   * ScalarBias so that texel * scale + bias is the scalar normalised to `range`. False with
+   * `error` set on failure.
    */
-  bool UploadVolume(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
-    const double range[2], bool linear, std::string& error);
+  bool PrepareVolume(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], std::uint64_t budgetBytes, int maximumBrickSize, std::string& error);
+
+  /** The bricks of the prepared volume (one brick when it fits a texture and the budget). */
+  const accelvolume::BrickLayout& GetBrickLayout() const { return this->Layout; }
+
+  /**
+   * Frees the encoded copy of the scalars (int, float, double and signed data) once every brick
+   * is resident; it is rebuilt if a brick has to be uploaded again.
+   */
+  void ReleaseEncodedScalarsIfResident();
 
   /** Rebuilds the RGBA transfer table (colour + scalar opacity over `range`) when needed. */
   void UpdateTransferTable(
@@ -70,7 +87,7 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
-  vtkNew<vtkTextureObject> VolumeTexture;
+  vtkAccelVolumeBrickCache Bricks;
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
   vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
@@ -94,6 +111,11 @@ private:
   void operator=(const vtkAccelVolumeSliceResources&) = delete;
 
   vtkTimeStamp VolumeUploadTime;
+  vtkAccelVolumeEncodedScalars Encoded;
+  bool EncodedReleased = false;
+  accelvolume::BrickLayout Layout;
+  std::uint64_t LayoutBudget = 0;
+  int LayoutMaximumBrickSize = 0;
   vtkTimeStamp TableBuildTime;
   vtkTimeStamp GradientTableBuildTime;
   vtkTimeStamp Table2DBuildTime;

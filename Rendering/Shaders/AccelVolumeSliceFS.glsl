@@ -25,7 +25,12 @@ flat in mat3 sliceEyeMap;          // ... -> eye point (homogeneous, see pixelWe
 uniform sampler3D volumeTexture;
 uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the data range
 uniform sampler2D sceneDepth;      // window depth of the opaque geometry already drawn
-uniform vec3 volumeDimensions;
+uniform vec3 volumeDimensions;    // of the texture (the brick's, when bricked)
+// ACCELVOLUME_BRICKED: the texture holds the volume's points from textureOrigin on, and this
+// brick takes only the samples in [ownedLower, ownedUpper) (its neighbours take the others).
+uniform vec3 textureOrigin;
+uniform vec3 ownedLower;
+uniform vec3 ownedUpper;
 uniform float scalarScale;         // normalized scalar = texel * scalarScale + scalarBias
 uniform float scalarBias;
 uniform float tableSize;
@@ -70,15 +75,22 @@ uniform vec3 leafGridMaximum;       // leaf grid size - 1 per axis
 ACCELVOLUME_PRECISE vec3 indexPosition;
 ACCELVOLUME_PRECISE vec3 eyePosition;
 
+#if ACCELVOLUME_BRICKED
+#define ACCELVOLUME_TEXEL_CENTRE(position) ((position) - textureOrigin + vec3(0.5))
+#else
+#define ACCELVOLUME_TEXEL_CENTRE(position) ((position) + vec3(0.5))
+#endif
+
 float normalizedScalarAt(vec3 position)
 {
-  ACCELVOLUME_PRECISE vec3 textureCoordinate = (position + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
   return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
 }
 
 float normalizedScalar()
 {
-  ACCELVOLUME_PRECISE vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate =
+    ACCELVOLUME_TEXEL_CENTRE(indexPosition) / volumeDimensions;
   return texture(volumeTexture, textureCoordinate).r * scalarScale + scalarBias;
 }
 
@@ -161,6 +173,13 @@ void main()
   eyePosition /= weight;
 #endif
 #endif
+#if ACCELVOLUME_BRICKED
+  // Each sample point belongs to one brick; the slices of its neighbours reach half a voxel in.
+  if (any(lessThan(indexPosition, ownedLower)) || any(greaterThanEqual(indexPosition, ownedUpper)))
+  {
+    discard;
+  }
+#endif
 #if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
   // Order-independent extremes: opaque geometry is handled by the early depth test against
   // the scene depth attached to the target, so a plain slice costs one texture fetch.
@@ -177,7 +196,8 @@ void main()
   vec2 interval = regionInterval(rayOrigin, rayDirection);
   float enter = interval.x - 1.0e-3 * step;
   float exit = min(interval.y, sceneDistance(rayOrigin, rayDirection)) + 1.0e-3 * step;
-  ACCELVOLUME_PRECISE vec3 textureCoordinate = (indexPosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 textureCoordinate =
+    ACCELVOLUME_TEXEL_CENTRE(indexPosition) / volumeDimensions;
   vec3 textureStep = (mat3(eyeToIndex) * rayDirection) * step / volumeDimensions;
 #if defined(ACCELVOLUME_BLEND_MAXIMUM)
   float extreme = -1.0;
@@ -242,7 +262,7 @@ void main()
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-  ACCELVOLUME_PRECISE vec3 center = (samplePosition + vec3(0.5)) / volumeDimensions;
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
 #if ACCELVOLUME_GRADIENT_TEXTURE
   vec3 indexGradient =
     (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;

@@ -86,6 +86,8 @@ CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
     }
   }
   result.keptAreaFraction = fullArea > 0 ? keptArea / fullArea : 1.0;
+  result.fullArea = fullArea;
+  result.keptArea = keptArea;
   std::stable_sort(result.slices.begin(), result.slices.end(),
     [frontToBack](const auto& a, const auto& b)
     { return frontToBack ? a.first < b.first : a.first > b.first; });

@@ -15,6 +15,8 @@ struct CompositeSlices
   // so drawing depth-major keeps every ray's samples in compositing order.
   std::vector<std::pair<double, Polygon>> slices;
   double keptAreaFraction = 1.0; // slice area kept by the culling
+  double fullArea = 0.0;         // slice area before / after the culling
+  double keptArea = 0.0;
 };
 
 // View-aligned slices of every region (see ComputeViewAlignedSlices), ordered front to back
