@@ -41,12 +41,15 @@
 
 #include <vtkCommunicator.h>
 #include <vtkImageData.h>
+#include <vtkMPI.h> // MPI_Abort
 #include <vtkMPIController.h>
+#include <vtkAccelVolumeShearWarpMapper.h>
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -394,6 +397,15 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
   return 0;
 }
 
+// A worker rank's wait for another rank ran out (the mapper's CommunicationTimeout): one line,
+// then MPI_Abort ends every rank (called on the mapper's watchdog thread).
+void AbortWorkers(const char* message)
+{
+  std::fprintf(stderr, "accelvolume_benchmark_shearwarp: error: %s\n", message);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, 1);
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
@@ -405,6 +417,7 @@ int main(int argc, char* argv[])
     vtkNew<vtkMPIController> controller;
     controller->Initialize(&argc, &argv);
     vtkMultiProcessController::SetGlobalController(controller);
+    vtkAccelVolumeShearWarpMapper::SetCommunicationAbortFunction(AbortWorkers);
     Options options;
     const int code = ParseArguments(argc, argv, options) ? RunWorker(options, controller) : 2;
     controller->Finalize();

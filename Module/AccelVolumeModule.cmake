@@ -40,6 +40,7 @@ set(_av_private_sources
   OpenGL/vtkAccelVolumeBrickCache
   OpenGL/vtkAccelVolumeImageDisplay
   OpenGL/vtkAccelVolumeMapperSupport
+  OpenGL/vtkAccelVolumeMPIExchange
   OpenGL/vtkAccelVolumeObjectFactory
   OpenGL/vtkAccelVolumeOctreeGPUBuilder
   OpenGL/vtkAccelVolumeRenderProgress

@@ -3,10 +3,10 @@
 #include "vtkAccelVolumeShearWarpMapper.h"
 
 #include "vtkAccelVolumeImageDisplay.h"
+#include "vtkAccelVolumeMPIExchange.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
-#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -40,8 +40,6 @@
 
 namespace
 {
-constexpr int BandRowsTag = 78231;
-
 // Cores in this process's affinity mask (vtkSMPTools' estimate follows its own settings).
 int UsableCores()
 {
@@ -61,6 +59,30 @@ double Now()
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
     .count();
 }
+
+// Why vtkAccelVolumeBeginCPURender refused (it reported the error on this rank; this text goes to
+// the other ranks).
+std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkRenderer* renderer, vtkVolume* volume)
+{
+  if (!vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow()))
+  {
+    return "no OpenGL render window";
+  }
+  vtkImageData* input = nullptr;
+  vtkDataArray* scalars = nullptr;
+  std::string error;
+  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error))
+  {
+    return error;
+  }
+  return volume->GetProperty() ? "its input cannot be rendered" : "the volume has no property";
+}
+
+// Status codes of the frame-status exchange: a rank with nothing to draw makes every rank skip
+// the frame silently; any failure makes every rank fail it.
+constexpr int FrameReady = 0;
+constexpr int FrameFailed = 1;
+constexpr int FrameEmpty = -1;
 }
 
 class vtkAccelVolumeShearWarpMapper::vtkInternals
@@ -71,6 +93,7 @@ public:
   std::vector<float> Image;
   std::vector<double> BandTimes;
   vtkAccelVolumeCPUInputs Inputs; // tables and the versions the encodings were built from
+  vtkAccelVolumeMPIExchange Exchange; // bounded exchanges with the other ranks
   bool WarnedUnsupported = false;
 };
 
@@ -97,9 +120,16 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "LoadBalancing: " << this->LoadBalancing << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "CommunicationTimeout: " << this->CommunicationTimeout << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
   os << indent << "EncodedBytes: " << this->EncodedBytes << "\n";
+}
+
+void vtkAccelVolumeShearWarpMapper::SetCommunicationAbortFunction(
+  void (*function)(const char* message))
+{
+  vtkAccelVolumeMPIExchange::SetAbortFunction(function);
 }
 
 double vtkAccelVolumeShearWarpMapper::GetLastBandTime(int band) const
@@ -133,6 +163,21 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   // thread only); ProgressEvent 1 and EndEvent on every return.
   vtkAccelVolumeRenderProgress progress(this);
   vtkInternals& internals = *this->Internals;
+  vtkMultiProcessController* controller = this->Controller;
+  const int ranks = controller ? std::max(1, controller->GetNumberOfProcesses()) : 1;
+  const int rank = controller ? controller->GetLocalProcessId() : 0;
+  vtkAccelVolumeMPIExchange& exchange = internals.Exchange;
+  exchange.SetController(controller);
+  exchange.SetTimeout(this->CommunicationTimeout);
+  // With several ranks a return before the frame's status exchange still takes part in it, or
+  // the other ranks would wait for this one.
+  const auto leaveEarly = [&](int code, const std::string& why)
+  {
+    if (ranks > 1)
+    {
+      exchange.AgreeOnFailure(code, why, "frame status");
+    }
+  };
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   vtkVolumeProperty* property = nullptr;
@@ -140,6 +185,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     vtkAccelVolumeBeginCPURender(this, renderer, volume, input, scalars, property);
   if (!window)
   {
+    leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, renderer, volume) : "");
     return;
   }
   std::string error;
@@ -159,6 +205,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
       vtkErrorMacro("Blend mode " << this->BlendMode
                                   << " is not supported by the shear-warp mapper (use composite, "
                                      "maximum or minimum intensity)");
+      leaveEarly(FrameFailed, "blend mode " + std::to_string(this->BlendMode) + " not supported");
       return;
   }
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -166,6 +213,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   {
     vtkErrorMacro("The shear-warp mapper needs a parallel projection "
                   "(vtkCamera::ParallelProjectionOn)");
+    leaveEarly(FrameFailed, "perspective camera (shear-warp needs a parallel projection)");
     return;
   }
   if (!internals.WarnedUnsupported &&
@@ -199,6 +247,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
   if (width < 1 || height < 1)
   {
+    leaveEarly(FrameEmpty, "");
     return;
   }
   accelvolume::ShearWarpView frame;
@@ -236,9 +285,6 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, true, lighting);
   }
 
-  vtkMultiProcessController* controller = this->Controller;
-  const int ranks = controller ? std::max(1, controller->GetNumberOfProcesses()) : 1;
-  const int rank = controller ? controller->GetLocalProcessId() : 0;
   // The cores this process may use (an MPI launcher may bind each rank to one): more threads
   // than that only contend, and TBB warns about them.
   const int cores = UsableCores();
@@ -258,6 +304,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   accelvolume::ShearWarpRenderer& engine = internals.Renderer;
   int rectangle[4] = { 0, -1, 0, -1 };
   bool ok = false;
+  bool empty = false; // another rank had nothing to draw: every rank skips the frame
   double gatherSeconds = 0;
   auto renderFrame = [&]()
   {
@@ -274,21 +321,32 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
       }
       // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
       // (split among its threads), and rank 0 gathers the bands and warps. The encoding reports
-      // up to 0.6, then each phase once.
+      // up to 0.6, then each phase once. Every exchange with another rank is bounded in time
+      // (CommunicationTimeout; vtkAccelVolumeMPIExchange).
       engine.SetProgressFunction(progress.Range(0.0, 0.6));
-      ok = engine.BeginFrame(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
-        internals.Inputs.TransferVersion, lighting, frame, settings, parallel, stats, error);
-      // A rank that cannot render must not leave the others waiting for its band.
-      int localOk = ok ? 1 : 0;
-      int allOk = 0;
-      controller->AllReduce(&localOk, &allOk, 1, vtkCommunicator::MIN_OP);
-      if (!allOk)
+      try
       {
-        if (ok)
-        {
-          error = "another rank failed to prepare the frame";
-        }
+        ok = engine.BeginFrame(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
+          internals.Inputs.TransferVersion, lighting, frame, settings, parallel, stats, error);
+      }
+      catch (const std::bad_alloc&)
+      {
         ok = false;
+        error = "out of memory for the run-length encoded volume or the images";
+      }
+      // A rank that cannot render must not leave the others waiting for its band: every rank
+      // learns the lowest rank that failed, and why.
+      const vtkAccelVolumeMPIExchange::Failure failure =
+        exchange.AgreeOnFailure(ok ? FrameReady : FrameFailed, error, "frame status");
+      if (failure.Rank >= 0)
+      {
+        empty = ok && failure.Code == FrameEmpty; // this rank's own failure is still reported
+        ok = false;
+        if (failure.Rank != rank)
+        {
+          error =
+            "rank " + std::to_string(failure.Rank) + " cannot render the frame: " + failure.Message;
+        }
         return;
       }
       progress.Report(0.6);
@@ -297,52 +355,56 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
       // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
       const int first = rank * threads;
       std::vector<double> bandSeconds(static_cast<std::size_t>(ranks * threads), 0.0);
-      parallel(static_cast<std::size_t>(threads),
-        [&](std::size_t begin, std::size_t end)
-        {
-          for (std::size_t t = begin; t < end; ++t)
+      // A rank that runs out of memory here still takes part in the exchanges below (its rows
+      // are then meaningless) and fails the frame on every rank through the summed flag.
+      bool composited = true;
+      try
+      {
+        parallel(static_cast<std::size_t>(threads),
+          [&](std::size_t begin, std::size_t end)
           {
-            const double bandStart = Now();
-            engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
-            bandSeconds[first + t] = Now() - bandStart;
-          }
-        });
+            for (std::size_t t = begin; t < end; ++t)
+            {
+              const double bandStart = Now();
+              engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
+              bandSeconds[first + t] = Now() - bandStart;
+            }
+          });
+      }
+      catch (const std::bad_alloc&)
+      {
+        composited = false;
+      }
       stats.compositeSeconds = Now() - compositeStart;
       progress.Report(0.75);
       const double gatherStart = Now();
       const accelvolume::ShearWarpFactorization& f = engine.GetFactorization();
       const vtkIdType rowValues = 4 * static_cast<vtkIdType>(f.intermediateSize[0]);
-      float* image = engine.GetIntermediateImage();
-      const int rowBegin = rankBounds[first];
-      const int rowEnd = rankBounds[first + threads];
-      if (rank == 0)
+      std::vector<vtkIdType> rankOffsets(static_cast<std::size_t>(ranks + 1));
+      for (int r = 0; r <= ranks; ++r)
       {
-        for (int other = 1; other < ranks; ++other)
-        {
-          const int begin = rankBounds[other * threads];
-          const int end = rankBounds[(other + 1) * threads];
-          if (end > begin)
-          {
-            controller->Receive(image + rowValues * begin, rowValues * (end - begin), other,
-              BandRowsTag);
-          }
-        }
+        rankOffsets[r] = rowValues * rankBounds[r * threads];
       }
-      else if (rowEnd > rowBegin)
-      {
-        controller->Send(image + rowValues * rowBegin, rowValues * (rowEnd - rowBegin), 0,
-          BandRowsTag);
-      }
-      // Everyone balances the next frame with every rank's scanline times, and rank 0 reports
-      // every band's time.
+      exchange.GatherToRoot(engine.GetIntermediateImage(), rankOffsets.data(), "band rows");
+      // Everyone balances the next frame with every rank's scanline times (summed in rank order
+      // on rank 0, so every rank holds the same costs and bands), and rank 0 reports every
+      // band's time; the last value counts the ranks that failed to composite.
       const std::vector<double>& local = engine.GetScanlineSeconds();
-      std::vector<double> summed(local.size(), 0.0);
-      controller->AllReduce(local.data(), summed.data(), static_cast<vtkIdType>(local.size()),
-        vtkCommunicator::SUM_OP);
-      engine.SetScanlineCosts(summed);
-      std::vector<double> allBands(bandSeconds.size(), 0.0);
-      controller->AllReduce(bandSeconds.data(), allBands.data(),
-        static_cast<vtkIdType>(bandSeconds.size()), vtkCommunicator::SUM_OP);
+      std::vector<double> mine(local);
+      mine.insert(mine.end(), bandSeconds.begin(), bandSeconds.end());
+      mine.push_back(composited ? 0.0 : 1.0);
+      std::vector<double> summed(mine.size(), 0.0);
+      exchange.Sum(mine.data(), summed.data(), static_cast<vtkIdType>(mine.size()), "timings");
+      if (summed.back() > 0)
+      {
+        ok = false;
+        error = composited ? "another rank ran out of memory while compositing"
+                           : "out of memory while compositing";
+        return;
+      }
+      const auto bandsBegin = summed.begin() + static_cast<std::ptrdiff_t>(local.size());
+      engine.SetScanlineCosts(std::vector<double>(summed.begin(), bandsBegin));
+      const std::vector<double> allBands(bandsBegin, summed.end() - 1);
       stats.bandSeconds = allBands;
       stats.bandBounds = rankBounds;
       stats.imbalance = accelvolume::Imbalance(allBands);
@@ -374,7 +436,10 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   engine.SetProgressFunction(nullptr); // it refers to this render's progress
   if (!ok)
   {
-    vtkErrorMacro("Shear-warp rendering failed: " << error);
+    if (!empty)
+    {
+      vtkErrorMacro("Shear-warp rendering failed: " << error);
+    }
     return;
   }
   this->LastEncodeTime = stats.encodeSeconds;

@@ -30,7 +30,10 @@
  * never share a pixel and the image never depends on the thread or rank count. With a
  * multi-process controller (SetController) every rank must render the same scene in lockstep
  * (SPMD); each composites its band with its threads, rank 0 gathers the bands, warps and
- * shows the image.
+ * shows the image. The ranks agree on every frame's status first (a rank that cannot render
+ * makes every rank fail the frame, and rank 0's error names it), and every wait for another
+ * rank is bounded (CommunicationTimeout): a rank that hangs or dies ends the job instead of
+ * blocking the others forever.
  */
 #ifndef vtkAccelVolumeShearWarpMapper_h
 #define vtkAccelVolumeShearWarpMapper_h
@@ -118,6 +121,29 @@ public:
   ///@}
 
   ///@{
+  /**
+   * With several ranks: the longest one rank waits for another in one exchange of a frame, in
+   * seconds (default 60; 0 = wait forever). Rank 0 waits at most this long for the other ranks'
+   * frame status, band rows and timings; the others wait up to twice as long for rank 0 (which
+   * may itself be waiting for a hung rank, and then names it). When a wait runs out the job is
+   * ended through the communication abort function (SetCommunicationAbortFunction): a rank
+   * blocked in MPI cannot go on. It must exceed the longest time one rank may still work while
+   * another waits (the ranks' difference in encoding and compositing time).
+   */
+  vtkSetClampMacro(CommunicationTimeout, double, 0.0, 1.0e6);
+  vtkGetMacro(CommunicationTimeout, double);
+  ///@}
+
+  /**
+   * Process-wide: ends the job when a wait of CommunicationTimeout ran out. Called on a watchdog
+   * thread (the rendering thread is blocked in the controller) with a one-line message naming
+   * the rank waited for; an MPI application passes a function that prints it and calls
+   * MPI_Abort. If it returns, or none is set (the default), the message goes to stderr and the
+   * process exits with status 1, which makes mpiexec end the other ranks.
+   */
+  static void SetCommunicationAbortFunction(void (*function)(const char* message));
+
+  ///@{
   /** Last frame, wall-clock seconds: the whole Render(), classification and encoding (0 when
    * reused), the per-frame tables, compositing (all bands), gathering bands from other ranks,
    * the warp. */
@@ -165,6 +191,7 @@ protected:
   int NumberOfThreads = 0;
   vtkTypeBool LoadBalancing = 1;
   vtkMultiProcessController* Controller = nullptr;
+  double CommunicationTimeout = 60;
 
   double LastRenderTime = 0;
   double LastEncodeTime = 0;

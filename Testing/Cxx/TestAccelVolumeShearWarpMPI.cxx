@@ -5,7 +5,11 @@
 // mapper without a controller): the windows must be byte-identical. Composite (table-shaded),
 // MIP and MinIP, 1 and 2 threads per rank, balanced bands over a turning camera (the turn
 // changes the principal axis). Also checks the counters: the mapper reports threads x ranks
-// bands, and the ranks' composited samples add up to the single process's.
+// bands, and the ranks' composited samples add up to the single process's. Failures: when one
+// rank cannot render a frame (its blend mode is unsupported there only), every rank fails that
+// frame at once, the others' error names that rank and its reason, and the next frame renders
+// normally again (the ranks stay in step). Hung and dead ranks:
+// Examples/Cxx/CliMpiFaultTests.cmake.
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeShearWarpMapper.h"
 
@@ -140,6 +144,52 @@ bool CheckScene(vtkMultiProcessController* controller, const char* name, const c
   }
   return ok;
 }
+
+// Rank `failing` alone has an unsupported blend mode for one frame; true on every rank when the
+// frame failed everywhere with the right errors and the next frame worked (rank 0 also compares
+// it with one process's image).
+bool CheckFailureAgreement(vtkMultiProcessController* controller, int failing)
+{
+  const int rank = controller->GetLocalProcessId();
+  auto image = MakePhantom("blobs", 40, 36, 32, 1.0, 1.0, 1.0);
+  View distributed(image, vtkVolumeMapper::COMPOSITE_BLEND, 1, controller);
+  bool ok = distributed.Mapper->GetCommunicationTimeout() == 60.0;
+  // A hang here would be a failure of the protocol: it ends the job well inside ctest's timeout.
+  distributed.Mapper->SetCommunicationTimeout(20);
+  if (rank == failing)
+  {
+    distributed.Mapper->SetBlendModeToAdditive();
+  }
+  distributed.Window->Render();
+  const std::string expected = rank == failing
+    ? std::string("is not supported by the shear-warp mapper")
+    : "Shear-warp rendering failed: rank " + std::to_string(failing) +
+      " cannot render the frame: blend mode " + std::to_string(vtkVolumeMapper::ADDITIVE_BLEND) +
+      " not supported";
+  const bool failedHere = distributed.Errors->Count == 1 &&
+    distributed.Errors->Messages.find(expected) != std::string::npos;
+  std::cout << "rank " << rank << ", rank " << failing << " failing: " << distributed.Errors->Count
+            << " error(s): " << distributed.Errors->Messages
+            << (failedHere ? "" : "  EXPECTED ONE ERROR WITH '" + expected + "'\n");
+  distributed.Mapper->SetBlendModeToComposite();
+  distributed.Window->Render();
+  const bool recovered = distributed.Errors->Count == 1;
+  ok = ok && failedHere && recovered;
+  if (!recovered)
+  {
+    std::cout << "rank " << rank << ": the frame after the failure failed too\n";
+  }
+  if (rank == 0)
+  {
+    View single(image, vtkVolumeMapper::COMPOSITE_BLEND, 1, nullptr);
+    single.Window->Render();
+    const bool same = ReadPixels(distributed.Window) == ReadPixels(single.Window);
+    std::cout << "frame after the failure" << (same ? " equals" : " DIFFERS FROM")
+              << " one process's image\n";
+    ok = ok && same && single.Errors->Count == 0;
+  }
+  return ok;
+}
 }
 
 int TestAccelVolumeShearWarpMPI(int argc, char* argv[])
@@ -167,6 +217,8 @@ int TestAccelVolumeShearWarpMPI(int argc, char* argv[])
     }
     ok = CheckScene(controller, "MinIP", "vessels", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, 2) &&
       ok;
+    ok = CheckFailureAgreement(controller, ranks - 1) && ok;
+    ok = CheckFailureAgreement(controller, 0) && ok;
   }
   // Every rank returns rank 0's verdict (and a failure on any rank).
   int local = ok ? 0 : 1;

@@ -1,19 +1,18 @@
 // MapperSetup: creating and configuring the --mapper, and reading its timings and counters.
 #include "MapperSetup.h"
 
+#include <vtkAccelVolumeMPIExchange.h>
 #include <vtkAccelVolumeRayCastMapper.h>
 #include <vtkAccelVolumeShearWarpMapper.h>
 #include <vtkAccelVolumeSliceMapper.h>
 #include <vtkAccelVolumeSmartMapper.h>
 
 #include <vtkCamera.h>
-#include <vtkCommunicator.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 
 #include <cmath>
@@ -69,8 +68,8 @@ void ConfigureRayCast(
   }
 }
 
-void ConfigureShearWarp(vtkAccelVolumeShearWarpMapper* shearWarp, const Options& options,
-  vtkMultiProcessController* controller)
+void ConfigureShearWarp(
+  vtkAccelVolumeShearWarpMapper* shearWarp, const Options& options, vtkAccelVolumeMPIExchange* mpi)
 {
   shearWarp->SetNumberOfThreads(options.threads);
   shearWarp->SetEarlyRayTermination(options.earlyRayTermination);
@@ -79,9 +78,10 @@ void ConfigureShearWarp(vtkAccelVolumeShearWarpMapper* shearWarp, const Options&
   shearWarp->SetShadingMode(options.phongShading
       ? vtkAccelVolumeShearWarpMapper::SHADING_PHONG
       : vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE);
-  if (controller)
+  if (mpi)
   {
-    shearWarp->SetController(controller);
+    shearWarp->SetController(mpi->GetController());
+    shearWarp->SetCommunicationTimeout(options.mpiTimeout);
   }
 }
 
@@ -141,7 +141,7 @@ double ShearWarpSliceDistance(vtkImageData* image, vtkCamera* camera, int axis)
 
 // The shear-warp mapper's settings as it holds them and its last frame's counters and timings.
 void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper, vtkImageData* image,
-  vtkCamera* camera, vtkMultiProcessController* controller, RenderResult& result)
+  vtkCamera* camera, vtkAccelVolumeMPIExchange* mpi, RenderResult& result)
 {
   ShearWarpResult& out = result.shearWarp;
   result.shearWarpUsed = true;
@@ -150,7 +150,7 @@ void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper, vtkImageData* im
   out.balance = mapper->GetLoadBalancing() != 0;
   out.phongShading = mapper->GetShadingMode() == vtkAccelVolumeShearWarpMapper::SHADING_PHONG;
   out.threads = mapper->GetNumberOfThreads();
-  out.ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  out.ranks = mpi ? mpi->GetNumberOfRanks() : 1;
   out.renderMs = 1000 * mapper->GetLastRenderTime();
   out.encodeMs = 1000 * mapper->GetLastEncodeTime();
   out.tableMs = 1000 * mapper->GetLastTableTime();
@@ -172,7 +172,7 @@ void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper, vtkImageData* im
     // rank reads its result).
     const long long local[3] = { out.voxels, out.samples, out.skippedPixels };
     long long total[3] = { 0, 0, 0 };
-    controller->AllReduce(local, total, 3, vtkCommunicator::SUM_OP);
+    mpi->Sum(local, total, 3, "frame counters");
     out.voxels = total[0];
     out.samples = total[1];
     out.skippedPixels = total[2];
@@ -217,8 +217,7 @@ const char* SmartModeName(int mode)
 
 } // namespace
 
-MapperSet CreateMapper(
-  const Options& options, RenderResult& result, vtkMultiProcessController* controller)
+MapperSet CreateMapper(const Options& options, RenderResult& result, vtkAccelVolumeMPIExchange* mpi)
 {
   MapperSet set;
   switch (options.mapper)
@@ -264,7 +263,7 @@ MapperSet CreateMapper(
     case MapperKind::ShearWarp:
     {
       auto shearWarp = vtkSmartPointer<vtkAccelVolumeShearWarpMapper>::New();
-      ConfigureShearWarp(shearWarp, options, controller);
+      ConfigureShearWarp(shearWarp, options, mpi);
       result.sampleDistanceSource = "slice-spacing";
       set.ShearWarp = shearWarp;
       set.Mapper = shearWarp;
@@ -303,7 +302,7 @@ void ReadFirstFrame(const MapperSet& set, RenderResult& result)
 }
 
 void ReadMapperResults(const MapperSet& set, vtkImageData* image, vtkCamera* camera,
-  vtkMultiProcessController* controller, RenderResult& result)
+  vtkAccelVolumeMPIExchange* mpi, RenderResult& result)
 {
   // The smart mapper's counters are those of the mapper its last frame used.
   const int mode = set.Smart ? set.Smart->GetLastRenderMode() : -1;
@@ -326,7 +325,7 @@ void ReadMapperResults(const MapperSet& set, vtkImageData* image, vtkCamera* cam
   }
   if (used(set.ShearWarp, vtkAccelVolumeSmartMapper::SHEARWARP_RENDER))
   {
-    ReadShearWarpResult(set.ShearWarp, image, camera, controller, result);
+    ReadShearWarpResult(set.ShearWarp, image, camera, mpi, result);
   }
   // The mapper's own time for its last Render (VTK's mappers: vtkAbstractMapper::TimeToDraw).
   if (set.Smart)

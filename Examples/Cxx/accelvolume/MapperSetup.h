@@ -14,8 +14,8 @@ class vtkAccelVolumeShearWarpMapper;
 class vtkAccelVolumeSliceMapper;
 class vtkAccelVolumeSmartMapper;
 class vtkCamera;
+class vtkAccelVolumeMPIExchange;
 class vtkImageData;
-class vtkMultiProcessController;
 
 namespace accelvolume::cli
 {
@@ -32,18 +32,19 @@ struct MapperSet
 };
 
 // Creates and configures the mapper (blend mode, input and cropping are set by the caller).
-// result.sampleDistance / sampleDistanceSource must already hold the requested distance.
+// result.sampleDistance / sampleDistanceSource must already hold the requested distance. mpi
+// (--mpi, else null): the shear-warp mapper renders on its controller's ranks.
 MapperSet CreateMapper(
-  const Options& options, RenderResult& result, vtkMultiProcessController* controller);
+  const Options& options, RenderResult& result, vtkAccelVolumeMPIExchange* mpi);
 
 // After the warm-up frame: what that frame built (ray caster prepare, shear-warp encoding).
 void ReadFirstFrame(const MapperSet& set, RenderResult& result);
 
 // After the last frame: the mapper's own render time, and for AccelVolume's mappers their
 // settings and counters (for the smart mapper: its choice and the chosen mapper's counters).
-// Collective under MPI (every rank calls it).
+// Collective under MPI (every rank calls it; bounded like the mapper's exchanges).
 void ReadMapperResults(const MapperSet& set, vtkImageData* image, vtkCamera* camera,
-  vtkMultiProcessController* controller, RenderResult& result);
+  vtkAccelVolumeMPIExchange* mpi, RenderResult& result);
 
 } // namespace accelvolume::cli
 

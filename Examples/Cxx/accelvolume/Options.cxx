@@ -398,6 +398,16 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
         options.haveShading = true;
       } },
     { "--mpi", [&](const std::string&) { options.mpi = true; } },
+    { "--mpi-timeout",
+      [&](const std::string& f)
+      {
+        options.mpiTimeout = reader.Numbers(f, 1)[0];
+        if (!(options.mpiTimeout >= 0 && options.mpiTimeout <= 86400))
+        {
+          throw Usage("--mpi-timeout must be between 0 and 86400 seconds (0 = wait forever)");
+        }
+        options.haveMpiTimeout = true;
+      } },
     { "--frames",
       [&](const std::string& f)
       {
@@ -500,6 +510,10 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
     "--mapper shearwarp and smart");
   onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
+  if (options.haveMpiTimeout && !options.mpi)
+  {
+    throw Usage("--mpi-timeout applies only with --mpi");
+  }
   if (shearWarp)
   {
     // Shear-warp factorizes a parallel view only: it is the default for this mapper, and an

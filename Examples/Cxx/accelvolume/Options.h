@@ -117,6 +117,8 @@ struct Options
   bool haveShading = false;
   bool phongShading = false; // --shading phong (else the lookup table)
   bool mpi = false;          // --mpi: vtkMPIController for the shear-warp mapper
+  bool haveMpiTimeout = false;
+  double mpiTimeout = 60; // --mpi-timeout: longest wait for another rank, seconds (0 = forever)
   std::string outPath;
   std::string statsPath; // "-" = stdout
   std::string gl;        // as given ("" = automatic)

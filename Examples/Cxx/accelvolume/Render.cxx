@@ -5,15 +5,14 @@
 #include "ProgressBar.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
+#include <vtkAccelVolumeMPIExchange.h>
 #include <vtkAccelVolumeSliceMapper.h>
 
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
-#include <vtkCommunicator.h>
 #include <vtkLogger.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -31,8 +30,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 namespace accelvolume::cli
 {
@@ -207,18 +209,126 @@ double Milliseconds(std::chrono::steady_clock::duration duration)
   return std::chrono::duration<double, std::milli>(duration).count();
 }
 
+// Test hook (the MPI fault tests, Examples/Cxx/CliMpiFaultTests.cmake): the environment variable
+// ACCELVOLUME_FAULT=KIND:RANK[:frame=N][:at=start|gather] makes rank RANK, in its N-th render
+// (default 1; the warm-up frame is 1), hang forever (KIND hang), die by SIGKILL (die) or call
+// std::abort (abort), either when the mapper starts the frame (at=start: before the ranks agree on
+// the frame's status) or after compositing its band, before sending it to rank 0 (at=gather, the
+// default). Not for users: it exists to show that the other ranks do not wait forever.
+struct FaultInjection
+{
+  enum class Kind
+  {
+    None,
+    Hang,
+    Die,
+    Abort
+  };
+  Kind What = Kind::None;
+  int Rank = 0;
+  int Frame = 1;
+  bool AtStart = false;
+
+  static FaultInjection FromEnvironment()
+  {
+    FaultInjection fault;
+    const char* value = std::getenv("ACCELVOLUME_FAULT");
+    const std::string text = value ? value : "";
+    if (text.empty())
+    {
+      return fault;
+    }
+    const auto invalid = [&]()
+    {
+      return CliError(ExitUsage,
+        "invalid ACCELVOLUME_FAULT '" + text +
+          "' (test hook; expected hang|die|abort:RANK[:frame=N][:at=start|gather])");
+    };
+    std::vector<std::string> fields;
+    std::istringstream stream(text);
+    for (std::string field; std::getline(stream, field, ':');)
+    {
+      fields.push_back(field);
+    }
+    const auto number = [&](const std::string& digits, int low)
+    {
+      if (digits.empty() || digits.size() > 6 ||
+        digits.find_first_not_of("0123456789") != std::string::npos || std::stoi(digits) < low)
+      {
+        throw invalid();
+      }
+      return std::stoi(digits);
+    };
+    if (fields.size() < 2 || fields.size() > 4)
+    {
+      throw invalid();
+    }
+    const std::string& kind = fields[0];
+    fault.What = kind == "hang" ? Kind::Hang
+      : kind == "die"           ? Kind::Die
+      : kind == "abort"         ? Kind::Abort
+                                : throw invalid();
+    fault.Rank = number(fields[1], 0);
+    for (std::size_t i = 2; i < fields.size(); ++i)
+    {
+      if (fields[i].compare(0, 6, "frame=") == 0)
+      {
+        fault.Frame = number(fields[i].substr(6), 1);
+      }
+      else if (fields[i] == "at=start" || fields[i] == "at=gather")
+      {
+        fault.AtStart = fields[i] == "at=start";
+      }
+      else
+      {
+        throw invalid();
+      }
+    }
+    return fault;
+  }
+
+  [[noreturn]] void Strike() const
+  {
+    switch (this->What)
+    {
+      case Kind::Die:
+        std::raise(SIGKILL);
+        break;
+      case Kind::Abort:
+        std::abort();
+      default:
+        break;
+    }
+    for (;;) // hang (and what SIGKILL leaves): until the MPI launcher ends the job
+    {
+      std::this_thread::sleep_for(std::chrono::hours(1));
+    }
+  }
+};
+
 } // namespace
 
-bool AnyRankFailed(vtkMultiProcessController* controller, bool failed)
+void ThrowIfAnyRankFailed(
+  vtkAccelVolumeMPIExchange* mpi, int code, const std::string& message, const char* what)
 {
-  if (!controller || controller->GetNumberOfProcesses() < 2)
+  if (!mpi)
   {
-    return failed;
+    if (code != 0)
+    {
+      throw CliError(code, message);
+    }
+    return;
   }
-  const int local = failed ? 1 : 0;
-  int any = 0;
-  controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
-  return any != 0;
+  const vtkAccelVolumeMPIExchange::Failure failure = mpi->AgreeOnFailure(code, message, what);
+  if (failure.Rank < 0)
+  {
+    return;
+  }
+  if (failure.Rank == mpi->GetRank())
+  {
+    throw CliError(failure.Code, message);
+  }
+  throw CliError(failure.Code, "rank " + std::to_string(failure.Rank) + ": " + failure.Message);
 }
 
 void CheckCrop(const Options& options, vtkImageData* image)
@@ -245,8 +355,9 @@ void CheckCrop(const Options& options, vtkImageData* image)
 }
 
 RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
-  VTKMessages& messages, vtkMultiProcessController* controller)
+  VTKMessages& messages, vtkAccelVolumeMPIExchange* mpi)
 {
+  const FaultInjection fault = FaultInjection::FromEnvironment();
   RenderResult result;
   image->GetPointData()->GetScalars()->GetRange(result.scalarRange, 0);
   if (options.haveWindow)
@@ -288,7 +399,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.sampleDistanceSource = "min-spacing";
   }
 
-  const MapperSet mappers = CreateMapper(options, result, controller);
+  const MapperSet mappers = CreateMapper(options, result, mpi);
   vtkVolumeMapper* mapper = mappers.Mapper;
   switch (options.blend)
   {
@@ -350,19 +461,12 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   window->SetSize(options.size[0], options.size[1]);
   window->AddRenderer(renderer);
   // --mpi: the ranks render in lockstep, so a failure on any rank must stop every rank (a rank
-  // left alone would wait for the failed one forever).
+  // left alone would wait for the failed one forever); rank 0 reports the failed rank's error.
   const auto agree = [&](const std::string& context)
   {
     const std::string error = messages.TakeError();
-    const bool failed = AnyRankFailed(controller, !error.empty());
-    if (!error.empty())
-    {
-      throw CliError(ExitRuntime, context + ": " + error);
-    }
-    if (failed)
-    {
-      throw CliError(ExitRuntime, context + " on another MPI rank");
-    }
+    ThrowIfAnyRankFailed(mpi, error.empty() ? 0 : ExitRuntime,
+      error.empty() ? std::string() : context + ": " + error, "render status");
   };
   agree("cannot set up the render window");
 
@@ -379,9 +483,39 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   }
   const int tasks = options.frames + 1;
 
+  // ACCELVOLUME_FAULT (test hook): strikes from the mapper's own events on the main thread.
+  int renders = 0;
+  vtkNew<vtkCallbackCommand> onFault;
+  const bool faultHere =
+    fault.What != FaultInjection::Kind::None && fault.Rank == (mpi ? mpi->GetRank() : 0);
+  if (faultHere)
+  {
+    onFault->SetClientData(const_cast<FaultInjection*>(&fault));
+    onFault->SetCallback(
+      [](vtkObject*, unsigned long event, void* client, void* data)
+      {
+        const auto* plan = static_cast<const FaultInjection*>(client);
+        // The shear-warp mapper reports 0.75 once its band is composited, before the gather;
+        // VTK's pipeline sends 1 of its own when it updates a modified mapper.
+        const double value =
+          event == vtkCommand::ProgressEvent && data ? *static_cast<double*>(data) : -1;
+        const bool due =
+          plan->AtStart ? event == vtkCommand::StartEvent : value >= 0.75 && value < 0.9;
+        if (due)
+        {
+          plan->Strike();
+        }
+      });
+  }
+
   vtkNew<vtkUnsignedCharArray> pixel;
   auto renderFrame = [&](int task)
   {
+    if (faultHere && ++renders == fault.Frame)
+    {
+      mapper->AddObserver(vtkCommand::StartEvent, onFault);
+      mapper->AddObserver(vtkCommand::ProgressEvent, onFault);
+    }
     bar.BeginTask(task, tasks, task == 0 ? "first frame" : "frame");
     const auto start = std::chrono::steady_clock::now();
     window->Render();
@@ -417,7 +551,7 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     const std::string name = window->GetClassName();
     result.glBackend = name.find("XOpenGL") != std::string::npos ? "x" : name;
   }
-  ReadMapperResults(mappers, image, camera, controller, result);
+  ReadMapperResults(mappers, image, camera, mpi, result);
   const char* rendererName = nullptr;
   if (result.sliceUsed)
   {

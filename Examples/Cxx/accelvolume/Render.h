@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-class vtkMultiProcessController;
+class vtkAccelVolumeMPIExchange;
 
 namespace accelvolume::cli
 {
@@ -147,15 +147,19 @@ void CheckCrop(const Options& options, vtkImageData* image);
 // Renders one warm-up frame and options.frames timed frames (a progress bar on stderr as
 // options.progress says, fed by the mapper's ProgressEvent), writing options.outPath if set, with
 // the transfer function tf (LoadTransferFunction). Throws CliError(ExitRuntime) when VTK reports an
-// error while rendering or writing. controller (--mpi, shear-warp only): every rank calls this
-// with the same arguments; the ranks agree after every frame whether one of them failed (so none
-// waits forever for a failed one), and only the caller passes outPath for rank 0.
+// error while rendering or writing. mpi (--mpi, shear-warp only; its controller's ranks): every
+// rank calls this with the same arguments; the ranks agree after every frame whether one of them
+// failed (so none waits forever for a failed one), and only the caller passes outPath for rank 0.
+// Test hook: ACCELVOLUME_FAULT (see FaultInjection in Render.cxx) makes one rank hang or die.
 RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
-  VTKMessages& messages, vtkMultiProcessController* controller = nullptr);
+  VTKMessages& messages, vtkAccelVolumeMPIExchange* mpi = nullptr);
 
-// --mpi: whether any rank failed (failed on this one), agreed by all ranks; a no-op (returns
-// failed) without a controller of several processes.
-bool AnyRankFailed(vtkMultiProcessController* controller, bool failed);
+// Throws CliError(code, message) on every rank when any rank passed a non-zero code: on the lowest
+// failing rank its own message, on the others "rank N: <that rank's message>" (with --mpi only
+// rank 0 prints). Without mpi: throws when code is non-zero. Every rank must call it (what names
+// the exchange in timeout messages).
+void ThrowIfAnyRankFailed(
+  vtkAccelVolumeMPIExchange* mpi, int code, const std::string& message, const char* what);
 
 } // namespace accelvolume::cli
 

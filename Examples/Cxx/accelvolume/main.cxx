@@ -9,18 +9,25 @@
 #include "VolumeIO.h"
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
+#include <vtkAccelVolumeMPIExchange.h>
+#include <vtkMPI.h> // MPI_Abort
 #include <vtkMPIController.h>
 #include <vtkMultiProcessController.h>
 
 #include <dlfcn.h>
+#include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <new>
+#include <sstream>
 
 #ifndef ACCELVOLUME_VERSION
 #define ACCELVOLUME_VERSION "unknown"
@@ -47,38 +54,89 @@ int LauncherRank()
   return 0;
 }
 
+// --mpi: a wait for another rank ran out (--mpi-timeout; called on the exchange's watchdog thread
+// while this rank is blocked in MPI): one error line, then MPI_Abort ends every rank.
+void AbortJob(const char* message)
+{
+  std::fprintf(stderr, "accelvolume: error: %s\n", message);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, ExitRuntime);
+}
+
+// --mpi, rank 0: Open MPI's mpiexec ends every rank with SIGTERM when one dies or aborts (its own
+// message names that rank); rank 0 says what it was waiting for. Async-signal-safe calls only.
+extern "C" void OnTerminate(int)
+{
+  const auto put = [](const char* text)
+  {
+    const ssize_t written = write(STDERR_FILENO, text, std::strlen(text));
+    static_cast<void>(written);
+  };
+  const char* pending = vtkAccelVolumeMPIExchange::GetPendingWait();
+  put("accelvolume: error: rank 0 was ended by SIGTERM");
+  if (*pending)
+  {
+    put(" while waiting for ");
+    put(pending);
+  }
+  put(" (the MPI launcher ends every rank when one dies or aborts; its message names that "
+      "rank)\n");
+  _exit(ExitRuntime);
+}
+
 // --mpi: MPI initialized for the whole render (vtkMPIController as VTK's global controller) and
-// finalized when the render is over, on success and on agreed failures alike.
+// finalized when the render is over, on success and on agreed failures alike. Every wait for
+// another rank is bounded by timeout (the exchange's watchdog; AbortJob when one runs out).
 class MPISession
 {
 public:
-  MPISession(int* argc, char*** argv)
+  MPISession(int* argc, char*** argv, double timeout)
   {
     this->Controller = vtkMPIController::New();
     this->Controller->Initialize(argc, argv);
     vtkMultiProcessController::SetGlobalController(this->Controller);
+    this->Exchange.SetController(this->Controller);
+    this->Exchange.SetTimeout(timeout);
+    vtkAccelVolumeMPIExchange::SetAbortFunction(&AbortJob);
+    if (this->Rank() == 0 && this->Controller->GetNumberOfProcesses() > 1)
+    {
+      std::signal(SIGTERM, &OnTerminate);
+    }
   }
   ~MPISession()
   {
-    this->Controller->Finalize();
+    {
+      // MPI_Finalize waits for every rank.
+      const double seconds = 2 * this->Exchange.GetTimeout();
+      std::ostringstream message;
+      message << "rank " << this->Rank() << " waited " << seconds
+              << " s in MPI_Finalize (the MPI communication timeout): another rank hung or died";
+      vtkAccelVolumeMPIExchange::Guard guard(
+        this->Exchange, seconds, message.str(), "the other ranks in MPI_Finalize");
+      this->Controller->Finalize();
+    }
+    std::signal(SIGTERM, SIG_DFL);
+    vtkAccelVolumeMPIExchange::SetAbortFunction(nullptr);
     vtkMultiProcessController::SetGlobalController(nullptr);
     this->Controller->Delete();
   }
   MPISession(const MPISession&) = delete;
   MPISession& operator=(const MPISession&) = delete;
-  vtkMultiProcessController* Get() const { return this->Controller; }
+  vtkAccelVolumeMPIExchange* Get() { return &this->Exchange; }
   int Rank() const { return this->Controller->GetLocalProcessId(); }
 
 private:
   vtkMPIController* Controller = nullptr;
+  vtkAccelVolumeMPIExchange Exchange;
 };
 
-// Runs step on every rank; when it fails on any rank, every rank throws (this rank's own error,
-// else "failed on another MPI rank"), so no rank goes on to wait for a failed one.
+// Runs step on every rank; when it fails on any rank, every rank throws (rank 0 reports the
+// lowest failed rank's error, "rank N: ..." when that is another rank), so no rank goes on to
+// wait for a failed one.
 template <typename Step>
-void Agreed(vtkMultiProcessController* controller, const char* what, Step&& step)
+void Agreed(vtkAccelVolumeMPIExchange* mpi, const char* what, Step&& step)
 {
-  if (!controller)
+  if (!mpi)
   {
     step();
     return;
@@ -104,15 +162,7 @@ void Agreed(vtkMultiProcessController* controller, const char* what, Step&& step
     code = ExitRuntime;
     message = failure.what();
   }
-  const bool anyFailed = AnyRankFailed(controller, code != 0);
-  if (code != 0)
-  {
-    throw CliError(code, message);
-  }
-  if (anyFailed)
-  {
-    throw CliError(ExitRuntime, std::string(what) + " failed on another MPI rank");
-  }
+  ThrowIfAnyRankFailed(mpi, code, message, what);
 }
 
 // Whether an X display can be opened. VTK's X window aborts the process when it cannot, so the
@@ -261,7 +311,7 @@ int Run(int argc, char* argv[])
   std::unique_ptr<MPISession> mpi;
   if (options.mpi)
   {
-    mpi = std::make_unique<MPISession>(&argc, &argv);
+    mpi = std::make_unique<MPISession>(&argc, &argv, options.mpiTimeout);
     SilentRank = mpi->Rank() != 0;
     if (SilentRank)
     {
@@ -271,13 +321,13 @@ int Run(int argc, char* argv[])
       options.progress = ProgressMode::Off; // one bar: rank 0's
     }
   }
-  vtkMultiProcessController* controller = mpi ? mpi->Get() : nullptr;
+  vtkAccelVolumeMPIExchange* exchange = mpi ? mpi->Get() : nullptr;
 
   TransferFunctionSpec transferFunction;
   VTKMessages messages;
   std::string backendNote;
   vtkSmartPointer<vtkImageData> image;
-  Agreed(controller, "loading the input",
+  Agreed(exchange, "input status",
     [&]()
     {
       CheckPhantom(options);
@@ -297,7 +347,7 @@ int Run(int argc, char* argv[])
       CheckCrop(options, image);
     });
 
-  const RenderResult result = RunRender(options, transferFunction, image, messages, controller);
+  const RenderResult result = RunRender(options, transferFunction, image, messages, exchange);
 
   if (!options.statsPath.empty())
   {
