@@ -41,6 +41,8 @@ void ConfigureSlice(
   {
     slice->SetSlabSamples(options.slabSamples);
   }
+  slice->SetGPUMemoryBudget(static_cast<vtkIdType>(options.gpuBudgetMiB * 1024 * 1024));
+  slice->SetMaximumBrickSize(options.maxBrick);
   slice->SetAdditiveUnitDistance(result.raysumUnit);
 }
 
@@ -192,6 +194,11 @@ void ReadSliceResult(vtkAccelVolumeSliceMapper* mapper, RenderResult& result)
   out.renderMs = 1000 * mapper->GetLastRenderTime();
   out.proxyPolygons = mapper->GetLastNumberOfProxyPolygons();
   out.boundaryFaces = mapper->GetLastNumberOfBoundaryFaces();
+  out.bricks = mapper->GetLastNumberOfBricks();
+  out.bricksDrawn = mapper->GetLastNumberOfBricksDrawn();
+  out.brickUploads = mapper->GetLastNumberOfBrickUploads();
+  out.uploadedBytes = static_cast<double>(mapper->GetLastUploadedBytes());
+  out.residentBytes = static_cast<double>(mapper->GetLastResidentBytes());
   result.sampleDistance = mapper->GetLastSliceSpacing();
   result.slices = mapper->GetLastNumberOfSlices();
   result.slabSamples = mapper->GetSlabSamples();

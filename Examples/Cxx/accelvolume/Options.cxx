@@ -322,6 +322,24 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
           throw Usage("--slab-samples must be between 1 and 64");
         }
       } },
+    { "--gpu-budget",
+      [&](const std::string& f)
+      {
+        options.gpuBudgetMiB = reader.Numbers(f, 1)[0];
+        if (!(options.gpuBudgetMiB >= 0 && options.gpuBudgetMiB <= 16.0 * 1024 * 1024))
+        {
+          throw Usage("--gpu-budget must be between 0 (no budget) and 16777216 MiB");
+        }
+      } },
+    { "--max-brick",
+      [&](const std::string& f)
+      {
+        options.maxBrick = reader.Integers(f, 1)[0];
+        if (options.maxBrick != 0 && (options.maxBrick < 4 || options.maxBrick > 65536))
+        {
+          throw Usage("--max-brick must be 0 (the GL limit) or between 4 and 65536 texels");
+        }
+      } },
     { "--sample-distance",
       [&](const std::string& f)
       {
@@ -510,6 +528,9 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
     "--mapper shearwarp and smart");
   onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
+  const bool slice = options.mapper == MapperKind::Slice || smart;
+  onlyFor(options.gpuBudgetMiB > 0, "--gpu-budget", slice, "--mapper slice and smart");
+  onlyFor(options.maxBrick > 0, "--max-brick", slice, "--mapper slice and smart");
   if (options.haveMpiTimeout && !options.mpi)
   {
     throw Usage("--mpi-timeout applies only with --mpi");

@@ -90,6 +90,8 @@ struct Options
   double crop[6] = { 0, 0, 0, 0, 0, 0 }; // index coordinates
   bool boundaryRerender = true;
   int slabSamples = 0; // 0 = the mapper's default
+  double gpuBudgetMiB = 0; // --gpu-budget: slice mapper's GPU memory budget for bricks (0 = none)
+  int maxBrick = 0;        // --max-brick: slice mapper's largest brick axis (0 = GL limit)
   bool earlyRayTermination = true;
   int ertInterval = 0;        // 0 = the mapper's default
   int emptySpaceSkipping = 3; // vtkAccelVolumeSliceMapper::SKIP_* (both by default)

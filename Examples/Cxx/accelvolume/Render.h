@@ -101,6 +101,11 @@ struct SliceResult
   double renderMs = 0;
   int proxyPolygons = 0;
   int boundaryFaces = 0;
+  int bricks = 0;       // bricks of the volume's layout (1 when it fits one texture)
+  int bricksDrawn = 0;  // bricks with geometry in the last frame
+  int brickUploads = 0; // bricks uploaded in the last frame
+  double uploadedBytes = 0;
+  double residentBytes = 0; // volume texture bytes on the GPU after the last frame
 };
 
 // --mapper smart: what the last frame chose and why, and the smart mapper's own time.

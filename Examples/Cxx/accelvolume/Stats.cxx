@@ -158,7 +158,11 @@ std::string SliceObject(const RenderResult& result)
   text << "{\"render_ms\": " << Number(s.renderMs) << ", \"slices\": " << result.slices
        << ", \"proxy_polygons\": " << s.proxyPolygons
        << ", \"boundary_faces\": " << s.boundaryFaces
-       << ", \"termination_passes\": " << result.terminationPasses << "}";
+       << ", \"termination_passes\": " << result.terminationPasses
+       << ", \"bricks\": " << s.bricks << ", \"bricks_drawn\": " << s.bricksDrawn
+       << ", \"brick_uploads\": " << s.brickUploads
+       << ", \"uploaded_bytes\": " << Number(s.uploadedBytes)
+       << ", \"resident_bytes\": " << Number(s.residentBytes) << "}";
   return text.str();
 }
 
