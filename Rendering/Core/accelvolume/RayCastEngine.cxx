@@ -518,21 +518,38 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       (useDistance && useCellLeap && !impl.CellInfoHasDistance);
     if (stale)
     {
-      CellClassification cells = ClassifyCells(volume, opacityRange, leapThreshold, parallel);
+      // Cell-sized arrays (one byte per cell: half a 16-bit volume) are reused or freed as soon
+      // as they are dead, so that a rebuild of the distance map needs 2 bytes per cell, the map
+      // included, and one with cell leaping 4 (5 when the packed table is reused).
+      CellClassification cells;
       if (!useCellLeap)
       {
+        // The configurations are not needed here: the map's own buffer holds them until the
+        // map overwrites them, so a rebuild allocates only the flags.
         std::vector<std::uint16_t>().swap(impl.CellInfo);
-        ResizeWithHugePages(impl.DistanceOnly, cells.nonEmpty.size());
-        ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, impl.DistanceOnly);
+        std::size_t cellCount = 1;
+        for (int a = 0; a < 3; ++a)
+        {
+          cellCount *= static_cast<std::size_t>(std::max(volume.dims[a] - 1, 1));
+        }
+        ResizeWithHugePages(impl.DistanceOnly, cellCount);
+        cells.configuration.swap(impl.DistanceOnly);
+        ClassifyCells(volume, opacityRange, leapThreshold, parallel, cells);
+        impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+        ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
+        impl.DistanceOnly.swap(cells.configuration);
       }
       else
       {
         std::vector<std::uint8_t>().swap(impl.DistanceOnly);
+        ClassifyCells(volume, opacityRange, leapThreshold, parallel, cells);
+        impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
         std::vector<std::uint8_t> distance;
         if (useDistance)
         {
           distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
         }
+        std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
         ResizeWithHugePages(impl.CellInfo, cells.configuration.size());
         const std::uint8_t* configuration = cells.configuration.data();
         const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
@@ -549,7 +566,6 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
       }
       impl.Packed = useCellLeap;
       std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
-      impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
       impl.CellInfoHasDistance = useDistance;
       impl.CellsBuilt = true;
       impl.CellsVolume = volumeVersion;
