@@ -162,6 +162,67 @@ void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
   this->GradientTableBuildTime.Modified();
 }
 
+namespace
+{
+// Slices per step of the gradient texture build: its buffers are a slab, never the volume.
+constexpr int GradientSlab = 16;
+
+// The normalised, NaN-free values of slices [first, last) of the volume.
+void NormalizedSlices(vtkDataArray* scalars, const int dims[3], const double range[2], int first,
+  int last, std::vector<float>& values)
+{
+  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
+  const vtkIdType offset = first * sliceSize;
+  values.resize(static_cast<size_t>((last - first) * sliceSize));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(values.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double v = scalars->GetComponent(offset + i, 0);
+        values[i] = std::isfinite(v)
+          ? static_cast<float>(std::min(1.0, std::max(0.0, (v - range[0]) / width)))
+          : 0.0f;
+      }
+    });
+}
+
+// Calls visit(at, gradient[3], value) for every voxel of slices [z0, z1), rows in parallel:
+// clamped central differences (edges one-sided, like clamp-to-edge sampling of the volume
+// texture) from `values`, which hold slices [valuesFirst, ...) and one slice around [z0, z1).
+template <typename Visit>
+void ForEachGradient(const std::vector<float>& values, int valuesFirst, const int dims[3], int z0,
+  int z1, Visit visit)
+{
+  const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
+  vtkSMPTools::For(static_cast<vtkIdType>(z0) * dims[1], static_cast<vtkIdType>(z1) * dims[1],
+    [&](vtkIdType rowBegin, vtkIdType rowEnd)
+    {
+      for (vtkIdType row = rowBegin; row < rowEnd; ++row)
+      {
+        const int z = static_cast<int>(row / dims[1]);
+        const int y = static_cast<int>(row % dims[1]);
+        for (int x = 0; x < dims[0]; ++x)
+        {
+          const vtkIdType at = (z - valuesFirst) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
+          const vtkIdType step[3] = { 1, dims[0], sliceSize };
+          const int position[3] = { x, y, z };
+          float gradient[3];
+          for (int c = 0; c < 3; ++c)
+          {
+            const vtkIdType low = position[c] > 0 ? at - step[c] : at;
+            const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
+            gradient[c] = 0.5f * (values[high] - values[low]);
+          }
+          visit((z - z0) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x, gradient,
+            values[at]);
+        }
+      }
+    });
+}
+}
+
 bool vtkAccelVolumeSliceResources::UpdateGradients(
   vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, const double range[2])
 {
@@ -172,71 +233,60 @@ bool vtkAccelVolumeSliceResources::UpdateGradients(
   }
   int dims[3];
   image->GetDimensions(dims);
-  const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
-  const vtkIdType count = static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2];
-  // Normalized, NaN-free values once; then clamped central differences (edges one-sided,
-  // like clamp-to-edge sampling of the volume texture).
-  std::vector<float> values(static_cast<size_t>(count));
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const double v = scalars->GetComponent(i, 0);
-        values[i] = std::isfinite(v)
-          ? static_cast<float>(std::min(1.0, std::max(0.0, (v - range[0]) / width)))
-          : 0.0f;
-      }
-    });
-  std::vector<float> gradients(static_cast<size_t>(count) * 3);
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
-  vtkSMPTools::For(0, dims[2],
-    [&](vtkIdType zBegin, vtkIdType zEnd)
-    {
-      for (vtkIdType z = zBegin; z < zEnd; ++z)
-      {
-        for (int y = 0; y < dims[1]; ++y)
-        {
-          for (int x = 0; x < dims[0]; ++x)
-          {
-            const vtkIdType at = z * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
-            const int step[3] = { 1, dims[0], static_cast<int>(sliceSize) };
-            const int position[3] = { x, y, static_cast<int>(z) };
-            for (int c = 0; c < 3; ++c)
-            {
-              const vtkIdType low = position[c] > 0 ? at - step[c] : at;
-              const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
-              gradients[3 * at + c] = 0.5f * (values[high] - values[low]);
-            }
-          }
-        }
-      }
-    });
-  float largest = 1.0e-12f;
-  for (float g : gradients)
+  // Two passes over slabs of slices (with one slice around them): the largest component fixes
+  // the 16-bit scale, then the packed texels go up slab by slab. Buffers stay a slab's size, so
+  // the build needs no volume-sized copy (the old one-pass build peaked at 24 bytes a voxel).
+  std::vector<float> values;
+  std::vector<float> slabLargest(static_cast<size_t>(dims[2]) * dims[1], 0.0f);
+  for (int z0 = 0; z0 < dims[2]; z0 += GradientSlab)
   {
-    largest = std::max(largest, std::fabs(g));
+    const int z1 = std::min(dims[2], z0 + GradientSlab);
+    const int first = std::max(0, z0 - 1);
+    NormalizedSlices(scalars, dims, range, first, std::min(dims[2], z1 + 1), values);
+    ForEachGradient(values, first, dims, z0, z1,
+      [&](vtkIdType at, const float gradient[3], float)
+      {
+        // One slot per row: rows are visited by one thread each, and max is order-free.
+        float& largest = slabLargest[static_cast<size_t>(z0) * dims[1] + at / dims[0]];
+        for (int c = 0; c < 3; ++c)
+        {
+          largest = std::max(largest, std::fabs(gradient[c]));
+        }
+      });
   }
-  std::vector<unsigned short> packed(static_cast<size_t>(count) * 4);
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
+  float largest = 1.0e-12f;
+  for (float value : slabLargest)
+  {
+    largest = std::max(largest, value);
+  }
+  this->Gradients->SetContext(window);
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (!this->Gradients->Create3DFromRaw(dims[0], dims[1], dims[2], 4, VTK_UNSIGNED_SHORT, nullptr))
+  {
+    return false;
+  }
+  std::vector<unsigned short> packed;
+  for (int z0 = 0; z0 < dims[2]; z0 += GradientSlab)
+  {
+    const int z1 = std::min(dims[2], z0 + GradientSlab);
+    const int first = std::max(0, z0 - 1);
+    NormalizedSlices(scalars, dims, range, first, std::min(dims[2], z1 + 1), values);
+    packed.resize(static_cast<size_t>((z1 - z0) * sliceSize) * 4);
+    ForEachGradient(values, first, dims, z0, z1,
+      [&](vtkIdType at, const float gradient[3], float value)
       {
         for (int c = 0; c < 3; ++c)
         {
-          packed[4 * i + c] = static_cast<unsigned short>(
-            std::lround((gradients[3 * i + c] / largest * 0.5f + 0.5f) * 65535.0f));
+          packed[4 * at + c] = static_cast<unsigned short>(
+            std::lround((gradient[c] / largest * 0.5f + 0.5f) * 65535.0f));
         }
-        packed[4 * i + 3] = static_cast<unsigned short>(std::lround(values[i] * 65535.0f));
-      }
-    });
-  this->Gradients->SetContext(window);
-  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (!this->Gradients->Create3DFromRaw(
-        dims[0], dims[1], dims[2], 4, VTK_UNSIGNED_SHORT, packed.data()))
-  {
-    return false;
+        packed[4 * at + 3] = static_cast<unsigned short>(std::lround(value * 65535.0f));
+      });
+    this->Gradients->Activate(); // its own texture unit: no other binding is disturbed
+    glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, dims[0], dims[1], z1 - z0, GL_RGBA,
+      GL_UNSIGNED_SHORT, packed.data());
+    this->Gradients->Deactivate();
   }
   this->Gradients->SetWrapS(vtkTextureObject::ClampToEdge);
   this->Gradients->SetWrapT(vtkTextureObject::ClampToEdge);
