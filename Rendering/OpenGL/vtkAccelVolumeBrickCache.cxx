@@ -117,6 +117,9 @@ bool vtkAccelVolumeBrickCache::Upload(
     static_cast<size_t>(b.textureOrigin[0]);
   const auto* data = static_cast<const unsigned char*>(this->Encoded->Data) + first * texel;
   texture->SetContext(window);
+  // A reused texture keeps the format of its first upload unless told: the data may have
+  // changed type (uchar -> short -> float) since.
+  texture->ResetFormatAndType();
   window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   // The brick is a box inside the whole volume: GL steps over the rest of each row and slice.
   glPixelStorei(GL_UNPACK_ROW_LENGTH, this->Dimensions[0]);

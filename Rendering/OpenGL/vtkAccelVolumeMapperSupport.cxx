@@ -16,14 +16,103 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkTimeStamp.h"
 #include "vtkVolume.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+namespace
+{
+// NaN planes make no box (every comparison fails); +-Inf are fine: they clamp to the volume.
+bool CroppingPlanesValid(const double planes[6], std::string& error)
+{
+  if (std::none_of(planes, planes + 6, [](double p) { return std::isnan(p); }))
+  {
+    return true;
+  }
+  std::ostringstream message;
+  message << "Cropping region planes must be numbers, not NaN (planes";
+  for (int i = 0; i < 6; ++i)
+  {
+    message << " " << planes[i];
+  }
+  message << ")";
+  error = message.str();
+  return false;
+}
+
+// A half-space needs a finite origin and a finite, non-zero normal.
+bool ClippingPlaneValid(vtkPlane* plane, int index, std::string& error)
+{
+  double normal[3];
+  double origin[3];
+  plane->GetNormal(normal);
+  plane->GetOrigin(origin);
+  const bool finite = std::all_of(normal, normal + 3, [](double v) { return std::isfinite(v); }) &&
+    std::all_of(origin, origin + 3, [](double v) { return std::isfinite(v); });
+  if (finite && (normal[0] != 0 || normal[1] != 0 || normal[2] != 0))
+  {
+    return true;
+  }
+  std::ostringstream message;
+  message << "Clipping plane " << index << " has "
+          << (finite ? "a zero normal" : "a non-finite origin or normal") << " (origin "
+          << origin[0] << " " << origin[1] << " " << origin[2] << ", normal " << normal[0] << " "
+          << normal[1] << " " << normal[2] << ")";
+  error = message.str();
+  return false;
+}
+
+// Whether float / double scalars hold a NaN or an infinity (one parallel pass; the answer does
+// not depend on the thread count).
+template <typename T>
+bool HasNonFinite(const T* values, vtkIdType count)
+{
+  std::atomic<bool> found(false);
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end && !found.load(std::memory_order_relaxed); ++i)
+      {
+        if (!std::isfinite(values[i]))
+        {
+          found = true;
+        }
+      }
+    });
+  return found;
+}
+
+template <typename T>
+void ReplaceNonFinite(T* values, vtkIdType count, const double range[2])
+{
+  const T low = static_cast<T>(range[0]);
+  const T high = static_cast<T>(range[1]);
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const T v = values[i];
+        if (std::isnan(v) || v == -std::numeric_limits<T>::infinity())
+        {
+          values[i] = low;
+        }
+        else if (v == std::numeric_limits<T>::infinity())
+        {
+          values[i] = high;
+        }
+      }
+    });
+}
+}
 
 bool vtkAccelVolumeCheckInput(
   vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error)
@@ -55,14 +144,20 @@ bool vtkAccelVolumeCheckInput(
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
+    // Rendering component 0 of independent components, or colour without the opacity channel,
+    // would be a silently wrong picture: refuse both.
     message << "Only single-component scalars are supported (input has "
-            << scalars->GetNumberOfComponents() << " components)";
+            << scalars->GetNumberOfComponents()
+            << " components; neither independent components nor dependent RGB(A) / LA colours "
+               "are rendered: pick one with vtkImageExtractComponents)";
     error = message.str();
     return false;
   }
   if (scalars->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    error = "Scalar array size does not match the image dimensions";
+    message << "Scalar array size (" << scalars->GetNumberOfTuples()
+            << " tuples) does not match the image's " << input->GetNumberOfPoints() << " points";
+    error = message.str();
     return false;
   }
   switch (scalars->GetDataType())
@@ -77,20 +172,70 @@ bool vtkAccelVolumeCheckInput(
     case VTK_DOUBLE:
       return true;
     default:
+      // 64-bit and unsigned 32-bit integers do not fit the float / normalised encodings exactly.
       message << "Unsupported scalar type " << scalars->GetDataTypeAsString()
-              << " (use char, short, int, float or double)";
+              << " (use char, signed or unsigned char, short, unsigned short, int, float or "
+                 "double, e.g. through vtkImageCast)";
       error = message.str();
       return false;
   }
 }
 
+bool vtkAccelVolumeCheckGeometry(vtkVolumeMapper* mapper, std::string& error)
+{
+  if (mapper->GetCropping() && !CroppingPlanesValid(mapper->GetCroppingRegionPlanes(), error))
+  {
+    return false;
+  }
+  vtkPlaneCollection* planes = mapper->GetClippingPlanes();
+  for (int i = 0; planes && i < planes->GetNumberOfItems(); ++i)
+  {
+    if (!ClippingPlaneValid(planes->GetItem(i), i, error))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
+  vtkDataArray* scalars, const double range[2])
+{
+  const vtkIdType count = scalars->GetNumberOfTuples();
+  vtkSmartPointer<vtkDataArray> finite;
+  switch (scalars->GetDataType())
+  {
+    case VTK_FLOAT:
+      if (HasNonFinite(static_cast<const float*>(scalars->GetVoidPointer(0)), count))
+      {
+        finite = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+        finite->DeepCopy(scalars);
+        ReplaceNonFinite(static_cast<float*>(finite->GetVoidPointer(0)), count, range);
+      }
+      break;
+    case VTK_DOUBLE:
+      if (HasNonFinite(static_cast<const double*>(scalars->GetVoidPointer(0)), count))
+      {
+        finite = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+        finite->DeepCopy(scalars);
+        ReplaceNonFinite(static_cast<double*>(finite->GetVoidPointer(0)), count, range);
+      }
+      break;
+    default:
+      break; // integers are always finite
+  }
+  return finite;
+}
+
 void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2])
 {
   scalars->GetFiniteRange(range, 0); // NaN and +/-Inf must not stretch the range
-  if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+  // Without any finite value VTK reports an inverted (or non-finite) range: a unit range keeps
+  // the tables defined.
+  if (!(range[0] <= range[1]) || !std::isfinite(range[0]) || !std::isfinite(range[1]))
   {
-    range[0] = std::isfinite(range[0]) ? range[0] : 0.0;
-    range[1] = std::isfinite(range[1]) ? range[1] : range[0] + 1.0;
+    range[0] = 0.0;
+    range[1] = 1.0;
   }
 }
 
@@ -159,6 +304,13 @@ std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   input->GetSpacing(spacing);
   const int* extent = input->GetExtent();
   const double* planes = mapper->GetCroppingRegionPlanes();
+  std::string error;
+  if (!CroppingPlanesValid(planes, error))
+  {
+    // No region rather than an arbitrary one; CPU mappers refuse earlier (CheckGeometry).
+    vtkErrorWithObjectMacro(mapper, << error);
+    return {};
+  }
   double indexPlanes[6];
   for (int i = 0; i < 6; ++i)
   {
@@ -180,6 +332,17 @@ std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
     double origin[3];
     plane->GetNormal(normal);
     plane->GetOrigin(origin);
+    std::string error;
+    if (!ClippingPlaneValid(plane, i, error))
+    {
+      // An undefined plane keeps nothing (0.p - 1 < 0) rather than an arbitrary part; the
+      // mappers report it (vtkAccelVolumeCheckGeometry).
+      accelvolume::HalfSpace none;
+      none.normal = { 0.0, 0.0, 0.0 };
+      none.offset = -1.0;
+      clip.push_back(none);
+      continue;
+    }
     // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
     double indexNormal[3] = { 0, 0, 0 };
     double offset = 0;
@@ -359,8 +522,16 @@ void vtkAccelVolumeCPUInputs::UpdateVolume(vtkImageData* input, vtkDataArray* sc
     this->Scalars = scalars;
     this->ScalarsTime = scalars->GetMTime();
     this->InputTime = input->GetMTime();
+    double range[2];
+    vtkAccelVolumeScalarRange(scalars, range);
+    this->Finite = vtkAccelVolumeFiniteScalars(scalars, range);
     ++this->VolumeVersion;
   }
+}
+
+vtkDataArray* vtkAccelVolumeCPUInputs::GetScalars() const
+{
+  return this->Finite ? this->Finite.GetPointer() : this->Scalars;
 }
 
 void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const double range[2],
@@ -427,7 +598,8 @@ vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtk
     return nullptr;
   }
   std::string error;
-  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error))
+  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error) ||
+    !vtkAccelVolumeCheckGeometry(mapper, error))
   {
     vtkErrorWithObjectMacro(mapper, << error);
     return nullptr;

@@ -8,12 +8,14 @@
 #include "accelvolume/MinMaxOctree.h"  // ScalarType, VolumeView
 #include "accelvolume/RayCastEngine.h" // RayCastTransfer, RayCastLighting
 
+#include "vtkDataArray.h"    // For vtkSmartPointer<vtkDataArray>
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+
 #include <cstdint>
 
 #include <string>
 #include <vector>
 
-class vtkDataArray;
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkPlaneCollection;
@@ -49,8 +51,20 @@ vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtk
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);
 bool vtkAccelVolumeView(vtkImageData* input, vtkDataArray* scalars, accelvolume::VolumeView& view);
 
+// Cropping planes that are numbers (+-Inf clamp to the volume) when cropping is on, and
+// clipping planes with a finite origin and a finite, non-zero normal. False with a user-facing
+// message naming the plane otherwise.
+bool vtkAccelVolumeCheckGeometry(vtkVolumeMapper* mapper, std::string& error);
+
 // Finite scalar range; NaN / infinite data fall back to a unit range so tables stay defined.
 void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2]);
+
+// The values the slice mapper's texture holds for float / double scalars with NaN or infinite
+// values: a copy with NaN and -Inf replaced by range[0] and +Inf by range[1] (range: the finite
+// range above). Null when every value is finite (or the type is an integer type): use the
+// scalars as they are.
+vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
+  vtkDataArray* scalars, const double range[2]);
 
 // RGBA table of `size` entries over [range[0], range[1]] (range[1] <= range[0] widens to
 // range[0] + 1): colour (or grey) and scalar opacity of the property's first component.
@@ -99,8 +113,12 @@ class vtkAccelVolumeCPUInputs
 public:
   static constexpr int TableSize = 1024; // as the slice mapper, so all classify alike
 
-  // Bumps VolumeVersion when the scalars array, its MTime or the input's MTime changed.
+  // Bumps VolumeVersion when the scalars array, its MTime or the input's MTime changed; then
+  // also renews the finite copy of float data with NaN / infinite values (so that the CPU
+  // mappers see them as the slice mapper does).
   void UpdateVolume(vtkImageData* input, vtkDataArray* scalars);
+  // The scalars the engines render: that finite copy, or the input's scalars.
+  vtkDataArray* GetScalars() const;
   // Fills transfer for [range[0], high] (high: range[1], or range[0] + 1 for a constant volume),
   // with gradient opacity when the composite property uses it (domain: the function's own, or
   // the steepest gradient over the smallest voxel spacing); bumps TransferVersion on change.
@@ -112,6 +130,7 @@ public:
 
 private:
   vtkDataArray* Scalars = nullptr;
+  vtkSmartPointer<vtkDataArray> Finite;
   unsigned long ScalarsTime = 0;
   unsigned long InputTime = 0;
   std::vector<float> Table;

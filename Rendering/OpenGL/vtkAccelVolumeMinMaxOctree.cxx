@@ -17,6 +17,7 @@
 #include "vtkTimerLog.h"
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace
@@ -141,7 +142,10 @@ bool vtkAccelVolumeMinMaxOctree::Update()
     vtkErrorMacro("The scalars do not match the dimensions.");
     return false;
   }
-  if (this->Builder == BUILDER_GPU)
+  // The builder this build uses: without compute shaders the GPU builder falls back to the
+  // CPU builder, which gives the identical octree (what a context without compute needs).
+  int builder = this->Builder;
+  if (builder == BUILDER_GPU)
   {
     std::string why;
     if (!internals.Window)
@@ -151,18 +155,21 @@ bool vtkAccelVolumeMinMaxOctree::Update()
     }
     if (!vtkAccelVolumeOctreeGPUBuilder::IsSupported(internals.Window, why))
     {
-      vtkErrorMacro(<< why);
-      return false;
+      builder = BUILDER_CPU;
+      if (why != internals.FallbackReason)
+      {
+        internals.FallbackReason = why; // once per reason: time-varying data rebuild often
+        vtkWarningMacro(<< why << "; falling back to the CPU builder (same octree).");
+      }
     }
   }
 
   const bool current = internals.Built && internals.BuiltImage == image &&
     internals.BuiltScalars == scalars && image->GetMTime() <= this->BuildTime &&
     scalars->GetMTime() <= this->BuildTime && internals.BuiltLeafSize == this->LeafSize &&
-    internals.BuiltBuilder == this->Builder &&
-    std::equal(dims, dims + 3, internals.BuiltDimensions) &&
+    internals.BuiltBuilder == builder && std::equal(dims, dims + 3, internals.BuiltDimensions) &&
     // GPU levels also need their buffers (gone after ReleaseGraphicsResources or a new window).
-    (this->Builder != BUILDER_GPU || internals.GPUBuilder.GetNumberOfLevels() > 0);
+    (builder != BUILDER_GPU || internals.GPUBuilder.GetNumberOfLevels() > 0);
   if (current)
   {
     return true;
@@ -176,8 +183,18 @@ bool vtkAccelVolumeMinMaxOctree::Update()
   internals.LevelsOnCPU = false;
   internals.LastUploadTime = 0.0;
   std::string error;
+  // NaN and infinite floats count as the slice mapper's texture (and the GPU builder's upload)
+  // holds them: NaN and -Inf as the finite minimum, +Inf as the finite maximum. Otherwise a
+  // leaf of NaNs would be empty here but show the minimum's opacity in the slice mapper.
+  double range[2];
+  vtkAccelVolumeScalarRange(scalars, range);
+  vtkSmartPointer<vtkDataArray> finite;
+  if (builder != BUILDER_GPU)
+  {
+    finite = vtkAccelVolumeFiniteScalars(scalars, range);
+  }
   accelvolume::VolumeView view;
-  view.data = scalars->GetVoidPointer(0);
+  view.data = (finite ? finite.GetPointer() : scalars)->GetVoidPointer(0);
   view.type = type;
   std::copy(dims, dims + 3, view.dims);
   vtkNew<vtkTimerLog> timer;
@@ -185,7 +202,7 @@ bool vtkAccelVolumeMinMaxOctree::Update()
   bool ok = internals.Octree.Configure(dims, this->LeafSize, error);
   if (ok)
   {
-    switch (this->Builder)
+    switch (builder)
     {
       case BUILDER_REFERENCE:
         ok = internals.Octree.BuildReference(view, error);
@@ -226,11 +243,12 @@ bool vtkAccelVolumeMinMaxOctree::Update()
   }
   this->LastBuildTime = timer->GetElapsedTime();
   internals.Built = true;
-  internals.LevelsOnCPU = this->Builder != BUILDER_GPU;
+  internals.LevelsOnCPU = builder != BUILDER_GPU;
   internals.BuiltImage = image;
   internals.BuiltScalars = scalars;
   internals.BuiltLeafSize = this->LeafSize;
-  internals.BuiltBuilder = this->Builder;
+  internals.BuiltBuilder = builder;
+  this->LastBuilder = builder;
   std::copy(dims, dims + 3, internals.BuiltDimensions);
   this->BuildTime.Modified();
   return true;
@@ -389,6 +407,8 @@ void vtkAccelVolumeMinMaxOctree::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Input: " << internals.Input.GetPointer() << "\n";
   os << indent << "LeafSize: " << this->LeafSize << "\n";
   os << indent << "Builder: " << builders[this->Builder] << "\n";
+  os << indent << "LastBuilder: " << (this->LastBuilder >= 0 ? builders[this->LastBuilder] : "none")
+     << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "RenderWindow: " << internals.Window << "\n";
   os << indent << "Built: " << (internals.Built ? "yes" : "no") << "\n";

@@ -19,7 +19,8 @@
  * stay on the GPU in shader storage buffers and are read back only when a CPU query needs them).
  *
  * Supported scalars: one component of char, signed/unsigned char, short, unsigned short, int,
- * float or double; any dimensions >= 1.
+ * float or double; any dimensions >= 1. NaN and -Inf voxels count as the finite minimum of the
+ * data and +Inf as its finite maximum, the values the slice mapper's volume texture holds.
  */
 
 #ifndef vtkAccelVolumeMinMaxOctree_h
@@ -62,10 +63,18 @@ public:
   ///@}
 
   ///@{
-  /** Which builder Update() uses (default BUILDER_CPU). */
+  /**
+   * Which builder Update() uses (default BUILDER_CPU). BUILDER_GPU falls back to BUILDER_CPU
+   * (same octree, one warning per reason) when the window's context has no compute shaders
+   * (OpenGL < 4.3, or ACCELVOLUME_DISABLE_COMPUTE=1 in the environment); it still needs
+   * SetRenderWindow().
+   */
   vtkSetClampMacro(Builder, int, BUILDER_REFERENCE, BUILDER_GPU);
   vtkGetMacro(Builder, int);
   ///@}
+
+  /** The builder the last build used (-1 before any): BUILDER_CPU where BUILDER_GPU fell back. */
+  vtkGetMacro(LastBuilder, int);
 
   ///@{
   /** Threads for BUILDER_CPU (0 = vtkSMPTools' default). Results never depend on it. */
@@ -78,7 +87,7 @@ public:
 
   /**
    * Builds the octree if the input scalars, LeafSize or Builder changed since the last build.
-   * Returns false (with a vtkErrorMacro) on bad input or when the GPU builder is unavailable.
+   * Returns false (with a vtkErrorMacro) on bad input or when BUILDER_GPU has no window.
    * A build (not a reuse) fires StartEvent, ProgressEvent 0 and 1 and EndEvent.
    */
   bool Update();
@@ -133,6 +142,7 @@ protected:
 
   int LeafSize = 8;
   int Builder = BUILDER_CPU;
+  int LastBuilder = -1;
   int NumberOfThreads = 0;
   double LastBuildTime = 0.0;
   double LastClassifyTime = 0.0;

@@ -10,6 +10,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <string>
+
 class vtkDataArray;
 class vtkPiecewiseFunction;
 
@@ -36,6 +38,7 @@ public:
   int BuiltBuilder = -1;
   int BuiltThreads = 0;
   int BuiltDimensions[3] = { 0, 0, 0 };
+  std::string FallbackReason; // why the last GPU build fell back to the CPU builder
   double LastReadBackTime = 0.0;
   double LastUploadTime = 0.0; // GPU builder's share of LastBuildTime spent uploading
 

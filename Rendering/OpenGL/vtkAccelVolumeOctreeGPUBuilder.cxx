@@ -20,7 +20,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <string>
 
 namespace
 {
@@ -158,6 +160,13 @@ vtkAccelVolumeOctreeGPUBuilder::~vtkAccelVolumeOctreeGPUBuilder() = default;
 
 bool vtkAccelVolumeOctreeGPUBuilder::IsSupported(vtkOpenGLRenderWindow* window, std::string& why)
 {
+  // Lets users with a broken compute driver, and the tests, take the no-compute path.
+  const char* disable = std::getenv("ACCELVOLUME_DISABLE_COMPUTE");
+  if (disable && *disable && std::string(disable) != "0")
+  {
+    why = "compute shaders are disabled by ACCELVOLUME_DISABLE_COMPUTE";
+    return false;
+  }
   if (!MakeCurrent(window, why))
   {
     return false;

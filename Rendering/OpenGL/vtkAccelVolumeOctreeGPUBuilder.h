@@ -34,7 +34,10 @@ public:
   vtkAccelVolumeOctreeGPUBuilder();
   ~vtkAccelVolumeOctreeGPUBuilder();
 
-  /** Whether the window's context offers compute shaders (OpenGL >= 4.3); else why not. */
+  /**
+   * Whether the window's context offers compute shaders (OpenGL >= 4.3) and they are not
+   * disabled (ACCELVOLUME_DISABLE_COMPUTE set and not "0"); else why not.
+   */
   static bool IsSupported(vtkOpenGLRenderWindow* window, std::string& why);
 
   /**

@@ -161,12 +161,13 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
 
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
-  accelvolume::VolumeView view;
-  vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
-  const int* dims = view.dims;
 
   // The caster rebuilds its octree / classification only when the versions change.
   internals.Inputs.UpdateVolume(input, scalars);
+  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
+  accelvolume::VolumeView view;
+  vtkAccelVolumeView(input, internals.Inputs.GetScalars(), view); // type checked with the input
+  const int* dims = view.dims;
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
   vtkNew<vtkMatrix4x4> worldToIndex;

@@ -227,11 +227,12 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
 
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
-  accelvolume::VolumeView view;
-  vtkAccelVolumeView(input, scalars, view); // the type was checked with the input
-  const int* dims = view.dims;
 
   internals.Inputs.UpdateVolume(input, scalars); // encodings are rebuilt only on change
+  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
+  accelvolume::VolumeView view;
+  vtkAccelVolumeView(input, internals.Inputs.GetScalars(), view); // type checked with the input
+  const int* dims = view.dims;
   vtkNew<vtkMatrix4x4> indexToWorld;
   vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);

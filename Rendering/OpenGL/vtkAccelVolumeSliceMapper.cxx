@@ -232,7 +232,8 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
                                     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
                                 : nullptr;
   std::string error;
-  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error))
+  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error) ||
+    !vtkAccelVolumeCheckGeometry(this, error))
   {
     vtkErrorMacro(<< error);
     return false;

@@ -184,16 +184,10 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     const int maximum = vtkTextureObject::GetMaximumTextureSize3D(window);
     const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     glRenderer = name ? name : "unknown";
+    // Volumes beyond GL_MAX_3D_TEXTURE_SIZE are no blocker: the slice mapper bricks them.
     if (maximum <= 0)
     {
       sliceBlocker = "the OpenGL context has no 3D textures";
-    }
-    else if (dims[0] > maximum || dims[1] > maximum || dims[2] > maximum)
-    {
-      std::ostringstream text;
-      text << "volume " << dims[0] << "x" << dims[1] << "x" << dims[2]
-           << " exceeds GL_MAX_3D_TEXTURE_SIZE " << maximum;
-      sliceBlocker = text.str();
     }
   }
   const bool sliceUsable = sliceBlocker.empty();
@@ -233,7 +227,18 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
       reason += "hardware OpenGL (" + glRenderer + ") with 3D textures -> slice";
       return SLICE_RENDER;
     }
-    reason += sliceUsable ? "software OpenGL (" + glRenderer + ")" : sliceBlocker;
+    if (sliceUsable)
+    {
+      reason += "software OpenGL (" + glRenderer + ")";
+    }
+    else if (excluded != SLICE_RENDER)
+    {
+      reason += sliceBlocker;
+    }
+    else
+    {
+      reason += "no slice"; // the refused slice request already said why
+    }
     if (shearWarpUsable && interactive && excluded != SHEARWARP_RENDER)
     {
       reason += std::string("; parallel ") + BlendName(blend) +
@@ -351,6 +356,11 @@ void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     mapper->RemoveObserver(forwardTag);
   }
+  // Connected only while it renders: an owned mapper still connected to the shared producer
+  // when this mapper is destroyed kept that producer and its image from being collected
+  // (VTK's garbage collector meets this mapper mid-destruction). Its caches key on the scalars,
+  // not on the connection, so the next frame reuses them.
+  mapper->SetInputConnection(nullptr);
   this->LastRenderTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -7,9 +7,10 @@
  * one vtkAccelVolumeShearWarpMapper (CPU, parallel projection) and, on every Render, forwards
  * its input connection and vtkVolumeMapper settings (blend mode, cropping flag, region planes
  * and flags, clipping planes, AverageIPScalarRange, scalar mode and array selection) to the
- * one it picks, then lets that one render. Mapper-specific settings (sample distances, leaping,
- * threads, ...) are reached through GetSliceMapper(), GetRayCastMapper() and
- * GetShearWarpMapper(); their defaults are the mappers' own.
+ * one it picks, then lets that one render (the input connection only for that render).
+ * Mapper-specific settings (sample distances, leaping, threads, ...) are reached through
+ * GetSliceMapper(), GetRayCastMapper() and GetShearWarpMapper(); their defaults are the
+ * mappers' own.
  *
  * The choice (RequestedRenderMode DEFAULT_RENDER):
  *

@@ -51,13 +51,30 @@ CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
   const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
   double phase, bool frontToBack, const std::vector<Box>* nonEmpty)
 {
+  // Octree boxes span voxel centres, so a one-voxel axis makes them flat, while the regions
+  // draw that axis as a slab one voxel thick: a flat axis widens by half a voxel each way (only
+  // ever keeping more), else every oblique slice through the slab would be culled.
+  std::vector<Box> widened;
   std::vector<std::pair<double, double>> nonEmptyDepths;
   if (nonEmpty)
   {
-    for (const Box& box : *nonEmpty)
+    const auto widen = [](double& lower, double& upper)
     {
+      if (lower == upper)
+      {
+        lower -= 0.5;
+        upper += 0.5;
+      }
+    };
+    widened = *nonEmpty;
+    for (Box& box : widened)
+    {
+      widen(box.lower.x, box.upper.x);
+      widen(box.lower.y, box.upper.y);
+      widen(box.lower.z, box.upper.z);
       nonEmptyDepths.push_back(DepthRange(box, depthGradient, depthOffset));
     }
+    nonEmpty = &widened;
   }
   CompositeSlices result;
   double fullArea = 0.0;

@@ -22,7 +22,9 @@ struct CompositeSlices
 // View-aligned slices of every region (see ComputeViewAlignedSlices), ordered front to back
 // (or back to front). When nonEmpty is given, each slice keeps only the part inside the
 // bounding box of the boxes its plane crosses: one convex polygon per slice, so neighbouring
-// pieces never crack; whatever is cut lies outside every non-empty box.
+// pieces never crack; whatever is cut lies outside every non-empty box. A box flat along an
+// axis (octree boxes of a one-voxel axis) counts as half a voxel thick on each side, as the
+// one-voxel-thick slab the regions draw there.
 CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
   const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
   double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
