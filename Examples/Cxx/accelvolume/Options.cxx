@@ -3,6 +3,7 @@
 
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -140,6 +141,11 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
       [&](const std::string& f)
       {
         const std::vector<int> dims = reader.Integers(f, 3);
+        if (*std::min_element(dims.begin(), dims.end()) < 1)
+        {
+          throw Usage("--dims values must be at least 1, got " + std::to_string(dims[0]) + " " +
+            std::to_string(dims[1]) + " " + std::to_string(dims[2]));
+        }
         std::copy(dims.begin(), dims.end(), volume.dims);
         volume.haveDims = true;
       } },

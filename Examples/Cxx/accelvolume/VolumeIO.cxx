@@ -4,8 +4,10 @@
 #include "VolumeHeaderChecks.h"
 
 #include <vtkDataArray.h>
+#include <vtkDataCompressor.h>
 #include <vtkFloatArray.h>
 #include <vtkLogger.h>
+#include <vtkMatrix3x3.h>
 #include <vtkMetaImageReader.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
@@ -13,19 +15,21 @@
 #include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkType.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
-
-#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <regex>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 namespace accelvolume::cli
@@ -52,11 +56,23 @@ public:
     {
       return;
     }
-    // VTK formats "ERROR: In file, line N\nClass (0x...): message"; keep only the message.
+    // VTK formats "ERROR: In file, line N\nClass (0x...): message" and messages may span lines;
+    // keep the message, its lines joined by spaces.
     std::string message = Trim(text);
-    message = message.substr(message.find_last_of('\n') + 1);
-    const auto prefix = message.find("): ");
-    this->FirstError = Trim(prefix == std::string::npos ? message : message.substr(prefix + 3));
+    if (message.compare(0, 10, "ERROR: In ") == 0)
+    {
+      message = message.substr(std::min(message.find('\n'), message.size()));
+    }
+    message = Trim(message);
+    const auto object = message.find(" (0x"), prefix = message.find("): ");
+    if (object != std::string::npos && object == message.find(' ') && prefix > object &&
+      prefix != std::string::npos)
+    {
+      message = message.substr(prefix + 3);
+    }
+    std::replace_if(
+      message.begin(), message.end(), [](char c) { return std::iscntrl(c & 0xff); }, ' ');
+    this->FirstError = Trim(message);
   }
   std::string FirstError;
 };
@@ -102,54 +118,118 @@ struct RawLayout
   double spacing[3] = { 1, 1, 1 };
 };
 
-// datasets.json lists flat objects, so the object holding a "file" entry is found by scanning
-// to the surrounding braces; that avoids a JSON dependency for three fields.
+// One JSON object of datasets.json, as far as the raw loader cares.
+struct DatasetEntry
+{
+  std::string file, type;
+  std::vector<double> dims, spacing;
+  bool haveDims = false, haveSpacing = false;
+};
+
+// The numbers of a short flat JSON array starting at text[position] == '['; false (and position
+// left alone) for anything else, e.g. nested arrays or strings. The search for ']' is bounded so
+// that many unclosed arrays cannot make the scan quadratic.
+bool ReadNumberArray(const std::string& text, std::size_t& position, std::vector<double>& values)
+{
+  const std::string window = text.substr(position, 256);
+  const std::size_t close = window.find(']');
+  if (close == std::string::npos || window.find_first_of("[{\"", 1) < close)
+  {
+    return false;
+  }
+  values.clear();
+  std::istringstream list(window.substr(1, close - 1));
+  for (std::string item; std::getline(list, item, ',');)
+  {
+    char* end = nullptr;
+    const std::string trimmed = Trim(item);
+    const double value = std::strtod(trimmed.c_str(), &end);
+    if (trimmed.empty() || *end || !std::isfinite(value))
+    {
+      return false;
+    }
+    values.push_back(value);
+  }
+  position += close;
+  return true;
+}
+
+// datasets.json is optional metadata: the innermost object holding "file": <the raw file's name>
+// supplies "dims", "type" and "spacing"; anything unreadable is ignored. A linear scan with an
+// explicit stack of open objects, so no sidecar can exhaust the call stack (std::regex recursed
+// per character and crashed on long strings).
 void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
 {
-  std::ifstream stream(rawPath.parent_path() / "datasets.json", std::ios::binary);
+  const fs::path jsonPath = rawPath.parent_path() / "datasets.json";
+  std::error_code code;
+  if (!fs::is_regular_file(jsonPath, code) || FileSize(jsonPath) > (std::int64_t(16) << 20))
+  {
+    return; // not there, a FIFO (which would block) or implausibly large for metadata
+  }
+  std::ifstream stream(jsonPath, std::ios::binary);
   const std::string text(
     (std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-  static const std::regex fileEntry(R"re("file"\s*:\s*"([^"]*)")re");
-  for (std::sregex_iterator match(text.begin(), text.end(), fileEntry), end; match != end; ++match)
+  std::vector<DatasetEntry> open;
+  std::string key;
+  bool value = false; // after "key":
+  for (std::size_t i = 0; i < text.size(); ++i)
   {
-    const auto first = text.rfind('{', match->position());
-    const auto last = text.find('}', match->position());
-    if ((*match)[1] != rawPath.filename().string() || first == std::string::npos ||
-      last == std::string::npos)
+    const char c = text[i];
+    if (c == '"')
     {
-      continue;
-    }
-    const std::string entry = text.substr(first, last - first);
-    auto numbers = [&entry](const std::string& key)
-    {
-      std::smatch found;
-      std::vector<double> values;
-      if (std::regex_search(entry, found, std::regex("\"" + key + R"("\s*:\s*\[([^\]]*)\])")))
+      std::size_t end = i + 1;
+      while (end < text.size() && text[end] != '"')
       {
-        std::istringstream list(std::regex_replace(found[1].str(), std::regex(","), " "));
-        for (double value; list >> value;)
+        end += text[end] == '\\' ? 2 : 1;
+      }
+      const std::string string = text.substr(i + 1, std::min(end, text.size()) - i - 1);
+      if (value && !open.empty() && (key == "file" || key == "type"))
+      {
+        (key == "file" ? open.back().file : open.back().type) = string;
+      }
+      key = value ? key : string;
+      value = false;
+      i = end;
+    }
+    else if (c == '[' && value && !open.empty() && (key == "dims" || key == "spacing"))
+    {
+      DatasetEntry& entry = open.back();
+      (key == "dims" ? entry.haveDims : entry.haveSpacing) =
+        ReadNumberArray(text, i, key == "dims" ? entry.dims : entry.spacing);
+      value = false;
+    }
+    else if (c == ':' || c == ',' || c == '{' || c == '}')
+    {
+      value = c == ':';
+      if (c == '{' && open.size() == 64)
+      {
+        return; // nested deeper than any dataset list: not ours
+      }
+      if (c == '{')
+      {
+        open.emplace_back();
+      }
+      else if (c == '}' && !open.empty())
+      {
+        const DatasetEntry entry = open.back();
+        open.pop_back();
+        if (entry.file == rawPath.filename().string())
         {
-          values.push_back(value);
+          layout.haveSpacing = entry.haveSpacing && entry.spacing.size() == 3 &&
+            std::all_of(entry.spacing.begin(), entry.spacing.end(), [](double v) { return v > 0; });
+          std::copy(entry.spacing.begin(), entry.spacing.begin() + (layout.haveSpacing ? 3 : 0),
+            layout.spacing);
+          layout.haveDims = entry.haveDims && entry.dims.size() == 3;
+          for (std::size_t axis = 0; axis < 3 && layout.haveDims; ++axis)
+          {
+            // Out-of-range values become 0 or 1e12, which CheckSize refuses with their text.
+            layout.dims[axis] = static_cast<std::int64_t>(std::clamp(entry.dims[axis], 0.0, 1e12));
+          }
+          layout.kind = ParseScalarKind(entry.type);
+          return;
         }
       }
-      return values;
-    };
-    const std::vector<double> spacing = numbers("spacing"), dims = numbers("dims");
-    layout.haveSpacing = spacing.size() == 3 &&
-      std::all_of(
-        spacing.begin(), spacing.end(), [](double v) { return std::isfinite(v) && v > 0; });
-    std::copy(spacing.begin(), spacing.begin() + (layout.haveSpacing ? 3 : 0), layout.spacing);
-    layout.haveDims = dims.size() == 3;
-    for (std::size_t axis = 0; axis < dims.size() && layout.haveDims; ++axis)
-    {
-      layout.dims[axis] = static_cast<std::int64_t>(std::min(dims[axis], 1e12));
     }
-    std::smatch type;
-    if (std::regex_search(entry, type, std::regex(R"re("type"\s*:\s*"([^"]*)")re")))
-    {
-      layout.kind = ParseScalarKind(type[1].str());
-    }
-    return;
   }
 }
 
@@ -169,48 +249,6 @@ void ParseRawName(const std::string& name, RawLayout& layout)
     layout.dims[axis] = std::stoll(match[axis + 1].str());
   }
   layout.kind = ParseScalarKind(match[4].str());
-}
-
-// Gzip data streams straight into the scalar array, so only the volume itself is ever in memory.
-bool ReadGzip(const std::string& path, char* data, std::int64_t bytes, std::string& error)
-{
-  gzFile file = gzopen(path.c_str(), "rb");
-  if (!file)
-  {
-    error = "cannot open '" + path + "'";
-    return false;
-  }
-  gzbuffer(file, 1 << 20);
-  std::int64_t done = 0;
-  while (done < bytes)
-  {
-    const unsigned chunk = static_cast<unsigned>(std::min<std::int64_t>(bytes - done, 1 << 26));
-    const int count = gzread(file, data + done, chunk);
-    if (count <= 0)
-    {
-      break;
-    }
-    done += count;
-  }
-  char extra = 0;
-  const bool more = done == bytes && gzread(file, &extra, 1) > 0;
-  int code = Z_OK;
-  const std::string zlibMessage = gzerror(file, &code);
-  gzclose(file);
-  if (code != Z_OK && code != Z_STREAM_END)
-  {
-    error = "truncated or corrupt gzip data in '" + path + "' after " + std::to_string(done) +
-      " of " + std::to_string(bytes) + " bytes (zlib: " + zlibMessage + ")";
-    return false;
-  }
-  if (done != bytes || more)
-  {
-    error = "size mismatch: '" + path + "' decompresses to " +
-      (more ? "more than " + std::to_string(bytes) : std::to_string(done)) + " bytes but " +
-      std::to_string(bytes) + " bytes are needed";
-    return false;
-  }
-  return true;
 }
 
 vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string& error)
@@ -241,13 +279,13 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   {
     return nullptr;
   }
-  const std::string expected =
+  const std::string needs =
     DimensionsText(layout.dims) + " " + kind->name + " needs " + std::to_string(bytes) + " bytes";
   const std::int64_t fileSize = FileSize(path);
   if (!compressed && fileSize != bytes)
   {
     error = "size mismatch: '" + request.inputPath + "' has " + std::to_string(fileSize) +
-      " bytes but " + expected;
+      " bytes but " + needs;
     return nullptr;
   }
   std::ifstream stream(path, std::ios::binary);
@@ -258,19 +296,30 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
     error = "'" + request.inputPath + "' is not gzip data (bad magic bytes)";
     return nullptr;
   }
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(static_cast<int>(layout.dims[0]), static_cast<int>(layout.dims[1]),
-    static_cast<int>(layout.dims[2]));
-  image->AllocateScalars(kind->vtkType, 1);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars || scalars->GetNumberOfValues() != bytes / kind->size)
+  if (compressed && bytes / MaximumDeflateRatio > fileSize)
   {
-    error = "not enough memory for " + expected;
+    // Refused before allocating: a tiny file must not make the CLI reserve gigabytes.
+    error = "size mismatch: '" + request.inputPath + "' has only " + std::to_string(fileSize) +
+      " compressed bytes, too few for " + DimensionsText(layout.dims) + " " + kind->name + " (" +
+      std::to_string(bytes) + " bytes; gzip expands at most 1032:1)";
     return nullptr;
   }
+  // malloc reports failure as nullptr; VTK's own allocation would print its error to stderr.
+  void* memory = std::malloc(static_cast<std::size_t>(bytes));
+  if (!memory)
+  {
+    error = "not enough memory for " + DimensionsText(layout.dims) + " " + kind->name + " (" +
+      std::to_string(bytes) + " bytes)";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkDataArray> scalars =
+    vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(kind->vtkType));
+  scalars->SetNumberOfComponents(1);
+  scalars->SetVoidArray(memory, bytes / kind->size, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
   scalars->SetName("scalars");
-  char* data = static_cast<char*>(scalars->GetVoidPointer(0));
-  if (compressed ? !ReadGzip(request.inputPath, data, bytes, error) : !stream.read(data, bytes))
+  char* data = static_cast<char*>(memory);
+  if (compressed ? !InflateFile(request.inputPath, 0, -1, Wrapper::Gzip, data, bytes, needs, error)
+                 : !stream.read(data, bytes))
   {
     error = error.empty() ? "cannot read '" + request.inputPath + "'" : error;
     return nullptr;
@@ -284,6 +333,10 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
       std::reverse(data + offset, data + offset + kind->size);
     }
   }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(static_cast<int>(layout.dims[0]), static_cast<int>(layout.dims[1]),
+    static_cast<int>(layout.dims[2]));
+  image->GetPointData()->SetScalars(scalars);
   if (layout.haveSpacing)
   {
     image->SetSpacing(layout.spacing);
@@ -291,18 +344,161 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
   return image;
 }
 
+// Bytes one value of a VTK XML DataArray type takes; 0 for types VTK itself will refuse.
+int XMLTypeSize(const char* type)
+{
+  const std::string name = type ? type : "";
+  return name == "Int8" || name == "UInt8" || name == "Char"   ? 1
+    : name == "Int16" || name == "UInt16"                      ? 2
+    : name == "Int32" || name == "UInt32" || name == "Float32" ? 4
+    : name == "Int64" || name == "UInt64" || name == "Float64" ? 8
+                                                               : 0;
+}
+
+// Sizes a .vti from its parsed XML before vtkXMLImageDataReader allocates anything: the whole
+// extent, and the bytes of every data array (piece voxels times components times type size)
+// against the limits and against what the file can hold: deflate expands at most 1032:1 (LZ4
+// less); LZMA's adaptive coder can reach about 7000:1 on constant data, so it is allowed 65536:1.
+bool CheckXMLImage(vtkXMLImageDataReader* reader, const std::string& path, std::string& error)
+{
+  vtkXMLDataParser* parser = reader->GetXMLParser();
+  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* image = root ? root->FindNestedElementWithName("ImageData") : nullptr;
+  int whole[6];
+  if (!image || image->GetVectorAttribute("WholeExtent", 6, whole) != 6)
+  {
+    error = "cannot read '" + path + "': no ImageData element with a WholeExtent";
+    return false;
+  }
+  auto voxelsOf = [](const int extent[6], Dimensions dims)
+  {
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      dims[axis] = std::int64_t(extent[2 * axis + 1]) - extent[2 * axis] + 1;
+    }
+  };
+  Dimensions dims;
+  voxelsOf(whole, dims);
+  std::int64_t bytes = 0, total = 0;
+  const KindInfo& oneByte = Kinds[0];
+  if (!CheckSize(dims, oneByte, bytes, error))
+  {
+    error = "'" + path + "' WholeExtent: " + error;
+    return false;
+  }
+  // Adds the bytes of array with `tuples` tuples; false (error set) when past the limits.
+  auto addArray = [&](vtkXMLDataElement* array, std::int64_t tuples)
+  {
+    const char* componentText = array->GetAttribute("NumberOfComponents");
+    std::int64_t components = 1;
+    if (componentText &&
+      (!ParseCount(componentText, components) || components < 1 || components > 4096))
+    {
+      error = "cannot read '" + path + "': NumberOfComponents '" + componentText +
+        "' is not between 1 and 4096";
+      return false;
+    }
+    total += tuples * components * XMLTypeSize(array->GetAttribute("type"));
+    error = total > MaximumBytes
+      ? "refusing '" + path + "': its data arrays need more than the 16 GiB limit"
+      : "";
+    return error.empty();
+  };
+  for (int p = 0; p < image->GetNumberOfNestedElements(); ++p)
+  {
+    // Piece > PointData/CellData > DataArray (one tuple per voxel or fewer), FieldData > DataArray.
+    vtkXMLDataElement* element = image->GetNestedElement(p);
+    const std::string name = element->GetName() ? element->GetName() : "";
+    int extent[6];
+    Dimensions pieceDims = { 0, 0, 0 };
+    if (element->GetVectorAttribute("Extent", 6, extent) == 6)
+    {
+      voxelsOf(extent, pieceDims);
+    }
+    std::int64_t voxels = 1;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      // A piece outside or larger than the whole extent is sized as the whole extent.
+      voxels *=
+        pieceDims[axis] >= 1 && pieceDims[axis] <= dims[axis] ? pieceDims[axis] : dims[axis];
+    }
+    for (int a = 0; a < element->GetNumberOfNestedElements(); ++a)
+    {
+      vtkXMLDataElement* child = element->GetNestedElement(a);
+      const char* tupleText = child->GetAttribute("NumberOfTuples");
+      std::int64_t tuples = 0;
+      if (name == "FieldData" &&
+        (!tupleText || !ParseCount(tupleText, tuples) || tuples > MaximumVoxels))
+      {
+        error = "cannot read '" + path + "': FieldData NumberOfTuples '" +
+          (tupleText ? tupleText : "") + "' is not between 0 and 2^31";
+        return false;
+      }
+      for (int d = 0; name == "Piece" && d < child->GetNumberOfNestedElements(); ++d)
+      {
+        if (!addArray(child->GetNestedElement(d), voxels))
+        {
+          return false;
+        }
+      }
+      if (name == "FieldData" && !addArray(child, tuples))
+      {
+        return false;
+      }
+    }
+  }
+  const bool lzma =
+    parser->GetCompressor() && parser->GetCompressor()->IsA("vtkLZMADataCompressor");
+  if (total / (lzma ? 65536 : MaximumDeflateRatio) > FileSize(path))
+  {
+    error = "size mismatch: '" + path + "' has " + std::to_string(FileSize(path)) +
+      " bytes, too few for its " + DimensionsText(dims) + " extent (" + std::to_string(total) +
+      " bytes of data arrays)";
+    return false;
+  }
+  return true;
+}
+
+// Runs a VTK reader with its messages captured. MetaImage and NRRD files passed CheckHeader, so
+// the result must match what their header said; .vti files are sized by CheckXMLImage first.
 template <typename Reader>
-vtkSmartPointer<vtkImageData> RunReader(const std::string& path, std::string& error)
+vtkSmartPointer<vtkImageData> RunReader(
+  const std::string& path, const HeaderSummary* summary, std::string& error)
 {
   MessageCapture capture;
   vtkNew<Reader> reader;
   reader->SetFileName(path.c_str());
-  reader->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(reader->GetOutput());
+  reader->UpdateInformation();
+  if (capture.FirstError().empty())
+  {
+    if constexpr (std::is_same_v<Reader, vtkXMLImageDataReader>)
+    {
+      if (!CheckXMLImage(reader, path, error))
+      {
+        return nullptr;
+      }
+    }
+    reader->Update();
+  }
   if (!capture.FirstError().empty())
   {
     error = "cannot read '" + path + "': " + capture.FirstError();
+    return nullptr;
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(reader->GetOutput());
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (summary && scalars &&
+    (dims[0] != summary->dims[0] || dims[1] != summary->dims[1] || dims[2] != summary->dims[2] ||
+      (scalars->GetDataType() == VTK_CHAR ? VTK_SIGNED_CHAR : scalars->GetDataType()) !=
+        summary->kind->vtkType))
+  {
+    // A disagreement means the header checks and VTK read the header differently: refuse rather
+    // than render a volume nobody checked.
+    error = "VTK read '" + path + "' as " + DescribeVolume(image) + " but its header says " +
+      DimensionsText(summary->dims) + " " + summary->kind->name;
     return nullptr;
   }
   return image;
@@ -349,6 +545,27 @@ bool ValidateImage(vtkImageData* image, const std::string& path, std::string& er
       std::to_string(image->GetNumberOfPoints()) + " voxels";
     return false;
   }
+  // Zero, negative or non-finite geometry gives the mappers no box to render (or NaN bounds).
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  const double determinant = image->GetDirectionMatrix()->Determinant();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!(spacing[axis] > 0 && std::isfinite(spacing[axis]) && std::isfinite(origin[axis])))
+    {
+      std::ostringstream text;
+      text << "'" << path << "' has spacing " << spacing[0] << " " << spacing[1] << " "
+           << spacing[2] << " and origin " << origin[0] << " " << origin[1] << " " << origin[2]
+           << " (spacing must be positive, both finite)";
+      error = text.str();
+      return false;
+    }
+  }
+  if (!std::isfinite(determinant) || std::fabs(determinant) < 1e-12)
+  {
+    error = "'" + path + "' has a singular or non-finite direction matrix";
+    return false;
+  }
   return true;
 }
 
@@ -369,16 +586,17 @@ vtkSmartPointer<vtkImageData> LoadFile(const VolumeRequest& request, std::string
   }
   if (EndsWith(name, ".mhd") || EndsWith(name, ".mha") || nrrd)
   {
-    if (!CheckHeader(path, nrrd, error))
+    HeaderSummary summary;
+    if (!CheckHeader(path, nrrd, summary, error))
     {
       return nullptr;
     }
-    return nrrd ? RunReader<vtkNrrdReader>(path, error)
-                : RunReader<vtkMetaImageReader>(path, error);
+    return nrrd ? RunReader<vtkNrrdReader>(path, &summary, error)
+                : RunReader<vtkMetaImageReader>(path, &summary, error);
   }
   if (EndsWith(name, ".vti"))
   {
-    return RunReader<vtkXMLImageDataReader>(path, error);
+    return RunReader<vtkXMLImageDataReader>(path, nullptr, error);
   }
   error = "unknown file extension for '" + path +
     "' (expected .mhd, .mha, .vti, .nrrd, .nhdr, .raw or .raw.gz)";
