@@ -19,6 +19,7 @@ packages=(
   python3-dev                       # Python wrapping (package accelvolume) for VTK's /usr/bin/python3
   paraview-dev                      # ParaView 5.11 plugin (its own VTK 9.2) and pvbatch
   python3-matplotlib                # charts of the benchmark report (BENCHMARKS.md)
+  clang libclang-rt-14-dev          # libFuzzer targets of the CLI's loaders (scripts/fuzz.sh)
 )
 
 # --- ParaView's Python package for the plugin test (pvbatch) -------------------------------------

@@ -6,7 +6,9 @@
 # Runs, in order:
 #   1. all tests (ctest -j2) on the default headless backend, OSMesa (ACCELVOLUME_TEST_GL=osmesa);
 #   2. the image tests (label "image") again on EGL (surfaceless Mesa or a GPU driver);
-#   3. the X-window tests (label "xwindow") under xvfb-run, when xvfb-run exists.
+#   3. the X-window tests (label "xwindow") under xvfb-run, when xvfb-run exists;
+#   4. libFuzzer on the CLI's loaders for a bounded time (scripts/fuzz.sh; skip with
+#      ACCELVOLUME_FUZZ=0; ACCELVOLUME_FUZZ_SECONDS per target, default 60).
 # The build is always left configured for OSMesa. Exits non-zero if any run failed.
 set -euo pipefail
 
@@ -63,6 +65,14 @@ if command -v xvfb-run >/dev/null 2>&1; then
   echo "Xvfb run: $((SECONDS - t)) s"
 else
   echo "xvfb-run not found: skipping the xwindow tests"
+fi
+
+if [ "${ACCELVOLUME_FUZZ:-1}" != "0" ]; then
+  phase "fuzzing the CLI's loaders (scripts/fuzz.sh)"
+  t=$SECONDS
+  ACCELVOLUME_FUZZ_BUILD_DIR="${ACCELVOLUME_FUZZ_BUILD_DIR:-$build-fuzz}" "$root/scripts/fuzz.sh" \
+    || failed+=("fuzzing (scripts/fuzz.sh)")
+  echo "fuzz run: $((SECONDS - t)) s"
 fi
 
 restore
