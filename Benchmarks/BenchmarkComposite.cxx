@@ -1,5 +1,5 @@
-// accelvolume_benchmark_composite: Table V-3 of paper 000 (ERT and ESS) on real volumes.
-// Paper 000 accelerates slice-based composite rendering with early ray termination and
+// accelvolume_benchmark_composite: Table V-3 of Lee 2005 (ERT and ESS) on real volumes.
+// Lee 2005 accelerates slice-based composite rendering with early ray termination and
 // empty-space skipping; this program measures both, alone and together, and goes beyond the
 // paper with octree skipping and a comparison against VTK's GPU ray caster.
 //
@@ -269,7 +269,7 @@ int main(int argc, char* argv[])
   const std::string backendName =
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
 
-  std::cout << "accelvolume_benchmark_composite: paper 000 Table V-3 (slice-based composite "
+  std::cout << "accelvolume_benchmark_composite: Lee 2005 Table V-3 (slice-based composite "
                "rendering: early ray termination, empty-space skipping)\n"
             << "settings: GL " << backendName << " (" << rendererName
             << "), MultiSamples 0, shading on (tf presets of `accelvolume render --tf` over the "

@@ -1,4 +1,4 @@
-// Command-line settings of accelvolume_benchmark_composite (paper 000, Table V-3).
+// Command-line settings of accelvolume_benchmark_composite (Lee 2005, Table V-3).
 #ifndef accelvolume_benchmark_BenchmarkCompositeOptions_h
 #define accelvolume_benchmark_BenchmarkCompositeOptions_h
 

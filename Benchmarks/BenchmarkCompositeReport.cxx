@@ -142,7 +142,7 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
     std::cerr << "cannot write " << options.Json << "\n";
     return;
   }
-  out << "{\n  \"benchmark\": \"composite (paper 000 Table V-3)\",\n";
+  out << "{\n  \"benchmark\": \"composite (Lee 2005 Table V-3)\",\n";
   out << "  \"gl_backend\": \"" << JsonEscape(backend) << "\",\n";
   out << "  \"gl_renderer\": \"" << JsonEscape(renderer) << "\",\n";
   out << "  \"frames\": " << options.Frames << ",\n  \"large_frames\": " << options.LargeFrames

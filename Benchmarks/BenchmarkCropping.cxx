@@ -1,4 +1,4 @@
-// accelvolume_benchmark_cropping: replicates Table 2 of paper 004 (Kye et al. 2007, "GPU MIP
+// accelvolume_benchmark_cropping: replicates Table 2 of Hong, Kye and Shin 2007 ("GPU MIP
 // with clipping-plane re-rendering") on real volumes.
 //
 // For each dataset: MIP of a cropped sub-volume (20%..80% of every axis by default) seen
@@ -427,7 +427,7 @@ int main(int argc, char* argv[])
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
 
   std::cout
-    << "accelvolume_benchmark_cropping: paper 004 Table 2 (MIP of a cropped volume, "
+    << "accelvolume_benchmark_cropping: Hong, Kye and Shin 2007 Table 2 (MIP of a cropped volume, "
        "boundary re-rendering vs more slices)\n"
     << "settings: " << options.Width << "x" << options.Height << ", MultiSamples 0, GL "
     << backendName << " (" << rendererName << "), " << options.Frames

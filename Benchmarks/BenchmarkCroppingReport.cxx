@@ -82,7 +82,7 @@ void WriteJson(const Options& options, const std::string& renderer, const std::s
     std::cerr << "cannot write " << options.Json << "\n";
     return;
   }
-  out << "{\n  \"benchmark\": \"cropping (paper 004 Table 2)\",\n";
+  out << "{\n  \"benchmark\": \"cropping (Hong, Kye and Shin 2007 Table 2)\",\n";
   out << "  \"gl_backend\": \"" << JsonEscape(backend) << "\",\n";
   out << "  \"gl_renderer\": \"" << JsonEscape(renderer) << "\",\n";
   out << "  \"size\": [" << options.Width << ", " << options.Height << "],\n";

@@ -1,11 +1,11 @@
-// accelvolume_benchmark_octree: min-max octree build times of paper 002 (Kim et al. 2009) on
+// accelvolume_benchmark_octree: min-max octree build times of Lim and Shin 2009 on
 // real volumes and a time-varying phantom, against a one-thread streaming read of the volume.
 //
 // Per dataset: builds with the reference builder (plain loops), the Morton-order CPU builder
 // on 1 thread and on all threads, and the GPU compute builder (OpenGL >= 4.3 in a headless
 // window); each build is forced by marking the scalars modified (as a new time step would);
 // median of --repeat. The read floor sums every byte as 64-bit words on one thread. Re-
-// classification alternates two opacity ramps. The time-varying phantom (paper 002's
+// classification alternates two opacity ramps. The time-varying phantom (Lim and Shin 2009's
 // motivation) also times frames of data update + CPU rebuild + slice-mapper MIP render.
 // Table and JSON: BenchmarkOctreeReport.{h,cxx}.
 #include "BenchmarkOctreeReport.h"
@@ -210,7 +210,7 @@ bool RunDataset(const Options& options, const std::string& name, vtkImageData* i
   return true;
 }
 
-// Paper 002's case: the volume changes every frame, so the octree is rebuilt before each render.
+// Lim and Shin 2009's case: the volume changes every frame, so the octree is rebuilt before each render.
 void RunTimeVarying(const Options& options, vtkAccelVolumeHeadlessRenderWindow* window,
   const GPUState& gpu, DatasetResult& d)
 {
@@ -320,7 +320,7 @@ int main(int argc, char* argv[])
   machine.GLRenderer = gpu.Renderer;
   machine.GLVersion = gpu.Version;
   machine.GPUNote = gpu.Why;
-  std::cout << "accelvolume_benchmark_octree: paper 002 (min-max octree build), leaf "
+  std::cout << "accelvolume_benchmark_octree: Lim and Shin 2009 (min-max octree build), leaf "
             << options.Leaf << ", median of " << options.Repeat << "; " << machine.Threads
             << " threads (" << machine.SMPBackend << "), GL " << machine.GLBackend << " "
             << gpu.Version << " (" << gpu.Renderer << ")"

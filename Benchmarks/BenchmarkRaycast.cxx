@@ -1,6 +1,6 @@
-// accelvolume_benchmark_raycast: Table 2 of paper 001 (semi-transparent cell leaping through a
+// accelvolume_benchmark_raycast: Table 2 of Lim, Kim and Shin 2009 (semi-transparent cell leaping through a
 // modified Marching Cubes table) and beyond, on real volumes.
-// Paper 001 casts rays on the CPU (perspective, 512^2 images) with distance-map or min-max
+// Lim, Kim and Shin 2009 casts rays on the CPU (perspective, 512^2 images) with distance-map or min-max
 // octree leaping, and reports 16.8-24.1 % more speed when semi-transparent cells are leaped as
 // well, with pixel-identical images. This program measures vtkAccelVolumeRayCastMapper in every
 // leap mode (none / distance map / octree) with cell leaping off and on, against VTK's
@@ -359,7 +359,7 @@ int main(int argc, char* argv[])
   machine.GlBackend =
     vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
 
-  std::cout << "accelvolume_benchmark_raycast: paper 001 Table 2 (CPU ray casting: empty-space "
+  std::cout << "accelvolume_benchmark_raycast: Lim, Kim and Shin 2009 Table 2 (CPU ray casting: empty-space "
                "leaping with / without semi-transparent cell leaping) and vtkFixedPoint\n"
             << "machine: " << (machine.Cpu.empty() ? "CPU unknown" : machine.Cpu) << ", "
             << machine.HardwareThreads << " hardware threads; GL " << machine.GlBackend << " ("

@@ -1,4 +1,4 @@
-// Command-line settings of accelvolume_benchmark_raycast (paper 001, Table 2).
+// Command-line settings of accelvolume_benchmark_raycast (Lim, Kim and Shin 2009, Table 2).
 #ifndef accelvolume_benchmark_BenchmarkRaycastOptions_h
 #define accelvolume_benchmark_BenchmarkRaycastOptions_h
 

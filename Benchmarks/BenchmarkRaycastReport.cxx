@@ -1,4 +1,4 @@
-// Printed tables (per case, and Table 2 of paper 001 beside ours) and JSON output of
+// Printed tables (per case, and Table 2 of Lim, Kim and Shin 2009 beside ours) and JSON output of
 // accelvolume_benchmark_raycast.
 #include "BenchmarkRaycastReport.h"
 
@@ -14,7 +14,7 @@ namespace accelvolume::benchmark::raycast
 {
 namespace
 {
-// Paper 001, Table 2: cell-leaping speed-up in % over distance-map leaping (case 1) and octree
+// Lim, Kim and Shin 2009, Table 2: cell-leaping speed-up in % over distance-map leaping (case 1) and octree
 // leaping (case 2) alone, by the paper's volume closest to ours (no teeth volume here).
 struct PaperRow
 {
@@ -245,7 +245,7 @@ void PrintSummary(const std::vector<CaseResult>& cases)
     << " cases (>= " << Num(SpeedUpTarget, 0) << "x vtkFixedPoint at <= its RMS), " << met[1]
     << " / " << cases.size() << " (cell leaping >= " << Num(CellGainTarget, 0)
     << "% over dist. map), " << met[2] << " / " << cases.size() << " (over octree)\n"
-    << "paper 001 Table 2 (Athlon 64 X2 4200+, 512x512x322..512 volumes, 512^2 perspective): "
+    << "Lim, Kim and Shin 2009 Table 2 (Athlon 64 X2 4200+, 512x512x322..512 volumes, 512^2 perspective): "
        "case 1 (dist. map) 18.8-24.1%, case 2 (octree) 16.8-21.7%; teeth volume not "
        "available here\n";
 }
@@ -260,7 +260,7 @@ void WriteJson(const Options& options, const MachineInfo& machine,
     std::cerr << "cannot write " << options.Json << "\n";
     return;
   }
-  out << "{\n  \"benchmark\": \"raycast (paper 001 Table 2: semi-transparent cell leaping)\",\n";
+  out << "{\n  \"benchmark\": \"raycast (Lim, Kim and Shin 2009 Table 2: semi-transparent cell leaping)\",\n";
   out << "  \"machine\": {\"cpu\": \"" << JsonEscape(machine.Cpu)
       << "\", \"hardware_threads\": " << machine.HardwareThreads << ", \"gl_backend\": \""
       << JsonEscape(machine.GlBackend) << "\", \"gl_renderer\": \""

@@ -1,4 +1,4 @@
-// accelvolume_benchmark_shearwarp: Tables 2-3 of paper 003 (parallel shear-warp with a
+// accelvolume_benchmark_shearwarp: Tables 2-3 of Kim 1998 (parallel shear-warp with a
 // run-length encoded volume, skip links and a load-balanced partition of the sheared volume) and
 // beyond, on real volumes, in one run: threads, VolPack and MPI ranks.
 // The paper renders a 128^3 MRI brain and a 256x256x226 CT head on a 4,096-PE MasPar MP-2 in

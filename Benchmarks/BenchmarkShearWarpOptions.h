@@ -1,4 +1,4 @@
-// Command-line settings of accelvolume_benchmark_shearwarp (paper 003, Tables 2-3: parallel
+// Command-line settings of accelvolume_benchmark_shearwarp (Kim 1998, Tables 2-3: parallel
 // shear-warp with run-length encoding and load balancing).
 #ifndef accelvolume_benchmark_BenchmarkShearWarpOptions_h
 #define accelvolume_benchmark_BenchmarkShearWarpOptions_h

@@ -1,4 +1,4 @@
-// Printed tables (per case, and Tables 2-3 of paper 003 beside ours) and JSON output of
+// Printed tables (per case, and Tables 2-3 of Kim 1998 beside ours) and JSON output of
 // accelvolume_benchmark_shearwarp, and the JSON of one run that an MPI worker hands back.
 #include "BenchmarkShearWarpReport.h"
 
@@ -38,7 +38,7 @@ void JsonErrors(std::ostream& out, const ErrorStats& e)
       << ", \"pixels\": " << e.Pixels << "}";
 }
 
-// Paper 003: MasPar MP-2 (4,096 PEs), seconds per frame averaged over 90 frames turned 1 degree.
+// Kim 1998: MasPar MP-2 (4,096 PEs), seconds per frame averaged over 90 frames turned 1 degree.
 constexpr double PaperRleSpeedUp = 1.6102 / 0.7331;      // Table 2: (2) over (1), 2.2x
 constexpr double PaperBalancedSpeedUp = 1.6102 / 0.3109; // Table 2: (3) over (1), 5.18x
 } // namespace
@@ -170,7 +170,7 @@ std::string ReadCpuModel()
 void PrintHeader(const Options& options, const MachineInfo& machine)
 {
   std::cout
-    << "accelvolume_benchmark_shearwarp: paper 003 Tables 2-3 (parallel shear-warp: no RLE / "
+    << "accelvolume_benchmark_shearwarp: Kim 1998 Tables 2-3 (parallel shear-warp: no RLE / "
        "RLE + skip links / RLE + balanced partition), VolPack and MPI\n"
     << "machine: " << (machine.Cpu.empty() ? "CPU unknown" : machine.Cpu) << ", "
     << machine.HardwareThreads << " hardware threads; GL " << machine.GlBackend << " ("
@@ -363,7 +363,7 @@ void PrintSummary(const std::vector<CaseResult>& cases)
                      : met[k] == measured[k] ? " PASS"
                                              : " MISS");
   }
-  std::cout << "\npaper 003 (MasPar MP-2, 4,096 PEs, 90 frames turned 1 degree): Table 2, 128^3 "
+  std::cout << "\nKim 1998 (MasPar MP-2, 4,096 PEs, 90 frames turned 1 degree): Table 2, 128^3 "
                "MRI brain: (1) 2,097,152 voxels 1.6102 s, (2) 274,487 voxels 0.7331 s, (3) "
                "0.3109 s; Table 3, 256x256x226 CT head: (3) 1,339,400 voxels 1.2101 s ((1), (2) "
                "did not fit); speed-ups "
@@ -380,7 +380,7 @@ void WriteJson(const Options& options, const MachineInfo& machine,
     std::cerr << "cannot write " << options.Json << "\n";
     return;
   }
-  out << "{\n  \"benchmark\": \"shearwarp (paper 003 Tables 2-3: parallel shear-warp, RLE, "
+  out << "{\n  \"benchmark\": \"shearwarp (Kim 1998 Tables 2-3: parallel shear-warp, RLE, "
          "load balancing; VolPack; MPI)\",\n";
   out << "  \"machine\": {\"cpu\": \"" << JsonEscape(machine.Cpu)
       << "\", \"hardware_threads\": " << machine.HardwareThreads << ", \"gl_backend\": \""

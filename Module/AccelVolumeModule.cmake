@@ -2,52 +2,37 @@
 # and the Remote/ build (top-level CMakeLists.txt).
 get_filename_component(_av_root "${CMAKE_CURRENT_LIST_DIR}/.." ABSOLUTE)
 
-# Public VTK-style classes (headers installed, wrappable).
+# Core (Rendering/Core, plain C++17: no VTK or GL headers, never in public headers), built once
+# as one static library that the module, the tests, the benchmarks and the CLI link. The module
+# links it privately and keeps its symbols hidden, so a program that links both gets no clash.
+# The CPU oracles and phantoms (reference/) are a library of their own: the module needs none of
+# them; the tests, the CLI (its built-in volume) and the benchmarks link it.
+include("${CMAKE_CURRENT_LIST_DIR}/AccelVolumeCore.cmake")
+
+# Public VTK-style classes (headers installed, wrappable): Rendering/AccelVolume/.
 set(_av_classes
-  OpenGL/vtkAccelVolumeHeadlessRenderWindow
-  OpenGL/vtkAccelVolumeMinMaxOctree
-  OpenGL/vtkAccelVolumeRayCastMapper
-  OpenGL/vtkAccelVolumeShearWarpMapper
-  OpenGL/vtkAccelVolumeSmartMapper
-  OpenGL/vtkAccelVolumeSliceMapper)
+  vtkAccelVolumeMapper
+  vtkAccelVolumeHeadlessRenderWindow
+  vtkAccelVolumeMinMaxOctree
+  vtkAccelVolumeRayCastMapper
+  vtkAccelVolumeShearWarpMapper
+  vtkAccelVolumeSmartMapper
+  vtkAccelVolumeSliceMapper)
 
-# Plain C++17 algorithms: no VTK or GL headers, never in public headers.
-set(_av_core_sources
-  Core/accelvolume/Bricking
-  Core/accelvolume/CellClassification
-  Core/accelvolume/CellLeapTable
-  Core/accelvolume/CompositeSlices
-  Core/accelvolume/DistanceMap
-  Core/accelvolume/DistanceTemplate
-  Core/accelvolume/Geometry
-  Core/accelvolume/MinMaxOctree
-  Core/accelvolume/MinMaxOctreeQueries
-  Core/accelvolume/OpacityRange
-  Core/accelvolume/Phantoms
-  Core/accelvolume/Progress
-  Core/accelvolume/RayCastEngine
-  Core/accelvolume/RayCastKernel
-  Core/accelvolume/ReferenceRenderer
-  Core/accelvolume/RunLengthVolume
-  Core/accelvolume/ShearWarpCompositor
-  Core/accelvolume/ShearWarpEngine
-  Core/accelvolume/ShearWarpFactorization
-  Core/accelvolume/ShearWarpPartition
-  Core/accelvolume/SlabProxy)
-
-# Thin OpenGL helpers, excluded from wrapping and installation.
+# Thin OpenGL / VTK helpers (Rendering/AccelVolume/Private/), excluded from wrapping and
+# installation.
 set(_av_private_sources
-  OpenGL/vtkAccelVolumeBrickCache
-  OpenGL/vtkAccelVolumeImageDisplay
-  OpenGL/vtkAccelVolumeMapperSupport
-  OpenGL/vtkAccelVolumeMPIExchange
-  OpenGL/vtkAccelVolumeObjectFactory
-  OpenGL/vtkAccelVolumeOctreeGPUBuilder
-  OpenGL/vtkAccelVolumeRenderProgress
-  OpenGL/vtkAccelVolumeScalarEncoding
-  OpenGL/vtkAccelVolumeSliceGeometry
-  OpenGL/vtkAccelVolumeSlicePasses
-  OpenGL/vtkAccelVolumeSliceResources)
+  vtkAccelVolumeBrickCache
+  vtkAccelVolumeImageDisplay
+  vtkAccelVolumeMapperSupport
+  vtkAccelVolumeMPIExchange
+  vtkAccelVolumeObjectFactory
+  vtkAccelVolumeOctreeGPUBuilder
+  vtkAccelVolumeRenderProgress
+  vtkAccelVolumeScalarEncoding
+  vtkAccelVolumeSliceGeometry
+  vtkAccelVolumeSlicePasses
+  vtkAccelVolumeSliceResources)
 
 set(_av_shaders
   AccelVolumeSliceVS
@@ -59,23 +44,20 @@ set(_av_shaders
   AccelVolumeOctreeLeafCS
   AccelVolumeOctreeReduceCS)
 
+set(_av_vtk_dir "${_av_root}/Rendering/AccelVolume")
 set(_av_class_files)
 set(_av_headers)
 foreach (_av_class IN LISTS _av_classes)
-  list(APPEND _av_class_files "${_av_root}/Rendering/${_av_class}.cxx")
-  list(APPEND _av_headers "${_av_root}/Rendering/${_av_class}.h")
+  list(APPEND _av_class_files "${_av_vtk_dir}/${_av_class}.cxx")
+  list(APPEND _av_headers "${_av_vtk_dir}/${_av_class}.h")
 endforeach ()
 set(_av_sources)
 set(_av_private_headers)
-foreach (_av_source IN LISTS _av_core_sources _av_private_sources)
-  list(APPEND _av_sources "${_av_root}/Rendering/${_av_source}.cxx")
-  if (EXISTS "${_av_root}/Rendering/${_av_source}.h") # some sources extend another's header
-    list(APPEND _av_private_headers "${_av_root}/Rendering/${_av_source}.h")
-  endif ()
+foreach (_av_source IN LISTS _av_private_sources)
+  list(APPEND _av_sources "${_av_vtk_dir}/Private/${_av_source}.cxx")
+  list(APPEND _av_private_headers "${_av_vtk_dir}/Private/${_av_source}.h")
 endforeach ()
-list(APPEND _av_private_headers
-  "${_av_root}/Rendering/OpenGL/vtkAccelVolumeMinMaxOctreeInternals.h"
-  "${_av_root}/Rendering/OpenGL/vtkAccelVolumeSlicePasses.h")
+list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctreeInternals.h")
 
 if (NOT COMMAND vtk_encode_string)
   include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)
@@ -85,7 +67,7 @@ if (NOT COMMAND vtk_encode_string)
 endif ()
 foreach (_av_shader IN LISTS _av_shaders)
   vtk_encode_string(
-    INPUT         "${_av_root}/Rendering/Shaders/${_av_shader}.glsl"
+    INPUT         "${_av_vtk_dir}/Shaders/${_av_shader}.glsl"
     HEADER_OUTPUT _av_shader_header
     SOURCE_OUTPUT _av_shader_source)
   list(APPEND _av_sources "${_av_shader_source}")
@@ -99,7 +81,7 @@ if (NOT DEFINED ACCELVOLUME_ENABLE_OSMESA OR ACCELVOLUME_ENABLE_OSMESA)
   find_library(ACCELVOLUME_OSMESA_LIBRARY OSMesa)
   if (ACCELVOLUME_OSMESA_INCLUDE_DIR AND ACCELVOLUME_OSMESA_LIBRARY)
     set(_av_have_osmesa 1)
-    list(APPEND _av_sources "${_av_root}/Rendering/OpenGL/vtkAccelVolumeOSMesaLoader.cxx")
+    list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeOSMesaLoader.cxx")
   endif ()
 endif ()
 if (NOT DEFINED ACCELVOLUME_ENABLE_EGL OR ACCELVOLUME_ENABLE_EGL)
@@ -117,8 +99,8 @@ vtk_module_add_module(VTK::RenderingAccelVolume
   PRIVATE_HEADERS ${_av_private_headers})
 
 vtk_module_include(VTK::RenderingAccelVolume
-  PUBLIC  "$<BUILD_INTERFACE:${_av_root}/Rendering/OpenGL>"
-  PRIVATE "${_av_root}/Rendering/Core")
+  PUBLIC  "$<BUILD_INTERFACE:${_av_vtk_dir}>"
+  PRIVATE "${_av_vtk_dir}/Private")
 vtk_module_definitions(VTK::RenderingAccelVolume
   PRIVATE
     ACCELVOLUME_HAVE_OSMESA=${_av_have_osmesa}
@@ -136,4 +118,4 @@ if (_av_have_egl)
   vtk_module_link(VTK::RenderingAccelVolume PRIVATE "${ACCELVOLUME_EGL_LIBRARY}")
 endif ()
 find_package(Threads REQUIRED)
-vtk_module_link(VTK::RenderingAccelVolume PRIVATE ${CMAKE_DL_LIBS} Threads::Threads)
+vtk_module_link(VTK::RenderingAccelVolume PRIVATE AccelVolumeCore ${CMAKE_DL_LIBS} Threads::Threads)

@@ -3,9 +3,9 @@
 #ifndef AccelVolumeTestUtilities_h
 #define AccelVolumeTestUtilities_h
 
-#include "accelvolume/Geometry.h"
-#include "accelvolume/Phantoms.h"
-#include "accelvolume/ReferenceRenderer.h"
+#include "common/Geometry.h"
+#include "reference/Phantoms.h"
+#include "reference/ReferenceRenderer.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -237,16 +237,16 @@ inline std::vector<float> RenderReferenceImage(vtkImageData* image, vtkVolume* v
   switch (settings.blendMode)
   {
     case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      options.blend = accelvolume::ProjectionBlend::Minimum;
+      options.blend = accelvolume::Blend::Minimum;
       break;
     case vtkVolumeMapper::ADDITIVE_BLEND:
-      options.blend = accelvolume::ProjectionBlend::Additive;
+      options.blend = accelvolume::Blend::Additive;
       break;
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
-      options.blend = accelvolume::ProjectionBlend::Average;
+      options.blend = accelvolume::Blend::Average;
       break;
     default:
-      options.blend = accelvolume::ProjectionBlend::Maximum;
+      options.blend = accelvolume::Blend::Maximum;
   }
   std::vector<accelvolume::Box> regions = settings.regions;
   if (regions.empty())

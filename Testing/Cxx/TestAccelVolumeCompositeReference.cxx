@@ -2,7 +2,7 @@
 // RenderReferenceComposite): opacity corrected for the slice spacing, front-to-back order,
 // perspective, a clipping plane, and a non-convex cropping pattern drawn cell by cell.
 #include "AccelVolumeTestUtilities.h"
-#include "accelvolume/ReferenceComposite.h"
+#include "reference/ReferenceComposite.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
 #include <cstdlib>

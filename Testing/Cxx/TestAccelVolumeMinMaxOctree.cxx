@@ -1,6 +1,6 @@
 // vtkAccelVolumeMinMaxOctree: builders agree, timestamps, classification, GPU build, bad input.
 #include "AccelVolumeTestUtilities.h"
-#include "accelvolume/MinMaxOctree.h"
+#include "skipping/MinMaxOctree.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
 
 #include "vtkCommand.h"

@@ -9,7 +9,7 @@
 // rank cannot render a frame (its blend mode is unsupported there only), every rank fails that
 // frame at once, the others' error names that rank and its reason, and the next frame renders
 // normally again (the ranks stay in step). Hung and dead ranks:
-// Examples/Cxx/CliMpiFaultTests.cmake.
+// Testing/CLI/CliMpiFaultTests.cmake.
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeShearWarpMapper.h"
 

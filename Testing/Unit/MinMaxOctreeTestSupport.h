@@ -2,7 +2,7 @@
 #ifndef accelvolume_test_MinMaxOctreeTestSupport_h
 #define accelvolume_test_MinMaxOctreeTestSupport_h
 
-#include "accelvolume/MinMaxOctree.h"
+#include "skipping/MinMaxOctree.h"
 
 #include <algorithm>
 #include <atomic>

@@ -2,7 +2,7 @@
 #ifndef accelvolume_test_RandomGeometry_h
 #define accelvolume_test_RandomGeometry_h
 
-#include "accelvolume/Geometry.h"
+#include "common/Geometry.h"
 
 #include <random>
 

@@ -2,7 +2,7 @@
 #ifndef accelvolume_test_ReferenceTestSupport_h
 #define accelvolume_test_ReferenceTestSupport_h
 
-#include "accelvolume/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include <functional>
 

@@ -5,7 +5,7 @@
 
 #include "ShearWarpTestSupport.h"
 
-#include "accelvolume/RunLengthVolume.h"
+#include "shearwarp/RunLengthVolume.h"
 
 #include <gtest/gtest.h>
 

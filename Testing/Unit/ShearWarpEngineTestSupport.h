@@ -5,8 +5,8 @@
 
 #include "ShearWarpTestSupport.h"
 
-#include "accelvolume/RayCastEngine.h"
-#include "accelvolume/ShearWarpEngine.h"
+#include "raycast/RayCastEngine.h"
+#include "shearwarp/ShearWarpEngine.h"
 
 #include <gtest/gtest.h>
 
@@ -203,7 +203,7 @@ inline Frame RenderFrame(ShearWarpRenderer& renderer, const Scene& scene, const 
 }
 
 inline std::vector<float> RayCast(
-  const Scene& scene, const RayCastTransfer& tf, const ViewSetup& camera, RayCastBlend blend)
+  const Scene& scene, const RayCastTransfer& tf, const ViewSetup& camera, Blend blend)
 {
   RayCastSettings settings;
   settings.blend = blend;
@@ -238,10 +238,10 @@ inline void ExpectTransparentOutside(const Frame& frame, int width, int height)
     }
 }
 
-inline const char* BlendName(ShearWarpBlend blend)
+inline const char* BlendName(Blend blend)
 {
-  return blend == ShearWarpBlend::Composite ? "composite"
-    : blend == ShearWarpBlend::Maximum      ? "MIP"
+  return blend == Blend::Composite ? "composite"
+    : blend == Blend::Maximum      ? "MIP"
                                             : "MinIP";
 }
 

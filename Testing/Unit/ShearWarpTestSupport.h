@@ -6,9 +6,9 @@
 
 #include "RandomGeometry.h" // Uniform
 
-#include "accelvolume/MinMaxOctree.h" // ParallelFor
-#include "accelvolume/ShearWarpCompositor.h"
-#include "accelvolume/ShearWarpFactorization.h"
+#include "skipping/MinMaxOctree.h" // ParallelFor
+#include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpFactorization.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Brick layouts cover the volume exactly, respect the texture limit and the budget, carry the
 // one-voxel overlap, and come in an order that no ray contradicts.
-#include "accelvolume/Bricking.h"
+#include "slicing/Bricking.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // against a per-cell brute force, over every scalar type.
 #include "MinMaxOctreeTestSupport.h"
 #include "RandomGeometry.h"
-#include "accelvolume/CellClassification.h"
-#include "accelvolume/OpacityRange.h"
+#include "skipping/CellClassification.h"
+#include "skipping/OpacityRange.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tests of the modified Marching Cubes table (CellLeapTable) against VTK's own Marching Cubes
 // triangle table and brute-force trilinear interpolation.
-#include "accelvolume/CellLeapTable.h"
+#include "skipping/CellLeapTable.h"
 
 #include "vtkHexahedron.h"                 // For the edges of VTK's triangle table
 #include "vtkMarchingCubesTriangleCases.h" // For the standard triangle table

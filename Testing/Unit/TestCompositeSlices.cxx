@@ -1,6 +1,6 @@
 // CompositeSlices: ordering and exact culling of composite slices by non-empty boxes.
 #include "RandomGeometry.h"
-#include "accelvolume/CompositeSlices.h"
+#include "slicing/CompositeSlices.h"
 
 #include <gtest/gtest.h>
 

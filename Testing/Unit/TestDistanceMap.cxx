@@ -1,6 +1,6 @@
 // TestDistanceMap: the chessboard distance map of non-empty cells vs a brute-force oracle.
 #include "MinMaxOctreeTestSupport.h"
-#include "accelvolume/DistanceMap.h"
+#include "skipping/DistanceMap.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // TestDistanceTemplate: the distance template's step counts never leave the box and are close
 // to the exact count.
 #include "RandomGeometry.h"
-#include "accelvolume/DistanceTemplate.h"
+#include "skipping/DistanceTemplate.h"
 
 #include <gtest/gtest.h>
 

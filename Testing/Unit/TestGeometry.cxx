@@ -1,6 +1,6 @@
 // TestGeometry: checks slice proxy geometry against brute-force estimates.
 #include "RandomGeometry.h"
-#include "accelvolume/Geometry.h"
+#include "common/Geometry.h"
 
 #include <gtest/gtest.h>
 

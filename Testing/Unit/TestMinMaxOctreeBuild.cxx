@@ -2,7 +2,7 @@
 // determinism and NaN handling.
 #include "MinMaxOctreeTestSupport.h"
 #include "RandomGeometry.h"
-#include "accelvolume/MinMaxOctree.h"
+#include "skipping/MinMaxOctree.h"
 
 #include <gtest/gtest.h>
 

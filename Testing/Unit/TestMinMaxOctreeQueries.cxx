@@ -1,7 +1,7 @@
 // TestMinMaxOctreeQueries: min-max octree classification and empty-space queries vs brute force.
 #include "MinMaxOctreeTestSupport.h"
 #include "RandomGeometry.h"
-#include "accelvolume/MinMaxOctree.h"
+#include "skipping/MinMaxOctree.h"
 
 #include <gtest/gtest.h>
 

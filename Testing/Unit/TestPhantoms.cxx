@@ -1,5 +1,5 @@
 // TestPhantoms: unit tests for the procedural test volumes in Phantoms.h.
-#include "Phantoms.h"
+#include "reference/Phantoms.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // only on the calling thread, and render bit-identical images with and without it.
 #include "ShearWarpEngineTestSupport.h"
 
-#include "accelvolume/Progress.h"
+#include "common/Progress.h"
 
 #include <gtest/gtest.h>
 
@@ -209,7 +209,7 @@ TEST(Progress, ShearWarpReportsEncodingAndPhasesWithoutChangingTheImage)
   const RayCastTransfer tf = MakeTransfer(0.3f);
   const ViewSetup camera = MakeCamera(scene, 20, 15, Isotropic, 90, 70, 25, true);
   const ParallelFor threaded = UnevenThreadedFor(3);
-  for (ShearWarpBlend blend : { ShearWarpBlend::Composite, ShearWarpBlend::Maximum })
+  for (Blend blend : { Blend::Composite, Blend::Maximum })
   {
     SCOPED_TRACE(BlendName(blend));
     ShearWarpSettings settings;

@@ -1,9 +1,9 @@
 // RayCastEngine: every leaping mode gives bit-identical images to plain ray casting, on random
 // volumes and transfer functions; results ignore the thread count; images agree with the CPU
 // reference oracles; bad arguments fail cleanly.
-#include "accelvolume/Phantoms.h"
-#include "accelvolume/RayCastEngine.h"
-#include "accelvolume/ReferenceComposite.h"
+#include "reference/Phantoms.h"
+#include "raycast/RayCastEngine.h"
+#include "reference/ReferenceComposite.h"
 
 #include "ShearWarpTestSupport.h"
 
@@ -167,7 +167,7 @@ Camera RandomCamera(std::mt19937& random, const int dims[3], bool parallel)
   return camera;
 }
 
-RayCastSettings BaseSettings(const int dims[3], RayCastBlend blend)
+RayCastSettings BaseSettings(const int dims[3], Blend blend)
 {
   RayCastSettings settings;
   settings.blend = blend;
@@ -246,7 +246,7 @@ TEST(RayCastEngine, LeapingIsPixelIdenticalOnRandomVolumesAndTransferFunctions)
       lighting.directions[0][2] = 1;
       lighting.colours[0][0] = lighting.colours[0][1] = lighting.colours[0][2] = 1;
     }
-    const RayCastBlend blend = trial % 4 == 3 ? RayCastBlend::Additive : RayCastBlend::Composite;
+    const Blend blend = trial % 4 == 3 ? Blend::Additive : Blend::Composite;
     RayCastSettings settings = BaseSettings(dims, blend);
     settings.earlyTermination = trial % 2 == 0;
     const RayCastView view =
@@ -288,14 +288,14 @@ TEST(RayCastEngine, ExtremeLeapingIsExact)
     RayCastTransfer transfer;
     transfer.rgba = RandomTable(random, 128, true);
     RayCastSettings settings =
-      BaseSettings(dims, trial % 3 == 2 ? RayCastBlend::Minimum : RayCastBlend::Maximum);
+      BaseSettings(dims, trial % 3 == 2 ? Blend::Minimum : Blend::Maximum);
     const RayCastView view = MakeView(RandomCamera(random, dims, trial == 4), 31, 33, 1.0, 500.0);
     settings.leap = LeapMode::None;
     const Result plain = Cast(scene, transfer, RayCastLighting(), view, settings);
     settings.leap = LeapMode::Octree;
     const Result leaped = Cast(scene, transfer, RayCastLighting(), view, settings);
     EXPECT_TRUE(Identical(plain.rgba, leaped.rgba)) << "trial " << trial;
-    if (settings.blend == RayCastBlend::Maximum)
+    if (settings.blend == Blend::Maximum)
     {
       EXPECT_GT(leaped.counters.leapedOctree, 0u);
     }
@@ -309,7 +309,7 @@ TEST(RayCastEngine, ResultsIgnoreTheThreadCount)
   const Scene scene = MakeScene(ScalarType::UInt16, dims, 0.2);
   RayCastTransfer transfer;
   transfer.rgba = RandomTable(random, 512, false);
-  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  RayCastSettings settings = BaseSettings(dims, Blend::Composite);
   settings.leap = LeapMode::Octree;
   const RayCastView view = MakeView(RandomCamera(random, dims, false), 61, 47, 1.0, 500.0);
   const Result serial = Cast(scene, transfer, RayCastLighting(), view, settings);
@@ -337,7 +337,7 @@ TEST(RayCastEngine, CompositeAgreesWithTheReferenceOracle)
   Camera camera = RandomCamera(random, dims, false);
   const int width = 40, height = 36;
   RayCastView view = MakeView(camera, width, height, 1.0, 500.0);
-  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  RayCastSettings settings = BaseSettings(dims, Blend::Composite);
   settings.sampleDistance = 0.05;
   settings.earlyTermination = false;
   const Result ours = Cast(scene, transfer, RayCastLighting(), view, settings);
@@ -386,7 +386,7 @@ TEST(RayCastEngine, DepthStopsTheRays)
   std::vector<float> depth(16 * 16, 1.0f);
   depth[0] = 0.0f; // geometry on the near plane hides the volume at pixel 0
   view.depth = &depth;
-  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Maximum);
+  RayCastSettings settings = BaseSettings(dims, Blend::Maximum);
   const Result result = Cast(scene, transfer, RayCastLighting(), view, settings);
   EXPECT_EQ(result.rgba[3], 0.0f);
   EXPECT_GT(result.rgba[4 * (8 * 16 + 8) + 3], 0.0f);
@@ -400,7 +400,7 @@ TEST(RayCastEngine, BadArgumentsFail)
   transfer.rgba.assign(8, 1.0f);
   std::mt19937 random(1);
   RayCastView view = MakeView(RandomCamera(random, dims, false), 8, 8, 1, 100);
-  RayCastSettings settings = BaseSettings(dims, RayCastBlend::Composite);
+  RayCastSettings settings = BaseSettings(dims, Blend::Composite);
   RayCaster caster;
   std::vector<float> rgba;
   RayCastCounters counters;

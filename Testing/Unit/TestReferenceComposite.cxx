@@ -1,6 +1,6 @@
 // TestReferenceComposite: analytic checks of the CPU composite (direct volume rendering) oracle.
 #include "ReferenceTestSupport.h"
-#include "accelvolume/ReferenceComposite.h"
+#include "reference/ReferenceComposite.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // TestReferenceRenderer: analytic checks of the CPU projection oracle.
 #include "ReferenceTestSupport.h"
-#include "accelvolume/ReferenceRenderer.h"
+#include "reference/ReferenceRenderer.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,7 @@ Camera AlongX()
 
 constexpr int Size = 6;
 
-ReferenceOptions Options(ProjectionBlend blend)
+ReferenceOptions Options(Blend blend)
 {
   ReferenceOptions options;
   options.blend = blend;
@@ -53,14 +53,14 @@ const OpacityTable Opaque{ { 1, 1 } };
 TEST(ReferenceRenderer, ConstantVolumeAdditiveAndAverage)
 {
   const ScalarVolume volume = MakeVolume(21, 11, 11, [](int, int, int) { return 0.5f; });
-  ReferenceOptions options = Options(ProjectionBlend::Additive);
+  ReferenceOptions options = Options(Blend::Additive);
   options.additiveUnitDistance = 2;
   const std::vector<Box> regions = { IndexBox(volume) };
   ExpectAll(RenderReference(volume, regions, {}, Opaque, AlongX(), Size, Size, options), 5, 1e-5);
-  options.blend = ProjectionBlend::Average;
+  options.blend = Blend::Average;
   ExpectAll(RenderReference(volume, regions, {}, Opaque, AlongX(), Size, Size, options), 0.5, 1e-6);
   // A clip half-space x <= 10 halves the chord.
-  options.blend = ProjectionBlend::Additive;
+  options.blend = Blend::Additive;
   const std::vector<HalfSpace> clip = { { { -1, 0, 0 }, 10 } };
   ExpectAll(
     RenderReference(volume, regions, clip, Opaque, AlongX(), Size, Size, options), 2.5, 1e-5);
@@ -77,7 +77,7 @@ TEST(ReferenceRenderer, ConstantVolumeAdditiveAndAverage)
 TEST(ReferenceRenderer, CroppingShortensChord)
 {
   const ScalarVolume volume = MakeVolume(21, 11, 11, [](int, int, int) { return 0.5f; });
-  const ReferenceOptions options = Options(ProjectionBlend::Additive);
+  const ReferenceOptions options = Options(Blend::Additive);
   const double planes[6] = { 4, 15, 1, 9, 1, 9 };
   constexpr int SubVolume = 0x0002000;
   std::vector<Box> regions = CroppingRegionBoxes(IndexBox(volume), planes, SubVolume);
@@ -97,15 +97,15 @@ TEST(ReferenceRenderer, RampExtremaOverCroppedRange)
   const double planes[6] = { 4, 15, 0, 10, 0, 10 };
   const std::vector<Box> regions = CroppingRegionBoxes(IndexBox(ramp), planes, 0x0002000);
   ExpectAll(RenderReference(
-              ramp, regions, {}, Opaque, AlongX(), Size, Size, Options(ProjectionBlend::Maximum)),
+              ramp, regions, {}, Opaque, AlongX(), Size, Size, Options(Blend::Maximum)),
     15 / 20.0f, 1e-6);
   ExpectAll(RenderReference(
-              ramp, regions, {}, Opaque, AlongX(), Size, Size, Options(ProjectionBlend::Minimum)),
+              ramp, regions, {}, Opaque, AlongX(), Size, Size, Options(Blend::Minimum)),
     4 / 20.0f, 1e-6);
   // Opacity(s) = s turns the raysum into the integral of (x / 20)^2 over [0, 20] = 20 / 3.
   const OpacityTable linear{ { 0, 1 } };
   ExpectAll(RenderReference(ramp, { IndexBox(ramp) }, {}, linear, AlongX(), Size, Size,
-              Options(ProjectionBlend::Additive)),
+              Options(Blend::Additive)),
     20 / 3.0f, 1e-3);
 }
 
@@ -113,7 +113,7 @@ TEST(ReferenceRenderer, AverageRange)
 {
   const ScalarVolume step =
     MakeVolume(21, 11, 11, [](int i, int, int) { return i < 10 ? 0.2f : 0.8f; });
-  ReferenceOptions options = Options(ProjectionBlend::Average);
+  ReferenceOptions options = Options(Blend::Average);
   options.averageRangeMin = 0.5;
   // Counted: x in [9.5, 10] where s rises from 0.5 to 0.8 (mean 0.65), then 0.8 up to x = 20.
   ExpectAll(RenderReference(step, { IndexBox(step) }, {}, Opaque, AlongX(), Size, Size, options),
@@ -133,8 +133,8 @@ TEST(ReferenceRenderer, RaysMissingVolumeAreNotHit)
   Camera camera = AlongX();
   camera.parallelScale = 10; // the image spans y, z in [-5, 15]; the volume [0, 10]
   constexpr int Pixels = 20;
-  for (ProjectionBlend blend : { ProjectionBlend::Maximum, ProjectionBlend::Minimum,
-         ProjectionBlend::Additive, ProjectionBlend::Average })
+  for (Blend blend : { Blend::Maximum, Blend::Minimum,
+         Blend::Additive, Blend::Average })
   {
     const std::vector<ReferencePixel> pixels = RenderReference(
       volume, { IndexBox(volume) }, {}, Opaque, camera, Pixels, Pixels, Options(blend));
@@ -203,7 +203,7 @@ TEST(ReferenceRenderer, NonuniformSpacingIntegratesWorldLength)
   Camera camera = AlongX();
   camera.position = { -5, 2.5, 5 };
   camera.focalPoint = { 10, 2.5, 5 };
-  ReferenceOptions options = Options(ProjectionBlend::Additive);
+  ReferenceOptions options = Options(Blend::Additive);
   ExpectAll(RenderReference(volume, { IndexBox(volume) }, {}, Opaque, camera, Size, Size, options),
     0.5 * 40, 1e-4);
   camera.position = { 20, -5, 5 };
@@ -241,8 +241,8 @@ TEST(ReferenceRenderer, ThreadCountDoesNotChangeResults)
   camera.viewUp = { 0, 0, 1 };
   const OpacityTable ramp{ { 0.1f, 0.9f, 0.4f, 1 } };
   const std::vector<HalfSpace> clip = { { Normalize({ 1, 1, -1 }), 1 } };
-  for (ProjectionBlend blend :
-    { ProjectionBlend::Maximum, ProjectionBlend::Additive, ProjectionBlend::Average })
+  for (Blend blend :
+    { Blend::Maximum, Blend::Additive, Blend::Average })
   {
     ReferenceOptions options = Options(blend);
     options.averageRangeMin = 0.2;
@@ -308,7 +308,7 @@ TEST(ReferenceRenderer, Speed)
   camera.position = { 2, 1.5, 2.5 };
   camera.focalPoint = { 0.5, 0.5, 0.5 };
   camera.viewUp = { 0, 0, 1 };
-  ReferenceOptions options = Options(ProjectionBlend::Additive);
+  ReferenceOptions options = Options(Blend::Additive);
   options.stepWorld = 0.05 / 63; // as fine in voxels as step 0.05 at unit spacing
   const auto start = std::chrono::steady_clock::now();
   const auto pixels =

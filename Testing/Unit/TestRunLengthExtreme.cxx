@@ -3,7 +3,7 @@
 // (every scalar type, every principal axis, sparse and dense), identical for any parallel split.
 #include "RunLengthTestSupport.h"
 
-#include "accelvolume/RunLengthVolume.h"
+#include "shearwarp/RunLengthVolume.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // opacity), with a well-formed run structure and identical arrays for any parallel split.
 #include "RunLengthTestSupport.h"
 
-#include "accelvolume/RunLengthVolume.h"
+#include "shearwarp/RunLengthVolume.h"
 
 #include <gtest/gtest.h>
 

@@ -4,9 +4,9 @@
 // random run layouts, with and without early termination, on sparse and dense encodings.
 #include "ShearWarpTestSupport.h"
 
-#include "accelvolume/RunLengthVolume.h"
-#include "accelvolume/ShearWarpCompositor.h"
-#include "accelvolume/ShearWarpFactorization.h"
+#include "shearwarp/RunLengthVolume.h"
+#include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpFactorization.h"
 
 #include <gtest/gtest.h>
 

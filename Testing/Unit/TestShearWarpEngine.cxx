@@ -19,11 +19,11 @@ TEST(ShearWarpEngine, ImagesIgnoreBandsBalancingAndThreads)
 {
   const int dims[3] = { 40, 32, 24 };
   const ParallelFor threaded = UnevenThreadedFor(3);
-  for (ShearWarpBlend blend :
-    { ShearWarpBlend::Composite, ShearWarpBlend::Maximum, ShearWarpBlend::Minimum })
+  for (Blend blend :
+    { Blend::Composite, Blend::Maximum, Blend::Minimum })
   {
     SCOPED_TRACE(BlendName(blend));
-    const bool minimum = blend == ShearWarpBlend::Minimum;
+    const bool minimum = blend == Blend::Minimum;
     const Scene scene = MakeScene(dims, false, minimum ? Content::Inverted : Content::SphereAndBar);
     const RayCastTransfer tf = MakeTransfer(0.3f, minimum);
     const ViewSetup camera = MakeCamera(scene, 200, -35, Isotropic, 90, 70, 25, true);
@@ -111,9 +111,9 @@ TEST(ShearWarpEngine, RunLengthEncodingIsExactAgainstTheDenseVolume)
   {
     for (int mode = 0; mode < 5; ++mode)
     {
-      const ShearWarpBlend blend = mode < 3 ? ShearWarpBlend::Composite
-        : mode == 3                         ? ShearWarpBlend::Maximum
-                                            : ShearWarpBlend::Minimum;
+      const Blend blend = mode < 3 ? Blend::Composite
+        : mode == 3                         ? Blend::Maximum
+                                            : Blend::Minimum;
       SCOPED_TRACE("view " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " mode " +
         std::to_string(mode));
       const ViewSetup camera =
@@ -122,9 +122,9 @@ TEST(ShearWarpEngine, RunLengthEncodingIsExactAgainstTheDenseVolume)
       settings.blend = blend;
       settings.shading = mode == 2 ? ShearWarpShading::Phong : ShearWarpShading::LookupTable;
       settings.earlyTermination = false;
-      const bool minimum = blend == ShearWarpBlend::Minimum;
+      const bool minimum = blend == Blend::Minimum;
       const Scene& volume = minimum ? inverted : scene;
-      const RayCastTransfer& table = minimum ? low : blend == ShearWarpBlend::Maximum ? high : tf;
+      const RayCastTransfer& table = minimum ? low : blend == Blend::Maximum ? high : tf;
       ShearWarpRenderer renderer;
       const Frame rle = RenderFrame(renderer, volume, table, camera, settings);
       settings.runLengthEncoding = false;
@@ -139,7 +139,7 @@ TEST(ShearWarpEngine, RunLengthEncodingIsExactAgainstTheDenseVolume)
       EXPECT_LT(rle.stats.storedVoxels, dense.stats.storedVoxels);
       EXPECT_LT(rle.stats.samples, dense.stats.samples);
       EXPECT_EQ(rle.stats.principalAxis, dense.stats.principalAxis);
-      if (blend == ShearWarpBlend::Composite)
+      if (blend == Blend::Composite)
       {
         // Early termination moves no channel by more than 1 - threshold.
         settings.runLengthEncoding = true;
@@ -190,7 +190,7 @@ TEST(ShearWarpEngine, EncodingsAreCachedPerAxisAndVersion)
   const RayCastTransfer other = MakeTransfer(0.9f);
   const ViewSetup alongZ = MakeCamera(scene, 10, 5, Isotropic, 48, 40, 20, false);
   const ViewSetup alongX = MakeCamera(scene, 80, 5, Isotropic, 48, 40, 20, false);
-  for (ShearWarpBlend blend : { ShearWarpBlend::Composite, ShearWarpBlend::Maximum })
+  for (Blend blend : { Blend::Composite, Blend::Maximum })
   {
     SCOPED_TRACE(BlendName(blend));
     ShearWarpSettings settings;

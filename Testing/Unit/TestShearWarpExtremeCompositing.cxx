@@ -4,9 +4,9 @@
 // and bands change nothing.
 #include "ShearWarpTestSupport.h"
 
-#include "accelvolume/RunLengthVolume.h"
-#include "accelvolume/ShearWarpCompositor.h"
-#include "accelvolume/ShearWarpFactorization.h"
+#include "shearwarp/RunLengthVolume.h"
+#include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpFactorization.h"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 // the viewing direction, every sheared slice fits the intermediate image, and bad input fails.
 #include "ShearWarpTestSupport.h"
 
-#include "accelvolume/ShearWarpEngine.h" // ParallelVoxelToImage
-#include "accelvolume/ShearWarpFactorization.h"
+#include "shearwarp/ShearWarpEngine.h" // ParallelVoxelToImage
+#include "shearwarp/ShearWarpFactorization.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // ShearWarpPartition: balanced scanline bands (bounds well formed, no band over its share by more
 // than one scanline's cost), equal bands, cost resampling and the imbalance measure.
-#include "accelvolume/ShearWarpPartition.h"
+#include "shearwarp/ShearWarpPartition.h"
 
 #include <gtest/gtest.h>
 

@@ -24,17 +24,17 @@ TEST(ShearWarpEngine, AgreesWithTheRayCaster)
   struct Mode
   {
     const char* name;
-    ShearWarpBlend blend;
-    RayCastBlend rayBlend;
+    Blend blend;
+    Blend rayBlend;
     bool shade;
     double bound;
   };
   // Measured mean |difference| per channel (az 30, el 20, 80x64x48 uint8, 200x160 image):
   // composite 0.00188, composite shaded 0.00101, MIP 0.00028; bounds about 2.5x that.
   const Mode modes[] = {
-    { "composite", ShearWarpBlend::Composite, RayCastBlend::Composite, false, 0.0045 },
-    { "composite shaded", ShearWarpBlend::Composite, RayCastBlend::Composite, true, 0.0025 },
-    { "MIP", ShearWarpBlend::Maximum, RayCastBlend::Maximum, false, 0.0007 },
+    { "composite", Blend::Composite, Blend::Composite, false, 0.0045 },
+    { "composite shaded", Blend::Composite, Blend::Composite, true, 0.0025 },
+    { "MIP", Blend::Maximum, Blend::Maximum, false, 0.0007 },
   };
   for (const Mode& mode : modes)
   {
@@ -79,11 +79,11 @@ TEST(ShearWarpEngine, AlphaCentroidsMatchTheRayCasterFromEverySide)
     {
       const ViewSetup camera = MakeCamera(scene, v[0], v[1], spacing, width, height, 40, false);
       ShearWarpSettings settings;
-      settings.blend = mip ? ShearWarpBlend::Maximum : ShearWarpBlend::Composite;
+      settings.blend = mip ? Blend::Maximum : Blend::Composite;
       ShearWarpRenderer renderer;
       const Frame sw = RenderFrame(renderer, scene, tf, camera, settings);
       const std::vector<float> rc =
-        RayCast(scene, tf, camera, mip ? RayCastBlend::Maximum : RayCastBlend::Composite);
+        RayCast(scene, tf, camera, mip ? Blend::Maximum : Blend::Composite);
       const Comparison c = Compare(sw.rgba, rc, width, height);
       const std::string label =
         "view " + std::to_string(v[0]) + " " + std::to_string(v[1]) + (mip ? " MIP" : " composite");

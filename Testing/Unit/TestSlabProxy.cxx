@@ -1,6 +1,6 @@
 // TestSlabProxy: checks slab proxy polygons for coverage and tightness by brute force.
 #include "RandomGeometry.h"
-#include "accelvolume/SlabProxy.h"
+#include "slicing/SlabProxy.h"
 
 #include <gtest/gtest.h>
 

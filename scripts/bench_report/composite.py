@@ -1,13 +1,13 @@
 """Section of accelvolume_benchmark_composite: the slice mapper's composite mode with early ray
 termination (ERT) and empty-space skipping (ESS) against the plain slicer and VTK's GPU ray
-caster (paper 000, Table V-3)."""
+caster (Lee 2005, Table V-3)."""
 
 from . import charts
 from .common import (Comparison, Section, by_id, field_of, fmt_ms, fmt_num, fmt_x, ratio,
                      records, table, value_range)
 
 FILE = "composite.json"
-TITLE = "Slice mapper, composite: early ray termination and empty-space skipping (paper 000)"
+TITLE = "Slice mapper, composite: early ray termination and empty-space skipping (Lee 2005)"
 
 # Technique -> (slice-mapper configuration id, summary-chart name). Ratios: base ms / config ms.
 TECHNIQUES = [
@@ -17,14 +17,14 @@ TECHNIQUES = [
     ("ert_both", "slice: ERT + ESS both (default)"),
 ]
 PEER = "slice (default) vs VTK GPU ray caster, composite"
-# Table V-3 of paper 000 (GeForce 6800GT): speed-ups over the plain slicer. The paper's ESS is the
+# Table V-3 of Lee 2005 (GeForce 6800GT): speed-ups over the plain slicer. The paper's ESS is the
 # per-fragment two-pass test, the counterpart of our fragment ESS.
 PAPER_RANGES = {
     "slice: early ray termination": (1.01, 1.66),
     "slice: ESS, fragment test": (1.90, 3.50),
     "slice: ERT + ESS both (default)": (2.38, 4.55),
 }
-PAPER = ("Paper 000, Table V-3 (GeForce 6800GT; 256x256x225 CT head \"bighead\" and "
+PAPER = ("Lee 2005, Table V-3 (GeForce 6800GT; 256x256x225 CT head \"bighead\" and "
          "256x256x110 engine; 256^2 and 512^2): ERT 1.01-1.66x, ESS 1.90-3.50x, ERT+ESS "
          "2.38-4.55x over the plain slicer (best: bighead, tf2, 512^2, 4.48 -> 20.40 fps). "
          "The paper's hierarchical (octree) ESS was designed but not implemented.")

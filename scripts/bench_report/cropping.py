@@ -1,22 +1,22 @@
 """Section of accelvolume_benchmark_cropping: MIP of a cropped volume with the slice mapper, with
 and without re-rendering the crop box's cut faces, with 1.5x / 2x slices, and VTK's GPU ray
-caster; time and aliasing error against an 8x-slice reference (paper 004, Table 2)."""
+caster; time and aliasing error against an 8x-slice reference (Hong, Kye and Shin 2007, Table 2)."""
 
 from . import charts
 from .common import (Comparison, Section, by_id, field_of, fmt_ms, fmt_num, fmt_pct, fmt_x,
                      number, ratio, records, table, value_range)
 
 FILE = "cropping.json"
-TITLE = "Slice mapper, cropped MIP: boundary re-rendering (paper 004)"
+TITLE = "Slice mapper, cropped MIP: boundary re-rendering (Hong, Kye and Shin 2007)"
 
 # Rows in this order; "ref" (8x slices) is the error reference, not a row.
 CONFIGS = ["a", "b", "c", "d", "e"]
 SHORT = {"a": "1x", "b": "1x + re-render", "c": "1.5x slices", "d": "2x slices", "e": "VTK GPU"}
 TECHNIQUE = "cropping: re-rendering vs 2x slices"
 PEER = "slice (re-render) vs VTK GPU ray caster, cropped MIP"
-# Paper 004, Table 2: 149.83 fps with re-rendering at 256 slices vs 73.85 fps with 512 slices.
+# Hong, Kye and Shin 2007, Table 2: 149.83 fps with re-rendering at 256 slices vs 73.85 fps with 512 slices.
 PAPER_RANGES = {TECHNIQUE: (149.83 / 73.85, 149.83 / 73.85)}
-PAPER = ("Paper 004, Table 2 (Radeon 9800 Pro, 256x256x240 16-bit \"Big Head\"): 256 slices "
+PAPER = ("Hong, Kye and Shin 2007, Table 2 (Radeon 9800 Pro, 256x256x240 16-bit \"Big Head\"): 256 slices "
          "with re-rendering 149.83 fps, without 150.81 fps (0.7% cost); 400 slices 97.24 fps; "
          "512 slices 73.85 fps (so re-rendering is 2.03x faster than doubling the slices, "
          "which still aliases).")

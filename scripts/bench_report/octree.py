@@ -1,19 +1,19 @@
 """Section of accelvolume_benchmark_octree: min-max octree builds (reference, Morton-order CPU on
 one and all threads, OpenGL compute "GPU") against a one-thread read of the volume, and the
-rebuild's share of a frame of a time-varying volume (paper 002)."""
+rebuild's share of a frame of a time-varying volume (Lim and Shin 2009)."""
 
 from . import charts
 from .common import (Comparison, Section, fmt_ms, fmt_num, fmt_pct, fmt_x, number, ratio,
                      records, table, value_range)
 
 FILE = "octree.json"
-TITLE = "Min-max octree build: CPU and GPU builders (paper 002)"
+TITLE = "Min-max octree build: CPU and GPU builders (Lim and Shin 2009)"
 CPU_VS_REFERENCE = "octree build: CPU (all threads) vs reference"
 GPU_VS_CPU = "octree build: GPU vs CPU (all threads)"
-# Paper 002 reports the GPU build about 38% (256^3) and 49% (512^3) faster than its CPU build
+# Lim and Shin 2009 reports the GPU build about 38% (256^3) and 49% (512^3) faster than its CPU build
 # (the table is garbled in the extracted text).
 PAPER_RANGES = {GPU_VS_CPU: (1.38, 1.49)}
-PAPER = ("Paper 002 (CUDA): the GPU build of 256^3 and 512^3 volumes about 38% and 49% faster "
+PAPER = ("Lim and Shin 2009 (CUDA): the GPU build of 256^3 and 512^3 volumes about 38% and 49% faster "
          "than the CPU build (table garbled in the source text); rendering with the octree "
          "26-31% faster than plain GPU ray casting (see the composite section's octree ESS).")
 

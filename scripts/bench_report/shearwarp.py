@@ -1,24 +1,24 @@
 """Section of accelvolume_benchmark_shearwarp: shear-warp without run-length encoding, with RLE and
 skip links, with RLE and bands balanced by the previous frame, on 1 and all threads and on MPI
-ranks, against Lacroute's VolPack (paper 003, Tables 2-3)."""
+ranks, against Lacroute's VolPack (Kim 1998, Tables 2-3)."""
 
 from . import charts
 from .common import (Comparison, Section, fmt_ms, fmt_num, fmt_pct, fmt_x, number, ratio,
                      records, table, value_range)
 
 FILE = "shearwarp.json"
-TITLE = "Shear-warp: run-length encoding, balanced partition, threads, MPI, VolPack (paper 003)"
+TITLE = "Shear-warp: run-length encoding, balanced partition, threads, MPI, VolPack (Kim 1998)"
 
 RLE = "shear-warp: RLE + skip links"
 BALANCED = "shear-warp: RLE + balanced bands"
 THREADS = "shear-warp: all threads vs 1"
 MPI = "shear-warp: MPI ranks vs 1"
 PEER = "shear-warp (3), 1 thread vs VolPack"
-# Paper 003, Table 2 (MasPar MP-2, 128^3 MRI brain): 1.6102 s without RLE, 0.7331 s with RLE,
+# Kim 1998, Table 2 (MasPar MP-2, 128^3 MRI brain): 1.6102 s without RLE, 0.7331 s with RLE,
 # 0.3109 s with RLE + partition + balancing.
 PAPER_RANGES = {RLE: (1.6102 / 0.7331, 1.6102 / 0.7331), BALANCED: (1.6102 / 0.3109,
                                                                     1.6102 / 0.3109)}
-PAPER = ("Paper 003 (MasPar MP-2, 4,096 processors, 90 frames turned 1 degree): 128^3 MRI brain "
+PAPER = ("Kim 1998 (MasPar MP-2, 4,096 processors, 90 frames turned 1 degree): 128^3 MRI brain "
          "1.61 s without RLE, 0.73 s with RLE (2.20x), 0.31 s with RLE + balanced partition "
          "(5.18x); 256x256x226 CT head 1.21 s. Lacroute's sequential shear-warp (VolPack's "
          "algorithm): 256x256x167 brain at 256^2 in 1.09 s on an SGI R4000.")

@@ -1,4 +1,4 @@
-// MinMaxOctree: builds the min-max octree of Kim et al. (2009) with the parallel Morton-order
+// MinMaxOctree: builds the min-max octree of Lim and Shin 2009 with the parallel Morton-order
 // CPU builder, classifies it with a transfer function, prints what it found, then renders the
 // volume with the slice mapper, whose octree empty-space skipping uses the same structure
 // (built by the mapper itself, with the same leaf size, so the transparent fractions match).

@@ -1,5 +1,5 @@
 // SliceComposite: shaded composite rendering with vtkAccelVolumeSliceMapper and the two
-// accelerations of Kim et al.'s slice renderer: early ray termination (a mark pass every few
+// accelerations of Lee 2005's slice renderer: early ray termination (a mark pass every few
 // slices stops pixels that are already opaque) and exact empty-space skipping with a min-max
 // octree (slices are clipped to the non-empty octree boxes). Both are exact: the image equals
 // the unaccelerated one up to the termination threshold.

@@ -1,5 +1,5 @@
 // SliceMIP: maximum intensity projection with vtkAccelVolumeSliceMapper (view-aligned slices
-// on the GPU), cropped to a sub-volume, with the cut faces re-rendered (Kye et al. 2007) so the
+// on the GPU), cropped to a sub-volume, with the cut faces re-rendered (Hong, Kye and Shin 2007) so the
 // oblique crop planes show no slice aliasing even with few slices.
 //
 //   SliceMIP [output.png] [--check]

@@ -1,6 +1,7 @@
 // ParaView's image volume representation with AccelVolume's smart mapper as the volume mapper.
 #include "vtkAccelVolumeRepresentation.h"
 
+#include "vtkAccelVolumeMapper.h"
 #include "vtkAccelVolumeRayCastMapper.h"
 #include "vtkAccelVolumeShearWarpMapper.h"
 #include "vtkAccelVolumeSliceMapper.h"
@@ -95,6 +96,8 @@ void vtkAccelVolumeRepresentation::UpdateMapperParameters()
   this->Superclass::UpdateMapperParameters();
 
   this->Mapper->SetRequestedRenderMode(this->MapperType);
+  // A vtkAccelVolumeMapper setting: the smart mapper forwards it to the mapper it picks.
+  this->Mapper->SetEarlyRayTermination(this->EarlyRayTermination);
 
   // The automatic sample distance is the smallest voxel spacing. Only ranks holding data
   // have the cache; the others render the outline only.
@@ -109,7 +112,6 @@ void vtkAccelVolumeRepresentation::UpdateMapperParameters()
   }
 
   vtkAccelVolumeSliceMapper* slice = this->Mapper->GetSliceMapper();
-  slice->SetEarlyRayTermination(this->EarlyRayTermination);
   slice->SetEmptySpaceSkipping(this->EmptySpaceSkipping);
   slice->SetBoundaryRerendering(this->BoundaryRerendering);
   // Automatic: the slice mapper's own adjustment (smallest spacing, coarser while interacting).
@@ -120,7 +122,6 @@ void vtkAccelVolumeRepresentation::UpdateMapperParameters()
   }
 
   vtkAccelVolumeRayCastMapper* rayCast = this->Mapper->GetRayCastMapper();
-  rayCast->SetEarlyRayTermination(this->EarlyRayTermination);
   rayCast->SetNumberOfThreads(this->NumberOfThreads);
   if (distance > 0.0)
   {
@@ -130,7 +131,6 @@ void vtkAccelVolumeRepresentation::UpdateMapperParameters()
   }
 
   vtkAccelVolumeShearWarpMapper* shearWarp = this->Mapper->GetShearWarpMapper();
-  shearWarp->SetEarlyRayTermination(this->EarlyRayTermination);
   shearWarp->SetNumberOfThreads(this->NumberOfThreads);
 }
 
@@ -146,17 +146,23 @@ const char* vtkAccelVolumeRepresentation::GetLastChoiceReason()
 
 double vtkAccelVolumeRepresentation::GetLastRenderTime()
 {
+  // The chosen mapper's own time, whichever it was (vtkAccelVolumeMapper::GetLastRenderTime).
+  vtkAccelVolumeMapper* last = nullptr;
   switch (this->Mapper->GetLastRenderMode())
   {
     case MAPPER_SLICE:
-      return this->Mapper->GetSliceMapper()->GetLastRenderTime();
+      last = this->Mapper->GetSliceMapper();
+      break;
     case MAPPER_RAYCAST:
-      return this->Mapper->GetRayCastMapper()->GetLastRenderTime();
+      last = this->Mapper->GetRayCastMapper();
+      break;
     case MAPPER_SHEARWARP:
-      return this->Mapper->GetShearWarpMapper()->GetLastRenderTime();
+      last = this->Mapper->GetShearWarpMapper();
+      break;
     default:
-      return 0.0;
+      break;
   }
+  return last ? last->GetLastRenderTime() : 0.0;
 }
 
 double vtkAccelVolumeRepresentation::GetLastRenderWork()

@@ -1,5 +1,5 @@
 // MakeBadInputs: writes the malformed volume files the CLI's bad-input tests load
-// (Examples/Cxx/CliInputTests.cmake), and the seed corpora of the fuzz targets in Testing/Fuzz.
+// (Testing/CLI/CliInputTests.cmake), and the seed corpora of the fuzz targets in Testing/Fuzz.
 // Generated rather than committed, so the repository holds no binary test files.
 //   MakeBadInputs DIR                 every input below under DIR
 //   MakeBadInputs --fuzz-seeds DIR    DIR/raw/ and DIR/header/ seeds in the fuzz targets' formats

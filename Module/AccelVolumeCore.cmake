@@ -1,0 +1,58 @@
+# AccelVolumeCore and AccelVolumeReference: Rendering/Core as two static libraries, each source
+# compiled once. Included by AccelVolumeModule.cmake (standalone, Remote/ and plugin builds).
+get_filename_component(_av_core_root "${CMAKE_CURRENT_LIST_DIR}/../Rendering/Core" ABSOLUTE)
+
+# Technique folders of Core (docs/techniques.md maps each technique to its files).
+set(_av_core_sources
+  common/Affine
+  common/Camera
+  common/Geometry
+  common/Progress
+  skipping/CellClassification
+  skipping/CellLeapTable
+  skipping/DistanceMap
+  skipping/DistanceTemplate
+  skipping/MinMaxOctree
+  skipping/MinMaxOctreeQueries
+  skipping/OpacityRange
+  slicing/Bricking
+  slicing/CompositeSlices
+  slicing/SlabProxy
+  raycast/RayCastEngine
+  raycast/RayCastKernel
+  shearwarp/RunLengthVolume
+  shearwarp/ShearWarpCompositor
+  shearwarp/ShearWarpEngine
+  shearwarp/ShearWarpFactorization
+  shearwarp/ShearWarpPartition)
+# Test oracles and phantoms: not linked into the module (no public class needs them).
+set(_av_reference_sources
+  reference/Phantoms
+  reference/ReferenceComposite
+  reference/ReferenceRenderer)
+
+if (NOT TARGET AccelVolumeCore)
+  list(TRANSFORM _av_core_sources PREPEND "${_av_core_root}/")
+  list(TRANSFORM _av_core_sources APPEND ".cxx")
+  list(TRANSFORM _av_reference_sources PREPEND "${_av_core_root}/")
+  list(TRANSFORM _av_reference_sources APPEND ".cxx")
+  find_package(Threads REQUIRED)
+  foreach (_av_core_target IN ITEMS AccelVolumeCore AccelVolumeReference)
+    if (_av_core_target STREQUAL "AccelVolumeCore")
+      add_library(${_av_core_target} STATIC ${_av_core_sources})
+      target_link_libraries(${_av_core_target} PUBLIC Threads::Threads)
+    else ()
+      add_library(${_av_core_target} STATIC ${_av_reference_sources})
+      target_link_libraries(${_av_core_target} PUBLIC AccelVolumeCore)
+    endif ()
+    target_include_directories(${_av_core_target} PUBLIC "$<BUILD_INTERFACE:${_av_core_root}>")
+    # Linked into the shared module: position-independent, symbols hidden there.
+    set_target_properties(${_av_core_target} PROPERTIES
+      POSITION_INDEPENDENT_CODE ON
+      CXX_VISIBILITY_PRESET hidden
+      VISIBILITY_INLINES_HIDDEN ON
+      CXX_STANDARD 17
+      CXX_STANDARD_REQUIRED ON
+      CXX_EXTENSIONS OFF)
+  endforeach ()
+endif ()

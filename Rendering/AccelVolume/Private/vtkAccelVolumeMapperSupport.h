@@ -1,0 +1,145 @@
+// vtkAccelVolumeMapperSupport: scene and input handling shared by the AccelVolume mappers
+// (input checks, scalar range, transfer-function tables, cropping regions and clipping planes
+// in index space, VTK lights in eye space). Not installed.
+#ifndef vtkAccelVolumeMapperSupport_h
+#define vtkAccelVolumeMapperSupport_h
+
+#include "common/Geometry.h"
+#include "skipping/MinMaxOctree.h"  // ScalarType, VolumeView
+#include "raycast/RayCastEngine.h" // RayCastTransfer, RayCastLighting
+
+#include "vtkDataArray.h"    // For vtkSmartPointer<vtkDataArray>
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+
+#include <cstdint>
+
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkPlaneCollection;
+class vtkCamera;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+class vtkTimeStamp;
+class vtkVolumeMapper;
+class vtkVolumeProperty;
+
+// Point scalars the mappers can render: one component, a supported type, matching the image.
+// False with a user-facing message otherwise (input may be null).
+bool vtkAccelVolumeCheckInput(
+  vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error);
+
+// Updates the mapper's input and picks the scalars it renders (the mapper's scalar mode and
+// array); then vtkAccelVolumeCheckInput. False with a user-facing message.
+bool vtkAccelVolumeFetchInput(
+  vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
+
+// For GetBounds: a vtkErrorMacro on the mapper when it has no input, once per change of the
+// mapper (GetBounds is called many times per frame).
+void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported);
+
+// The checks a CPU mapper's Render starts with: an OpenGL window to show the image in, a
+// renderable input (vtkAccelVolumeFetchInput) and a volume property. Null, after a
+// vtkErrorMacro on the mapper, when one is missing.
+vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtkRenderer* renderer,
+  vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
+
+// The core's view of VTK scalars (no copy); false for a type the mappers do not render.
+bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);
+bool vtkAccelVolumeView(vtkImageData* input, vtkDataArray* scalars, accelvolume::VolumeView& view);
+
+// Cropping planes that are numbers (+-Inf clamp to the volume) when cropping is on, and
+// clipping planes with a finite origin and a finite, non-zero normal. False with a user-facing
+// message naming the plane otherwise.
+bool vtkAccelVolumeCheckGeometry(vtkVolumeMapper* mapper, std::string& error);
+
+// Finite scalar range; NaN / infinite data fall back to a unit range so tables stay defined.
+void vtkAccelVolumeScalarRange(vtkDataArray* scalars, double range[2]);
+
+// The values the slice mapper's texture holds for float / double scalars with NaN or infinite
+// values: a copy with NaN and -Inf replaced by range[0] and +Inf by range[1] (range: the finite
+// range above). Null when every value is finite (or the type is an integer type): use the
+// scalars as they are.
+vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
+  vtkDataArray* scalars, const double range[2]);
+
+// RGBA table of `size` entries over [range[0], range[1]] (range[1] <= range[0] widens to
+// range[0] + 1): colour (or grey) and scalar opacity of the property's first component.
+std::vector<float> vtkAccelVolumeTransferTable(
+  vtkVolumeProperty* property, const double range[2], int size);
+
+// The volume's index-space box; a one-voxel axis becomes a slab one voxel thick.
+accelvolume::Box vtkAccelVolumeIndexBox(const int dims[3]);
+
+// Index (0-based voxel numbers, as the mappers' textures and encodings count them) to world: the
+// prop's matrix times the image's index-to-physical matrix, which VTK indexes by extent (voxel
+// (0,0,0) of the array is structured point (extent[0], extent[2], extent[4])).
+void vtkAccelVolumeIndexToWorld(vtkVolume* volume, vtkImageData* input, vtkMatrix4x4* indexToWorld);
+
+// The visible cropping regions (or the whole box) in index coordinates.
+std::vector<accelvolume::Box> vtkAccelVolumeRegions(
+  vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox);
+
+// The mapper's clipping planes as index-space half-spaces (kept side: n.p + offset >= 0).
+std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
+  vtkPlaneCollection* planes, vtkMatrix4x4* indexToWorld);
+
+// The smallest world length of one index step along the axes with more than one voxel (1 if
+// none).
+double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[3]);
+
+// VTK's lighting coefficients and up to 4 lights as eye-space directions (headlights and camera
+// lights live in camera coordinates already) with colour times intensity, and the matrix that
+// takes an index-space gradient to eye space (inverse transpose of index -> eye), row-major.
+struct vtkAccelVolumeLights
+{
+  float Lighting[4] = { 0, 0, 0, 1 }; // ambient, diffuse, specular, specular power
+  int Count = 0;
+  float Directions[4][3] = {};
+  float Colors[4][3] = {};
+  double NormalMatrix[3][3] = {};
+};
+void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToEye, vtkMatrix4x4* view, vtkAccelVolumeLights& lights);
+
+// The CPU mappers' inputs to their engines: the transfer tables (TableSize entries over the data
+// range, gradient opacity, unit distance) and versions that change when the scalars or the
+// tables do, so engines rebuild their caches only then.
+class vtkAccelVolumeCPUInputs
+{
+public:
+  static constexpr int TableSize = 1024; // as the slice mapper, so all classify alike
+
+  // Bumps VolumeVersion when the scalars array, its MTime or the input's MTime changed; then
+  // also renews the finite copy of float data with NaN / infinite values (so that the CPU
+  // mappers see them as the slice mapper does).
+  void UpdateVolume(vtkImageData* input, vtkDataArray* scalars);
+  // The scalars the engines render: that finite copy, or the input's scalars.
+  vtkDataArray* GetScalars() const;
+  // Fills transfer for [range[0], high] (high: range[1], or range[0] + 1 for a constant volume),
+  // with gradient opacity when the composite property uses it (domain: the function's own, or
+  // the steepest gradient over the smallest voxel spacing); bumps TransferVersion on change.
+  void UpdateTransfer(vtkVolumeProperty* property, const double range[2], bool composite,
+    double voxelSpacing, accelvolume::RayCastTransfer& transfer, double& high);
+
+  std::uint64_t VolumeVersion = 0;
+  std::uint64_t TransferVersion = 0;
+
+private:
+  vtkDataArray* Scalars = nullptr;
+  vtkSmartPointer<vtkDataArray> Finite;
+  unsigned long ScalarsTime = 0;
+  unsigned long InputTime = 0;
+  std::vector<float> Table;
+  std::vector<float> GradientTable;
+  double TableRange[2] = { 0, 0 };
+};
+
+// VTK's lights and lighting coefficients in eye space for the CPU engines (shade: Phong on).
+void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
+  vtkMatrix4x4* indexToWorld, vtkCamera* camera, bool shade, accelvolume::RayCastLighting& lighting);
+
+#endif

@@ -1,0 +1,133 @@
+/**
+ * @class   vtkAccelVolumeSliceResources
+ * @brief   GPU resources of vtkAccelVolumeSliceMapper: the 3D volume texture, the transfer
+ *          table, the float accumulation target, the scene depth copy and the proxy geometry
+ *          buffers. Private to the module (not wrapped, not installed).
+ */
+#ifndef vtkAccelVolumeSliceResources_h
+#define vtkAccelVolumeSliceResources_h
+
+#include "vtkAccelVolumeBrickCache.h"
+#include "vtkAccelVolumeScalarEncoding.h"
+#include "vtkNew.h"
+#include "vtkTimeStamp.h"
+
+#include "slicing/Bricking.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkOpenGLBufferObject;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkOpenGLVertexArrayObject;
+class vtkTextureObject;
+class vtkVolumeProperty;
+class vtkWindow;
+
+class vtkAccelVolumeSliceResources
+{
+public:
+  vtkAccelVolumeSliceResources();
+  ~vtkAccelVolumeSliceResources();
+
+  /**
+   * Encodes the scalars and lays out their bricks when the scalars, the range, the context or
+   * the limits changed (a brick axis may span at most `maximumBrickSize` texels, 0 for
+   * GL_MAX_3D_TEXTURE_SIZE; `budgetBytes` caps the bricks resident at once, 0 for none). The
+   * textures are uploaded by Bricks.Acquire when a frame first needs them. Sets ScalarScale /
+   * ScalarBias so that texel * scale + bias is the scalar normalised to `range`. False with
+   * `error` set on failure.
+   */
+  bool PrepareVolume(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2], std::uint64_t budgetBytes, int maximumBrickSize, std::string& error);
+
+  /** The bricks of the prepared volume (one brick when it fits a texture and the budget). */
+  const accelvolume::BrickLayout& GetBrickLayout() const { return this->Layout; }
+
+  /**
+   * Frees the encoded copy of the scalars (int, float, double and signed data) once every brick
+   * is resident; it is rebuilt if a brick has to be uploaded again.
+   */
+  void ReleaseEncodedScalarsIfResident();
+
+  /** Rebuilds the RGBA transfer table (colour + scalar opacity over `range`) when needed. */
+  void UpdateTransferTable(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
+
+  /**
+   * Rebuilds the gradient-opacity table (1024 entries of the property's gradient opacity over
+   * [0, maximum] gradient magnitude) when the function or maximum changed.
+   */
+  void UpdateGradientOpacityTable(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum);
+
+  /**
+   * Uploads the property's 2D transfer function (an RGBA float vtkImageData, x: scalar,
+   * y: gradient magnitude) when it changed. False (with error) for a malformed image.
+   */
+  bool UpdateTransferFunction2D(
+    vtkOpenGLRenderWindow* window, vtkImageData* function, std::string& error);
+
+  /**
+   * Precomputes central-difference gradients of the normalized scalars (the paper's
+   * 4-channel texture) when the volume changed. Call after UploadVolume.
+   */
+  bool UpdateGradients(vtkOpenGLRenderWindow* window, vtkImageData* image,
+    vtkDataArray* scalars, const double range[2]);
+
+  /**
+   * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
+   * integrating modes) and the scene depth copy to the viewport.
+   */
+  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels);
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+  vtkAccelVolumeBrickCache Bricks;
+  vtkNew<vtkTextureObject> TransferTable;
+  vtkNew<vtkTextureObject> GradientOpacityTable;
+  vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
+  vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
+  vtkNew<vtkTextureObject> Gradients; // RGBA16: index-space gradient (rgb), value (a)
+  float GradientScale = 1.0f;         // decoded gradient = (rgb * 2 - 1) * GradientScale
+  vtkNew<vtkTextureObject> Accumulation;
+  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkOpenGLBufferObject> VertexBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> SliceArray;
+  vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
+
+  static constexpr int TableSize = 1024;
+  float ScalarScale = 1.0f;
+  float ScalarBias = 0.0f;
+  int Dimensions[3] = { 0, 0, 0 };
+
+private:
+  vtkAccelVolumeSliceResources(const vtkAccelVolumeSliceResources&) = delete;
+  void operator=(const vtkAccelVolumeSliceResources&) = delete;
+
+  vtkTimeStamp VolumeUploadTime;
+  vtkAccelVolumeEncodedScalars Encoded;
+  bool EncodedReleased = false;
+  accelvolume::BrickLayout Layout;
+  std::uint64_t LayoutBudget = 0;
+  int LayoutMaximumBrickSize = 0;
+  vtkTimeStamp TableBuildTime;
+  vtkTimeStamp GradientTableBuildTime;
+  vtkTimeStamp Table2DBuildTime;
+  vtkTimeStamp GradientBuildTime;
+  vtkDataArray* GradientScalars = nullptr;
+  vtkImageData* Table2DSource = nullptr;
+  double GradientTableMaximum = -1.0;
+  vtkDataArray* UploadedScalars = nullptr;
+  double UploadedRange[2] = { 0.0, 0.0 };
+  double TableRange[2] = { 0.0, 0.0 };
+  vtkVolumeProperty* TableProperty = nullptr;
+  vtkWindow* Context = nullptr;
+};
+
+#endif

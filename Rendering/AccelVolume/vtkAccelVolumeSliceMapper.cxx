@@ -1,0 +1,539 @@
+// Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
+#include "vtkAccelVolumeSliceMapper.h"
+
+#include "vtkAccelVolumeMapperSupport.h"
+#include "vtkAccelVolumeMinMaxOctree.h"
+#include "vtkAccelVolumeMinMaxOctreeInternals.h"
+#include "vtkAccelVolumeRenderProgress.h"
+#include "vtkAccelVolumeSliceGeometry.h"
+#include "vtkAccelVolumeSlicePasses.h"
+#include "vtkAccelVolumeSliceResources.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "common/Geometry.h"
+#include "skipping/MinMaxOctree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int MaximumClipPlanes = vtkAccelVolumeSliceFrame::MaximumClipPlanes;
+
+bool IsSupportedBlend(int blendMode)
+{
+  return blendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
+    blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
+    blendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+}
+
+// Composite shading inputs: VTK's lighting coefficients, up to 4 lights as eye-space
+// directions (headlights and camera lights live in camera coordinates already), and the matrix
+// taking an index-space gradient to eye space (the inverse transpose of index -> eye).
+void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
+  vtkVolumeProperty* property, vtkMatrix4x4* indexToEye, vtkMatrix4x4* view)
+{
+  vtkAccelVolumeLights lights;
+  vtkAccelVolumeGetLights(renderer, property, indexToEye, view, lights);
+  std::copy(lights.Lighting, lights.Lighting + 4, frame.Lighting);
+  frame.LightCount = lights.Count;
+  std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &frame.LightDirections[0][0]);
+  std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &frame.LightColors[0][0]);
+  // GLSL mat3 is column-major: column c goes to elements 3c .. 3c+2.
+  for (int c = 0; c < 3; ++c)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      frame.NormalMatrix[3 * c + r] = static_cast<float>(lights.NormalMatrix[r][c]);
+    }
+  }
+}
+
+accelvolume::Vec3 MakeVec3(double x, double y, double z)
+{
+  accelvolume::Vec3 v;
+  v.x = x;
+  v.y = y;
+  v.z = z;
+  return v;
+}
+}
+
+// Per-mapper state kept out of the public header.
+class vtkAccelVolumeSliceMapper::vtkInternals
+{
+public:
+  vtkAccelVolumeSliceResources Resources;
+  vtkAccelVolumeSliceFrame Frame;
+  vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
+  // What the uploaded leaf texture reflects.
+  vtkMTimeType LeavesScalarsTime = 0;
+  vtkMTimeType LeavesFunctionTime = 0;
+  double LeavesRange[2] = { 0, 0 };
+  int LeavesLeafSize = 0;
+  int LeafGrid[3] = { 0, 0, 0 };
+  // The octree's merged non-empty boxes for that classification (slice culling).
+  std::vector<accelvolume::Box> NonEmptyBoxes;
+  bool HaveNonEmptyBoxes = false;
+  std::string Renderer;
+  std::vector<float> Vertices;
+  bool ReportedError = false;
+};
+
+vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
+
+vtkAccelVolumeSliceMapper::vtkAccelVolumeSliceMapper()
+  : Internals(new vtkInternals)
+{
+  // BlendMode keeps vtkVolumeMapper's default, composite, like every VTK volume mapper: a
+  // drop-in replacement must draw the same picture without being told the blend mode.
+}
+
+vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper() = default;
+
+void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
+  os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
+  os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
+  os << indent << "SlabSamples: " << this->SlabSamples << "\n";
+  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
+  os << indent << "FrontToBack: " << this->FrontToBack << "\n";
+  os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";
+  os << indent << "Jittering: " << this->Jittering << "\n";
+  os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
+  os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
+  os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
+  os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
+  os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
+  os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
+  os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
+  os << indent << "GPUMemoryBudget: " << this->GPUMemoryBudget << "\n";
+  os << indent << "MaximumBrickSize: " << this->MaximumBrickSize << "\n";
+  os << indent << "LastNumberOfBricks: " << this->LastNumberOfBricks << "\n";
+  os << indent << "LastNumberOfBricksDrawn: " << this->LastNumberOfBricksDrawn << "\n";
+  os << indent << "LastNumberOfBrickUploads: " << this->LastNumberOfBrickUploads << "\n";
+  os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
+  os << indent << "LastResidentBytes: " << this->LastResidentBytes << "\n";
+}
+
+bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
+  vtkImageData* input, vtkVolumeProperty* property, const double range[2])
+{
+  vtkInternals& internals = *this->Internals;
+  vtkAccelVolumeMinMaxOctree* octree = internals.Octree;
+  octree->SetInputData(input);
+  octree->SetLeafSize(this->OctreeLeafSize);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  if (!octree->Update() || !octree->Classify(opacity, range))
+  {
+    return false;
+  }
+  const vtkMTimeType scalarsTime = std::max(input->GetMTime(),
+    input->GetPointData()->GetScalars() ? input->GetPointData()->GetScalars()->GetMTime() : 0);
+  vtkTextureObject* leaves = internals.Resources.EmptyLeaves;
+  if (!leaves->GetHandle() || scalarsTime != internals.LeavesScalarsTime ||
+    opacity->GetMTime() != internals.LeavesFunctionTime || range[0] != internals.LeavesRange[0] ||
+    range[1] != internals.LeavesRange[1] || this->OctreeLeafSize != internals.LeavesLeafSize)
+  {
+    octree->GetLeafGridSize(internals.LeafGrid);
+    const int* grid = internals.LeafGrid;
+    std::vector<unsigned char> flags(static_cast<size_t>(grid[0]) * grid[1] * grid[2]);
+    size_t at = 0;
+    for (int k = 0; k < grid[2]; ++k)
+    {
+      for (int j = 0; j < grid[1]; ++j)
+      {
+        for (int i = 0; i < grid[0]; ++i)
+        {
+          const auto index = static_cast<vtkIdType>(accelvolume::MortonEncode(i, j, k));
+          flags[at++] = octree->IsNodeTransparent(0, index) ? 255 : 0;
+        }
+      }
+    }
+    leaves->SetContext(window);
+    window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    if (!leaves->Create3DFromRaw(grid[0], grid[1], grid[2], 1, VTK_UNSIGNED_CHAR, flags.data()))
+    {
+      return false;
+    }
+    leaves->SetMinificationFilter(vtkTextureObject::Nearest);
+    leaves->SetMagnificationFilter(vtkTextureObject::Nearest);
+    internals.LeavesScalarsTime = scalarsTime;
+    internals.LeavesFunctionTime = opacity->GetMTime();
+    internals.LeavesRange[0] = range[0];
+    internals.LeavesRange[1] = range[1];
+    internals.LeavesLeafSize = this->OctreeLeafSize;
+    // Only a new classification changes them: not a per-frame traversal.
+    accelvolume::MinMaxOctree* core = octree->GetInternals()->GetCPUOctree();
+    internals.HaveNonEmptyBoxes = core != nullptr;
+    internals.NonEmptyBoxes = core ? core->NonEmptyBoxes() : std::vector<accelvolume::Box>();
+  }
+  this->LastTransparentLeafFraction = octree->GetTransparentLeafFraction();
+  return true;
+}
+
+const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
+{
+  return this->Internals->Renderer.c_str();
+}
+
+void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->Resources.ReleaseGraphicsResources(window);
+}
+
+bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* volume)
+{
+  int cellFlag = 0;
+  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  std::string error;
+  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error) ||
+    !vtkAccelVolumeCheckGeometry(this, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  if (!IsSupportedBlend(this->BlendMode))
+  {
+    vtkErrorMacro("Blend mode " << this->BlendMode
+                                << " is not supported by the slice mapper (use composite, "
+                                   "maximum, minimum, additive or average intensity)");
+    return false;
+  }
+  if (!volume->GetProperty())
+  {
+    vtkErrorMacro("The volume has no property");
+    return false;
+  }
+  if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > MaximumClipPlanes)
+  {
+    vtkErrorMacro("At most " << MaximumClipPlanes << " clipping planes are supported");
+    return false;
+  }
+  return true;
+}
+
+void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  // StartEvent now; ProgressEvent after each stage (volume upload, octree and proxy geometry,
+  // slice passes, GPU finish); ProgressEvent 1 and EndEvent on every return.
+  vtkAccelVolumeRenderProgress progress(this);
+  vtkInternals& internals = *this->Internals;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkAccelVolumeSliceMapper needs an OpenGL render window");
+    return;
+  }
+  vtkImageData* input = nullptr;
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+    input = vtkImageData::SafeDownCast(this->GetInput());
+  }
+  if (!this->ValidateInput(input, volume))
+  {
+    return;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  double range[2];
+  vtkAccelVolumeScalarRange(scalars, range);
+
+  vtkVolumeProperty* property = volume->GetProperty();
+  const bool linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
+  std::string error;
+  if (!internals.Resources.PrepareVolume(window, input, scalars, range,
+        static_cast<std::uint64_t>(this->GPUMemoryBudget), this->MaximumBrickSize, error))
+  {
+    vtkErrorMacro("Cannot upload the volume: " << error);
+    return;
+  }
+  const accelvolume::BrickLayout& layout = internals.Resources.GetBrickLayout();
+  internals.Resources.UpdateTransferTable(window, property, range);
+  progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
+
+  int dims[3];
+  input->GetDimensions(dims);
+
+  // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
+  int width = 0;
+  int height = 0;
+  int lowerLeft[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = static_cast<double>(width) / height;
+  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+  vtkNew<vtkMatrix4x4> projection;
+  projection->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
+  vtkNew<vtkMatrix4x4> indexToEye;
+  vtkMatrix4x4::Multiply4x4(view, indexToWorld, indexToEye);
+  vtkNew<vtkMatrix4x4> indexToClip;
+  vtkMatrix4x4::Multiply4x4(projection, indexToEye, indexToClip);
+  vtkNew<vtkMatrix4x4> eyeToIndex;
+  vtkMatrix4x4::Invert(indexToEye, eyeToIndex);
+  vtkNew<vtkMatrix4x4> inverseProjection;
+  vtkMatrix4x4::Invert(projection, inverseProjection);
+
+  const accelvolume::Box volumeBox = vtkAccelVolumeIndexBox(dims);
+  const std::vector<accelvolume::Box> regions = vtkAccelVolumeRegions(this, input, volumeBox);
+
+  const std::vector<accelvolume::HalfSpace> clip =
+    vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
+  float clipUniforms[MaximumClipPlanes][4] = {};
+  for (size_t i = 0; i < clip.size(); ++i)
+  {
+    clipUniforms[i][0] = static_cast<float>(clip[i].normal.x);
+    clipUniforms[i][1] = static_cast<float>(clip[i].normal.y);
+    clipUniforms[i][2] = static_cast<float>(clip[i].normal.z);
+    clipUniforms[i][3] = static_cast<float>(clip[i].offset);
+  }
+
+  // Eye depth (distance in front of the camera plane) as a function of the index point.
+  const accelvolume::Vec3 depthGradient = MakeVec3(
+    -indexToEye->GetElement(2, 0), -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
+  const double depthOffset = -indexToEye->GetElement(2, 3);
+
+  // Slice spacing in world units.
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
+  double depthMinimum = VTK_DOUBLE_MAX;
+  double depthMaximum = -VTK_DOUBLE_MAX;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const accelvolume::Vec3 p = MakeVec3(corner & 1 ? volumeBox.upper.x : volumeBox.lower.x,
+      corner & 2 ? volumeBox.upper.y : volumeBox.lower.y,
+      corner & 4 ? volumeBox.upper.z : volumeBox.lower.z);
+    const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
+    depthMinimum = std::min(depthMinimum, depth);
+    depthMaximum = std::max(depthMaximum, depth);
+  }
+  const double depthExtent = std::max(depthMaximum - depthMinimum, 1.0e-9);
+  // Slice depths reach the shaders relative to the volume centre's (float precision).
+  const double referenceDepth = 0.5 * (depthMinimum + depthMaximum);
+  double spacing = this->SampleDistance;
+  if (this->NumberOfSlices > 0)
+  {
+    spacing = depthExtent / this->NumberOfSlices;
+  }
+  else if (this->AutoAdjustSampleDistances)
+  {
+    spacing = voxelSpacing;
+    const double allotted = volume->GetAllocatedRenderTime();
+    if (allotted > 0 && allotted < 1.0 && this->LastRenderTime > allotted)
+    {
+      spacing *= std::min(this->InteractiveSlowdownLimit, this->LastRenderTime / allotted);
+    }
+  }
+  if (depthExtent / spacing > this->MaximumNumberOfSlices)
+  {
+    spacing = depthExtent / this->MaximumNumberOfSlices;
+  }
+  const double phase = 0.0;
+  const bool extremum =
+    this->BlendMode == MAXIMUM_INTENSITY_BLEND || this->BlendMode == MINIMUM_INTENSITY_BLEND;
+  const int slabSamples = extremum ? this->SlabSamples : 1;
+  accelvolume::ViewRays rays;
+  rays.depthGradient = depthGradient;
+  rays.depthOffset = depthOffset;
+  rays.perspective = camera->GetParallelProjection() == 0;
+  rays.eye = MakeVec3(
+    eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
+  rays.direction = MakeVec3(
+    -eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
+
+  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
+  const bool composite = this->BlendMode == COMPOSITE_BLEND;
+  const bool transferFunction2D =
+    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
+  const bool skipEmptyLeaves = composite && !transferFunction2D &&
+    (this->EmptySpaceSkipping & SKIP_OCTREE) &&
+    this->UpdateEmptyLeaves(window, input, property, range);
+  vtkAccelVolumeSliceGeometryInput geometry;
+  geometry.Regions = &regions;
+  geometry.Clip = &clip;
+  geometry.VolumeBox = volumeBox;
+  geometry.Rays = rays;
+  geometry.ReferenceDepth = referenceDepth;
+  geometry.Spacing = spacing;
+  geometry.Phase = phase;
+  geometry.Composite = composite;
+  geometry.FrontToBack = this->FrontToBack != 0;
+  // A slab's samples run along the ray, across brick faces: bricks take plain slices.
+  geometry.SlabSamples = layout.Single() ? slabSamples : 1;
+  geometry.BoundaryFaces = this->BoundaryRerendering != 0;
+  geometry.NonEmpty =
+    skipEmptyLeaves && internals.HaveNonEmptyBoxes ? &internals.NonEmptyBoxes : nullptr;
+  geometry.Layout = &layout;
+  vtkAccelVolumeSliceGeometryStats geometryStats;
+  vtkAccelVolumeBuildSliceGeometry(geometry, internals.Frame, internals.Vertices, geometryStats);
+  if (composite)
+  {
+    this->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
+  }
+  std::vector<float>& vertices = internals.Vertices;
+  progress.Report(0.45); // octree classification and proxy geometry
+  this->LastSliceSpacing = spacing;
+  this->LastNumberOfSlices = geometryStats.Slices;
+  this->LastNumberOfProxyPolygons = geometryStats.ProxyPolygons;
+  this->LastNumberOfBoundaryFaces = geometryStats.BoundaryFaces;
+
+  vtkAccelVolumeSliceFrame& frame = internals.Frame;
+  frame.BlendMode = this->BlendMode;
+  frame.SlabSamples = geometry.SlabSamples;
+  frame.Linear = linear;
+  frame.Width = width;
+  frame.Height = height;
+  frame.LowerLeft[0] = lowerLeft[0];
+  frame.LowerLeft[1] = lowerLeft[1];
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.Dimensions[c] = static_cast<float>(dims[c]);
+  }
+  frame.IndexToClip = indexToClip;
+  frame.IndexToEye = indexToEye;
+  frame.EyeToIndex = eyeToIndex;
+  frame.Projection = projection;
+  frame.InverseProjection = inverseProjection;
+  frame.ReferenceDepth = referenceDepth;
+  frame.ClipPlaneCount = static_cast<int>(clip.size());
+  std::copy(
+    &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
+  frame.SliceSpacing = static_cast<float>(spacing);
+  frame.SlicePhase = static_cast<float>(phase);
+  frame.BoundaryRerendering = this->BoundaryRerendering != 0 && !composite;
+  frame.OpacityUnitDistance =
+    static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
+  frame.Parallel = camera->GetParallelProjection() != 0;
+  frame.FrontToBack = this->FrontToBack != 0;
+  frame.Jitter = this->Jittering != 0;
+  frame.EarlyTermination = composite && this->EarlyRayTermination && frame.FrontToBack;
+  frame.TerminationInterval = this->EarlyRayTerminationInterval;
+  frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
+  frame.TerminationPasses = 0;
+  frame.TransferFunction2D = transferFunction2D;
+  if (frame.TransferFunction2D)
+  {
+    std::string tableError;
+    if (!internals.Resources.UpdateTransferFunction2D(
+          window, property->GetTransferFunction2D(0), tableError))
+    {
+      vtkErrorMacro("Cannot use the 2D transfer function: " << tableError);
+      return;
+    }
+    // The table's y axis spans [0, the steepest central difference the data allow].
+    frame.Gradient2DMaximum =
+      static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
+  }
+  frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
+  frame.SkipEmptyLeaves = skipEmptyLeaves;
+  this->LastTransparentLeafFraction =
+    frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
+  frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, internals.LeafGrid[c] - 1));
+  }
+  frame.Shade = composite && property->GetShade(0) != 0;
+  frame.GradientOpacity =
+    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
+  if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
+  {
+    FillShading(frame, renderer, property, indexToEye, view);
+    constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
+    const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
+    // Bricks take central differences: their texels reach one voxel past what they own.
+    frame.GradientTexture = this->PrecomputeGradients && layout.Single() &&
+      gradientBytes <= GradientTextureBudget &&
+      internals.Resources.UpdateGradients(window, input, scalars, range);
+    frame.GradientTextureScale = internals.Resources.GradientScale;
+  }
+  else
+  {
+    frame.GradientTexture = false;
+  }
+  if (frame.GradientOpacity)
+  {
+    // The table spans the function's own domain, or the steepest plausible gradient.
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    const double maximum = domain[1] > 0 ? domain[1] : frame.ScalarRangeWidth / voxelSpacing;
+    frame.GradientTableMaximum = static_cast<float>(maximum);
+    internals.Resources.UpdateGradientOpacityTable(window, property, maximum);
+  }
+  const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
+  frame.AdditiveScale = static_cast<float>(1.0 / unit);
+  const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  frame.AverageRange[0] =
+    static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth);
+  frame.AverageRange[1] =
+    static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  frame.Vertices = &vertices;
+  if (internals.Renderer.empty())
+  {
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    internals.Renderer = name ? name : "unknown";
+  }
+  internals.Resources.Bricks.BeginFrame();
+  std::string passError;
+  const bool rendered =
+    vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame, passError);
+  this->LastNumberOfTerminationPasses = frame.TerminationPasses;
+  this->LastNumberOfBricks = static_cast<int>(layout.bricks.size());
+  this->LastNumberOfBricksDrawn = static_cast<int>(frame.Bricks.size());
+  this->LastNumberOfBrickUploads = internals.Resources.Bricks.GetFrameUploads();
+  this->LastUploadedBytes =
+    static_cast<vtkIdType>(internals.Resources.Bricks.GetFrameUploadedBytes());
+  this->LastResidentBytes = static_cast<vtkIdType>(internals.Resources.Bricks.GetResidentBytes());
+  internals.Resources.ReleaseEncodedScalarsIfResident();
+  progress.Report(0.6); // passes issued; the GPU may still be working on them
+
+  // Wait for the GPU so the reported time is the frame's real cost.
+  glFinish();
+  timer->StopTimer();
+  this->LastRenderTime = timer->GetElapsedTime();
+  if (!rendered && !internals.ReportedError)
+  {
+    internals.ReportedError = true;
+    vtkErrorMacro("Rendering failed: " << passError);
+  }
+}

@@ -1,0 +1,368 @@
+// Picks the slice, ray cast or shear-warp mapper for the context and renders with it.
+#include "vtkAccelVolumeSmartMapper.h"
+
+#include "vtkAccelVolumeMapperSupport.h"
+#include "vtkAccelVolumeRenderProgress.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPlaneCollection.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <sstream>
+#include <string>
+
+vtkStandardNewMacro(vtkAccelVolumeSmartMapper);
+
+namespace
+{
+const char* BlendName(int blend)
+{
+  switch (blend)
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      return "composite";
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      return "MIP";
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      return "MinIP";
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      return "average";
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      return "additive";
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return "isosurface";
+    case vtkVolumeMapper::SLICE_BLEND:
+      return "slice";
+    default:
+      return "unknown";
+  }
+}
+
+// Mesa's software rasterizers: the slice mapper's fragment work would run on the CPU.
+bool IsSoftwareRenderer(const std::string& name)
+{
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return lower.find("llvmpipe") != std::string::npos ||
+    lower.find("softpipe") != std::string::npos || lower.find("swrast") != std::string::npos;
+}
+}
+
+vtkAccelVolumeSmartMapper::vtkAccelVolumeSmartMapper()
+{
+  this->Relayer->SetCallback(&vtkAccelVolumeSmartMapper::Relay);
+  this->Relayer->SetClientData(this);
+  vtkVolumeMapper* mappers[3] = { this->SliceMapper, this->RayCastMapper, this->ShearWarpMapper };
+  for (vtkVolumeMapper* mapper : mappers)
+  {
+    mapper->AddObserver(vtkCommand::ErrorEvent, this->Relayer);
+    mapper->AddObserver(vtkCommand::WarningEvent, this->Relayer);
+  }
+}
+
+vtkAccelVolumeSmartMapper::~vtkAccelVolumeSmartMapper()
+{
+  vtkVolumeMapper* mappers[3] = { this->SliceMapper, this->RayCastMapper, this->ShearWarpMapper };
+  for (vtkVolumeMapper* mapper : mappers)
+  {
+    mapper->RemoveObserver(this->Relayer);
+  }
+}
+
+const char* vtkAccelVolumeSmartMapper::GetRenderModeAsString(int mode)
+{
+  switch (mode)
+  {
+    case DEFAULT_RENDER:
+      return "Default";
+    case SLICE_RENDER:
+      return "Slice";
+    case RAYCAST_RENDER:
+      return "RayCast";
+    case SHEARWARP_RENDER:
+      return "ShearWarp";
+    default:
+      return "Undefined";
+  }
+}
+
+void vtkAccelVolumeSmartMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->SliceMapper->ReleaseGraphicsResources(window);
+  this->RayCastMapper->ReleaseGraphicsResources(window);
+  this->ShearWarpMapper->ReleaseGraphicsResources(window);
+}
+
+void vtkAccelVolumeSmartMapper::Relay(vtkObject* caller, unsigned long event, void* client, void* data)
+{
+  auto* self = static_cast<vtkAccelVolumeSmartMapper*>(client);
+  std::string message = data ? static_cast<const char*>(data) : "";
+  // Keep the owned mapper's own text: drop its "vtkClass (0x...): " prefix and trailing blanks.
+  const size_t start = message.find("): ");
+  if (start != std::string::npos)
+  {
+    message = message.substr(start + 3);
+  }
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())))
+  {
+    message.pop_back();
+  }
+  const char* name = caller ? caller->GetClassName() : "mapper";
+  if (event == vtkCommand::ErrorEvent)
+  {
+    vtkErrorWithObjectMacro(self, << name << ": " << message);
+  }
+  else
+  {
+    vtkWarningWithObjectMacro(self, << name << ": " << message);
+  }
+}
+
+void vtkAccelVolumeSmartMapper::Forward(vtkAccelVolumeMapper* mapper)
+{
+  mapper->SetInputConnection(
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputConnection(0, 0) : nullptr);
+  mapper->SetBlendMode(this->BlendMode);
+  mapper->SetCropping(this->Cropping);
+  mapper->SetCroppingRegionPlanes(this->CroppingRegionPlanes);
+  mapper->SetCroppingRegionFlags(this->CroppingRegionFlags);
+  mapper->SetClippingPlanes(this->ClippingPlanes);
+  mapper->SetAverageIPScalarRange(this->AverageIPScalarRange);
+  mapper->SetScalarMode(this->ScalarMode);
+  if (this->ArrayAccessMode == VTK_GET_ARRAY_BY_ID)
+  {
+    mapper->SelectScalarArray(this->ArrayId);
+  }
+  else
+  {
+    mapper->SelectScalarArray(this->ArrayName);
+  }
+  mapper->SetArrayAccessMode(this->ArrayAccessMode);
+  mapper->SetEarlyRayTermination(this->EarlyRayTermination);
+  mapper->SetEarlyRayTerminationThreshold(this->EarlyRayTerminationThreshold);
+}
+
+int vtkAccelVolumeSmartMapper::ChooseMode(
+  vtkRenderer* renderer, vtkVolume* volume, const int dims[3])
+{
+  // Can the slice mapper render here, and is its GL hardware?
+  std::string sliceBlocker;
+  std::string glRenderer;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    sliceBlocker = "no OpenGL render window";
+  }
+  else
+  {
+    if (!window->IsCurrent())
+    {
+      window->MakeCurrent();
+    }
+    const int maximum = vtkTextureObject::GetMaximumTextureSize3D(window);
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    glRenderer = name ? name : "unknown";
+    // Volumes beyond GL_MAX_3D_TEXTURE_SIZE are no blocker: the slice mapper bricks them.
+    if (maximum <= 0)
+    {
+      sliceBlocker = "the OpenGL context has no 3D textures";
+    }
+  }
+  const bool sliceUsable = sliceBlocker.empty();
+  const bool hardware = sliceUsable && !IsSoftwareRenderer(glRenderer);
+
+  // Can the shear-warp mapper render this scene?
+  std::string shearWarpBlocker;
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const int blend = this->BlendMode;
+  if (blend != COMPOSITE_BLEND && blend != MAXIMUM_INTENSITY_BLEND &&
+    blend != MINIMUM_INTENSITY_BLEND)
+  {
+    shearWarpBlocker = std::string(BlendName(blend)) + " blend: shear-warp cannot (composite, "
+                                                       "MIP, MinIP only)";
+  }
+  else if (!camera || !camera->GetParallelProjection())
+  {
+    shearWarpBlocker = "perspective camera: shear-warp is parallel only";
+  }
+  else if (this->Cropping)
+  {
+    shearWarpBlocker = "cropping: shear-warp ignores it";
+  }
+  else if (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0)
+  {
+    shearWarpBlocker = "clipping planes: shear-warp ignores them";
+  }
+  const bool shearWarpUsable = shearWarpBlocker.empty();
+  const double allocated = volume->GetAllocatedRenderTime();
+  const bool interactive = allocated < 1.0 / this->InteractiveUpdateRate;
+
+  // The automatic choice, optionally without one mapper (the refused requested one).
+  auto automatic = [&](int excluded, std::string& reason) -> int
+  {
+    if (hardware && excluded != SLICE_RENDER)
+    {
+      reason += "hardware OpenGL (" + glRenderer + ") with 3D textures -> slice";
+      return SLICE_RENDER;
+    }
+    if (sliceUsable)
+    {
+      reason += "software OpenGL (" + glRenderer + ")";
+    }
+    else if (excluded != SLICE_RENDER)
+    {
+      reason += sliceBlocker;
+    }
+    else
+    {
+      reason += "no slice"; // the refused slice request already said why
+    }
+    if (shearWarpUsable && interactive && excluded != SHEARWARP_RENDER)
+    {
+      reason += std::string("; parallel ") + BlendName(blend) +
+        ", no cropping or clipping, interactive frame -> shear-warp";
+      return SHEARWARP_RENDER;
+    }
+    if (excluded == SHEARWARP_RENDER)
+    {
+      // The requested shear-warp's blocker already leads the reason.
+    }
+    else if (!shearWarpUsable)
+    {
+      reason += "; " + shearWarpBlocker;
+    }
+    else if (!interactive)
+    {
+      reason += "; still frame (allocated time >= 1 / InteractiveUpdateRate)";
+    }
+    reason += " -> ray cast";
+    return RAYCAST_RENDER;
+  };
+
+  // A requested mapper that cannot render the scene falls back to the automatic choice.
+  std::string reason;
+  auto requested = [&](int wanted, const char* name, bool usable, const std::string& blocker)
+  {
+    if (usable)
+    {
+      reason = std::string("requested ") + name;
+      return wanted;
+    }
+    reason = std::string("requested ") + name + ", but " + blocker + "; falling back: ";
+    return automatic(wanted, reason);
+  };
+  int mode = RAYCAST_RENDER;
+  switch (this->RequestedRenderMode)
+  {
+    case SLICE_RENDER:
+      mode = requested(SLICE_RENDER, "slice", sliceUsable, sliceBlocker);
+      break;
+    case RAYCAST_RENDER:
+      mode = requested(RAYCAST_RENDER, "ray cast", true, std::string());
+      break;
+    case SHEARWARP_RENDER:
+      mode = requested(SHEARWARP_RENDER, "shear-warp", shearWarpUsable, shearWarpBlocker);
+      break;
+    default:
+      mode = automatic(DEFAULT_RENDER, reason);
+      break;
+  }
+  const bool fellBack =
+    this->RequestedRenderMode != DEFAULT_RENDER && mode != this->RequestedRenderMode;
+  if (fellBack && reason != this->LastWarning)
+  {
+    this->LastWarning = reason;
+    vtkWarningMacro(<< reason);
+  }
+  this->LastChoiceReason = reason;
+  return mode;
+}
+
+void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  const auto start = std::chrono::steady_clock::now();
+  // StartEvent now, the chosen mapper's progress as this mapper's, ProgressEvent 1 and EndEvent
+  // on every return.
+  vtkAccelVolumeRenderProgress progress(this);
+  if (!renderer || !volume)
+  {
+    vtkErrorMacro("Render needs a renderer and a volume");
+    return;
+  }
+  if (this->GetNumberOfInputConnections(0) == 0)
+  {
+    this->LastRenderMode = UNDEFINED_RENDER;
+    this->LastChoiceReason = "no input: nothing rendered";
+    vtkErrorMacro("No input: connect a vtkImageData to the mapper");
+    return;
+  }
+  this->GetInputAlgorithm()->Update();
+  int dims[3] = { 0, 0, 0 };
+  if (auto* image = vtkImageData::SafeDownCast(this->GetInput()))
+  {
+    image->GetDimensions(dims);
+  }
+  const int mode = this->ChooseMode(renderer, volume, dims);
+  vtkAccelVolumeMapper* mapper = this->RayCastMapper;
+  if (mode == SLICE_RENDER)
+  {
+    mapper = this->SliceMapper;
+  }
+  else if (mode == SHEARWARP_RENDER)
+  {
+    mapper = this->ShearWarpMapper;
+  }
+  this->LastRenderMode = mode;
+  this->Forward(mapper);
+  // Observed only while it renders for an observed smart mapper: an unobserved mapper keeps its
+  // single parallel calls.
+  vtkNew<vtkCallbackCommand> forward;
+  unsigned long forwardTag = 0;
+  if (progress.IsObserved())
+  {
+    forward->SetClientData(&progress);
+    forward->SetCallback(
+      [](vtkObject*, unsigned long, void* client, void* data)
+      {
+        static_cast<vtkAccelVolumeRenderProgress*>(client)->Report(*static_cast<double*>(data));
+      });
+    forwardTag = mapper->AddObserver(vtkCommand::ProgressEvent, forward);
+  }
+  // The owned mapper's errors come back through Relay as this mapper's errors.
+  mapper->Render(renderer, volume);
+  if (forwardTag)
+  {
+    mapper->RemoveObserver(forwardTag);
+  }
+  // Connected only while it renders: an owned mapper still connected to the shared producer
+  // when this mapper is destroyed kept that producer and its image from being collected
+  // (VTK's garbage collector meets this mapper mid-destruction). Its caches key on the scalars,
+  // not on the connection, so the next frame reuses them.
+  mapper->SetInputConnection(nullptr);
+  this->LastRenderTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void vtkAccelVolumeSmartMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RequestedRenderMode: " << GetRenderModeAsString(this->RequestedRenderMode)
+     << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "LastRenderMode: " << GetRenderModeAsString(this->LastRenderMode) << "\n";
+  os << indent << "LastChoiceReason: " << this->LastChoiceReason << "\n";
+  os << indent << "SliceMapper: " << this->SliceMapper.GetPointer() << "\n";
+  os << indent << "RayCastMapper: " << this->RayCastMapper.GetPointer() << "\n";
+  os << indent << "ShearWarpMapper: " << this->ShearWarpMapper.GetPointer() << "\n";
+}

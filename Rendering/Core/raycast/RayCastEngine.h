@@ -1,0 +1,150 @@
+// RayCastEngine: the CPU ray caster behind vtkAccelVolumeRayCastMapper (plain C++, no VTK).
+//
+// Rays leave the near plane through the pixel centres of a width x height image (NDC
+// ((2 (i + 0.5) / w) - 1, (2 (j + 0.5) / h) - 1), j from the bottom), travel in world units and
+// are resampled in index space. Per ray and region (box ∩ clip half-spaces ∩ [0, geometry]),
+// samples sit at t0 + (k + 0.5) h for k < floor((t1 - t0) / h + 0.5), h = the sample distance,
+// with trilinear (or nearest) interpolation, clamped to the volume like GL_CLAMP_TO_EDGE.
+// Blend modes follow vtkAccelVolumeSliceMapper / vtkGPUVolumeRayCastMapper semantics.
+//
+// Accelerations, each exact (the image is identical with and without it):
+// - empty-space leaping by the min-max octree with a distance template (composite / additive:
+//   transparent nodes; MIP / MinIP: nodes whose range cannot beat the ray's current extreme),
+//   or by a chessboard distance map (composite / additive);
+// - semi-transparent cell leaping with the modified Marching Cubes table (CellLeapTable);
+// - early ray termination (composite; changes the image by at most 1 - threshold, identically
+//   with and without leaping).
+// Work is split into fixed square tiles; results never depend on the thread count.
+#ifndef accelvolume_RayCastEngine_h
+#define accelvolume_RayCastEngine_h
+
+#include "skipping/MinMaxOctree.h"
+#include "common/Blend.h"
+#include "common/Progress.h"
+#include "common/Affine.h"
+#include "common/Camera.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace accelvolume
+{
+
+enum class LeapMode
+{
+  None,
+  Octree,     // min-max octree + distance template
+  DistanceMap // chessboard distance map (composite / additive only)
+};
+
+struct RayCastTransfer
+{
+  // 4 N floats: colour and scalar opacity over [rangeMin, rangeMax] of the raw scalars, linearly
+  // interpolated (OpacityTable::Lookup convention). N >= 2.
+  std::vector<float> rgba;
+  // Gradient opacity over [0, gradientOpacityMaximum] data units per world unit; empty: off.
+  std::vector<float> gradientOpacity;
+  double gradientOpacityMaximum = 1.0;
+  double opacityUnitDistance = 1.0; // vtkVolumeProperty::ScalarOpacityUnitDistance
+};
+
+struct RayCastLighting
+{
+  bool shade = false;
+  float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
+  int lightCount = 0;
+  float directions[4][3] = {}; // eye space, towards the light
+  float colours[4][3] = {};    // colour times intensity
+  // index-space gradient -> eye space (inverse transpose of index -> eye), row-major
+  double normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  // index-space direction -> eye space (linear part of index -> eye), row-major
+  double indexToEye[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+};
+
+struct RayCastView
+{
+  int width = 0, height = 0;
+  double clipToWorld[4][4] = {}; // inverse of projection * view, row-major, NDC z in [-1, 1]
+  Affine worldToIndex = Affine::Identity();
+  // Optional window depth in [0, 1] per pixel (1: no geometry), width * height values.
+  const std::vector<float>* depth = nullptr;
+};
+
+struct RayCastSettings
+{
+  Blend blend = Blend::Composite;
+  double sampleDistance = 1.0; // world units
+  bool nearest = false;
+  LeapMode leap = LeapMode::Octree;
+  bool cellLeap = true;
+  bool earlyTermination = true;
+  double terminationThreshold = 0.99;
+  double additiveUnitDistance = 1.0;
+  double averageRange[2] = { 0, 1 }; // raw scalar range counted by Average
+  int octreeLeafSize = 8;
+  int tileSize = 16;
+  // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
+  // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
+  // per shaded sample).
+  bool precomputeGradients = true;
+  std::vector<Box> regions;    // index space, non-overlapping
+  std::vector<HalfSpace> clip; // index space
+};
+
+struct RayCastCounters
+{
+  std::uint64_t rays = 0;            // rays cast that met a region (leaping culls rays that
+                                     // cannot meet a possibly opaque cell)
+  std::uint64_t samples = 0;         // samples resampled (interpolated)
+  std::uint64_t leapedOctree = 0;    // samples skipped by octree leaps
+  std::uint64_t leapedDistance = 0;  // samples skipped by distance-map leaps
+  std::uint64_t leapedCell = 0;      // semi-transparent cell samples skipped by the MC table
+  std::uint64_t leapedEmptyCell = 0; // samples in all-transparent cells skipped by the table
+  std::uint64_t terminatedRays = 0;  // rays closed by early ray termination
+  std::uint64_t octreeLeaps = 0;     // octree leaps taken (each skips >= 1 sample)
+  std::uint64_t distanceLeaps = 0;   // distance-map leaps taken
+};
+
+class RayCaster
+{
+public:
+  RayCaster();
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  // Renders premultiplied RGBA (4 floats per pixel, i + j * width). volumeVersion and
+  // transferVersion identify the scalars and the transfer function: change them when those
+  // change so the octree, cell classification and distance map are rebuilt (only what the
+  // settings need is built). False with error on bad arguments.
+  bool Render(const VolumeView& volume, double rangeMin, double rangeMax,
+    std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+    const RayCastLighting& lighting, const RayCastView& view, const RayCastSettings& settings,
+    const ParallelFor& parallel, std::vector<float>& rgba, RayCastCounters& counters,
+    std::string& error);
+
+  // Progress of every later Render, reported from the thread that calls Render: the rebuild of
+  // acceleration structures (when any) up to 0.25, then the tiles as they finish
+  // (ReportingParallelFor: no extra barrier). The image does not depend on it. Empty: none.
+  void SetProgressFunction(ProgressFunction report);
+
+  // Image pixels [x0, x1] x [y0, y1] (inclusive; x1 < x0 when none) whose rays the last frame
+  // cast: every pixel outside it is transparent.
+  void GetLastCastRectangle(int rectangle[4]) const;
+
+  // Seconds spent on the last (re)build of the acceleration structures (0 when reused).
+  double GetLastPrepareSeconds() const;
+  // Bytes held by the acceleration structures.
+  std::size_t GetAccelerationBytes() const;
+
+  struct Internals;
+
+private:
+  std::unique_ptr<Internals> Impl;
+};
+
+}
+
+#endif

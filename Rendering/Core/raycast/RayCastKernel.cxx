@@ -1,0 +1,712 @@
+// RayCastKernel: per-tile ray loops, templated on the scalar type.
+#include "raycast/RayCastKernel.h"
+
+#include "raycast/RayCastSampler.h"
+
+#include "skipping/CellLeapTable.h"
+#include "skipping/DistanceTemplate.h"
+#include "common/IndexRay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+
+namespace accelvolume
+{
+namespace detail
+{
+namespace
+{
+
+// A pixel's ray: world near-plane point and unit direction, index-space origin / direction,
+// and the world length before opaque geometry.
+struct PixelRay
+{
+  IndexRay index;
+  float toViewer[3]; // eye space, unit length (shading only)
+};
+
+void Unproject(const double m[4][4], double x, double y, double z, double out[3])
+{
+  double h[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    h[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    out[r] = h[r] / h[3];
+  }
+}
+
+PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
+{
+  const RayCastView& view = *frame.view;
+  const double x = 2.0 * (i + 0.5) / view.width - 1.0;
+  const double y = 2.0 * (j + 0.5) / view.height - 1.0;
+  double nearPoint[3], farPoint[3];
+  Unproject(view.clipToWorld, x, y, -1.0, nearPoint);
+  Unproject(view.clipToWorld, x, y, 1.0, farPoint);
+  const Vec3 origin{ nearPoint[0], nearPoint[1], nearPoint[2] };
+  const Vec3 direction = Normalize(
+    Vec3{ farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] });
+  double end = std::numeric_limits<double>::infinity();
+  if (view.depth)
+  {
+    const float depth = (*view.depth)[static_cast<std::size_t>(j) * view.width + i];
+    if (depth < 1.0f)
+    {
+      double hit[3];
+      Unproject(view.clipToWorld, x, y, 2.0 * depth - 1.0, hit);
+      end = Dot(Vec3{ hit[0], hit[1], hit[2] } - origin, direction);
+    }
+  }
+  PixelRay ray;
+  ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
+  const RayCastLighting& l = *frame.lighting;
+  if (!l.shade)
+  {
+    return ray; // the eye-space direction only serves specular lighting
+  }
+  const Vec3& d = ray.index.direction;
+  double eye[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    eye[r] = l.indexToEye[r][0] * d.x + l.indexToEye[r][1] * d.y + l.indexToEye[r][2] * d.z;
+  }
+  const double length = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
+  for (int r = 0; r < 3; ++r)
+  {
+    ray.toViewer[r] = static_cast<float>(length > 0 ? -eye[r] / length : 0.0);
+  }
+  return ray;
+}
+
+struct Interval
+{
+  double t0, t1;
+};
+
+// Table lookup with linear interpolation between entries (OpacityTable::Lookup convention).
+inline void TablePosition(const KernelFrame& frame, float value, int& i, float& fraction)
+{
+  float u = value * frame.tableScale + frame.tableBias;
+  const float last = static_cast<float>(frame.tableSize - 1);
+  u = u > 0 ? (u < last ? u : last) : 0.0f;
+  i = std::min(static_cast<int>(u), frame.tableSize - 2);
+  fraction = u - static_cast<float>(i);
+}
+
+template <typename T>
+class RayCasterTile
+{
+public:
+  RayCasterTile(const KernelFrame& frame, RayCastCounters& counters)
+    : Frame(frame)
+    , Settings(*frame.settings)
+    , Sampling(frame.volume)
+    , Counters(counters)
+    , Table(GetCellLeapTable())
+  {
+  }
+
+  void Cast(int x0, int y0, int x1, int y1, float* rgba)
+  {
+    const int width = this->Frame.view->width;
+    // Only the pixels whose rays can meet the projected box.
+    const int* visible = this->Frame.visible;
+    x0 = std::max(x0, visible[0]);
+    x1 = std::min(x1, visible[1] + 1);
+    y0 = std::max(y0, visible[2]);
+    y1 = std::min(y1, visible[3] + 1);
+    if (x0 >= x1 || y0 >= y1)
+    {
+      return;
+    }
+    std::vector<PixelRay>& rays = this->Rays;
+    rays.clear();
+    double maximumStep[3] = { 0, 0, 0 };
+    const double h = this->Settings.sampleDistance;
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        rays.push_back(MakePixelRay(this->Frame, i, j));
+        const Vec3& d = rays.back().index.direction;
+        maximumStep[0] = std::max(maximumStep[0], std::abs(d.x * h));
+        maximumStep[1] = std::max(maximumStep[1], std::abs(d.y * h));
+        maximumStep[2] = std::max(maximumStep[2], std::abs(d.z * h));
+      }
+    }
+    if (this->Frame.useOctree)
+    {
+      const MinMaxOctree& octree = *this->Frame.octree;
+      while ((1 << this->LeafShift) < octree.GetLeafSize())
+      {
+        ++this->LeafShift;
+      }
+      this->Template.Build(maximumStep, octree.GetLeafSize() << octree.GetDepth());
+    }
+    std::size_t at = 0;
+    for (int j = y0; j < y1; ++j)
+    {
+      for (int i = x0; i < x1; ++i)
+      {
+        float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
+        this->CastRay(rays[at++], out);
+      }
+    }
+  }
+
+private:
+  // The ray's region intervals in increasing t0; false when it misses them all.
+  bool Intervals(const IndexRay& ray, std::vector<Interval>& intervals) const
+  {
+    intervals.clear();
+    for (const Box& region : this->Settings.regions)
+    {
+      Interval interval;
+      if (ClipRayToRegion(ray, region, this->Settings.clip, interval.t0, interval.t1))
+      {
+        intervals.push_back(interval);
+      }
+    }
+    std::sort(intervals.begin(), intervals.end(),
+      [](const Interval& a, const Interval& b) { return a.t0 < b.t0; });
+    return !intervals.empty();
+  }
+
+  // Samples after the current one that stay in the largest node around p that the predicate
+  // accepts, or -1 when the leaf itself is not accepted. Inline integer arithmetic (no Morton
+  // decode, no bounds-checked queries): this runs once per sample while the ray is in
+  // non-empty leaves.
+  template <typename Accept>
+  std::int64_t OctreeLeap(const double p[3], const Vec3& step, Accept&& accept)
+  {
+    const MinMaxOctree& octree = *this->Frame.octree;
+    const int* grid = octree.GetLevel(0).gridSize;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const int voxel = p[a] > 0 ? static_cast<int>(p[a]) : 0;
+      c[a] = std::min(voxel >> this->LeafShift, grid[a] - 1);
+    }
+    if (c[0] == this->RejectedLeaf[0] && c[1] == this->RejectedLeaf[1] &&
+      c[2] == this->RejectedLeaf[2])
+    {
+      return -1;
+    }
+    const std::uint64_t code = MortonEncode(static_cast<std::uint32_t>(c[0]),
+      static_cast<std::uint32_t>(c[1]), static_cast<std::uint32_t>(c[2]));
+    if (!accept(0, code))
+    {
+      std::copy(c, c + 3, this->RejectedLeaf);
+      return -1;
+    }
+    int level = 0;
+    const int depth = octree.GetDepth();
+    while (level < depth && accept(level + 1, code >> (3 * (level + 1))))
+    {
+      ++level;
+    }
+    // The node's index-space box [i * span, (i + 1) * span] clamped to the volume.
+    const int* dims = this->Frame.volume.dims;
+    const int shift = this->LeafShift + level;
+    Box box;
+    double* lower[3] = { &box.lower.x, &box.lower.y, &box.lower.z };
+    double* upper[3] = { &box.upper.x, &box.upper.y, &box.upper.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int64_t first = (static_cast<std::int64_t>(c[a] >> level)) << shift;
+      *lower[a] = static_cast<double>(first);
+      *upper[a] = static_cast<double>(
+        std::min<std::int64_t>(first + (std::int64_t(1) << shift), std::max(dims[a] - 1, 0)));
+    }
+    return this->Template.StepsInside(box, Vec3{ p[0], p[1], p[2] }, step);
+  }
+
+  void ForgetRejectedLeaf()
+  {
+    this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1;
+  }
+
+  void CastRay(const PixelRay& pixel, float* out)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    if (!this->Intervals(pixel.index, this->RayIntervals))
+    {
+      return;
+    }
+    ++this->Counters.rays;
+    switch (this->Settings.blend)
+    {
+      case Blend::Composite:
+        this->Composite(pixel, out);
+        break;
+      case Blend::Maximum:
+      case Blend::Minimum:
+        this->Extreme(pixel, out);
+        break;
+      case Blend::Additive:
+      case Blend::Average:
+        this->Integrate(pixel, out);
+        break;
+    }
+  }
+
+  // Walks the samples of every interval; visit(p, cell, value) returns false to stop the ray.
+  // Zero-opacity leaping (octree, distance map, cell table) happens here when `leapTransparent`.
+  template <typename Visit>
+  void Walk(const PixelRay& pixel, bool leapTransparent, Visit&& visit)
+  {
+    const IndexRay& ray = pixel.index;
+    const double h = this->Settings.sampleDistance;
+    const Vec3 step = ray.direction * h;
+    // Distance-map leaps: per axis, 1 / |step| (0 for axes the ray does not move along).
+    const double stepAlong[3] = { step.x, step.y, step.z };
+    double inverseStep[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
+    }
+    const bool octree = leapTransparent && this->Frame.useOctree;
+    const bool distance = leapTransparent && this->Frame.useDistance;
+    const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
+    const MinMaxOctree* tree = this->Frame.octree;
+    this->ForgetRejectedLeaf();
+    SampleCell cell;
+    std::uint64_t& leapCounter =
+      octree ? this->Counters.leapedOctree : this->Counters.leapedDistance;
+    const bool opaqueBox = leapTransparent && this->Frame.useOpaqueBox && (octree || distance);
+    for (const Interval& interval : this->RayIntervals)
+    {
+      const std::int64_t count =
+        static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+      std::int64_t first = 0;
+      std::int64_t last = count;
+      if (opaqueBox)
+      {
+        // Only samples inside the box of possibly opaque cells need a visit; one sample of
+        // slack on each side keeps rounding from cutting a visible one.
+        static const std::vector<HalfSpace> noClip;
+        double enter, leave;
+        if (!IntersectRayRegion(
+              ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
+        {
+          first = last = count;
+        }
+        else
+        {
+          first = std::max<std::int64_t>(
+            0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
+          last = std::min<std::int64_t>(
+            count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
+          first = std::min(first, count);
+          last = std::max(last, first);
+        }
+        leapCounter += static_cast<std::uint64_t>(first + (count - last));
+      }
+      for (std::int64_t k = first; k < last; ++k)
+      {
+        const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
+        const double p[3] = { ray.origin.x + t * ray.direction.x,
+          ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+        if (octree)
+        {
+          const std::int64_t more = this->OctreeLeap(p, step,
+            [tree](int level, std::uint64_t index)
+            { return tree->GetTransparentFlags(level)[index] != 0; });
+          if (more >= 0)
+          {
+            const std::int64_t skipped = std::min(more + 1, last - k);
+            this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+            ++this->Counters.octreeLeaps;
+            k += skipped - 1;
+            continue;
+          }
+        }
+        this->Sampling.Locate(p, cell);
+        // Right after a sample that contributed, the next one most likely does too: without
+        // cell leaping the distance map is not read there (sampling an empty cell adds
+        // nothing, so this is exact and saves a cache miss per sample in dense matter).
+        const bool lookUp = cellLeap || (distance && !this->LastContributed);
+        const std::uint16_t info = !lookUp
+          ? 0
+          : (this->Frame.distanceOnly ? this->Frame.distanceOnly[cell.cell]
+                                      : this->Frame.cellInfo[cell.cell]);
+        if (distance && lookUp)
+        {
+          const int d = info & 0xff;
+          if (d > 0)
+          {
+            // Every cell within chessboard distance d - 1 is empty: from the sample's place in
+            // its cell, along axis a the ray may go d - f (forward) or d - 1 + f (backward)
+            // cells before it can reach a non-empty one. A small safety margin absorbs the
+            // float fraction; one-voxel axes never change cell.
+            double room = 1.0e30;
+            for (int a = 0; a < 3; ++a)
+            {
+              if (inverseStep[a] > 0 && cell.offset[a] != 0)
+              {
+                const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
+                room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
+              }
+            }
+            const auto more = static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+            const std::int64_t skipped = std::min(more + 1, last - k);
+            this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
+            ++this->Counters.distanceLeaps;
+            k += skipped - 1;
+            continue;
+          }
+        }
+        if (cellLeap)
+        {
+          const int configuration = info >> 8;
+          if (configuration == 0)
+          {
+            ++this->Counters.leapedEmptyCell;
+            continue;
+          }
+          const CellLeapCase& leapCase = this->Table[configuration];
+          if (leapCase.leapCase >= 0 &&
+            CellLeapSampleIsTransparent(leapCase, cell.f, this->Frame.leapThreshold,
+              [this, &cell](int c) { return this->Sampling.Corner(cell, c); }))
+          {
+            ++this->Counters.leapedCell;
+            continue;
+          }
+        }
+        ++this->Counters.samples;
+        const float value =
+          this->Settings.nearest ? this->Sampling.Nearest(p) : this->Sampling.Trilinear(cell);
+        if (!visit(p, cell, value))
+        {
+          return;
+        }
+      }
+    }
+  }
+
+  void Composite(const PixelRay& pixel, float* out)
+  {
+    const KernelFrame& frame = this->Frame;
+    const RayCastLighting& lighting = *frame.lighting;
+    const bool gradientOpacity = frame.gradientOpacity != nullptr;
+    const bool needGradient = gradientOpacity || lighting.shade;
+    const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+    const bool terminate = this->Settings.earlyTermination;
+    float colour[3] = { 0, 0, 0 };
+    float alpha = 0;
+    this->Walk(pixel, true,
+      [&](const double p[3], const SampleCell& cell, float value)
+      {
+        if (value != value)
+        {
+          this->LastContributed = false;
+          return true; // NaN samples are transparent
+        }
+        this->LastContributed = false;
+        int i;
+        float fraction;
+        TablePosition(frame, value, i, fraction);
+        float a = Lerp(frame.correctedAlpha[i], frame.correctedAlpha[i + 1], fraction);
+        if (a <= 0.0f)
+        {
+          return true;
+        }
+        const float* e0 = frame.rgba + 4 * i;
+        const float* e1 = e0 + 4;
+        float rgb[3] = { Lerp(e0[0], e1[0], fraction), Lerp(e0[1], e1[1], fraction),
+          Lerp(e0[2], e1[2], fraction) };
+        if (needGradient)
+        {
+          float eyeGradient[3];
+          this->Gradient(p, cell, eyeGradient);
+          if (gradientOpacity)
+          {
+            const float magnitude =
+              std::sqrt(eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
+                eyeGradient[2] * eyeGradient[2]) *
+              frame.rangeWidth;
+            const float tableAlpha =
+              Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
+            a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
+            if (a <= 0.0f)
+            {
+              return true;
+            }
+          }
+          if (lighting.shade)
+          {
+            this->Shade(pixel, eyeGradient, rgb);
+          }
+        }
+        this->LastContributed = true;
+        const float weight = (1.0f - alpha) * a;
+        colour[0] += weight * rgb[0];
+        colour[1] += weight * rgb[1];
+        colour[2] += weight * rgb[2];
+        alpha += weight;
+        if (terminate && alpha >= threshold)
+        {
+          ++this->Counters.terminatedRays;
+          return false;
+        }
+        return true;
+      });
+    out[0] = colour[0];
+    out[1] = colour[1];
+    out[2] = colour[2];
+    out[3] = alpha;
+  }
+
+  void Extreme(const PixelRay& pixel, float* out)
+  {
+    const bool maximum = this->Settings.blend == Blend::Maximum;
+    float extreme =
+      maximum ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
+    bool hit = false;
+    const MinMaxOctree* tree = this->Frame.useOctree ? this->Frame.octree : nullptr;
+    const IndexRay& ray = pixel.index;
+    const double h = this->Settings.sampleDistance;
+    const Vec3 step = ray.direction * h;
+    this->ForgetRejectedLeaf();
+    for (const Interval& interval : this->RayIntervals)
+    {
+      const std::int64_t count =
+        static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+      for (std::int64_t k = 0; k < count; ++k)
+      {
+        const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
+        const double p[3] = { ray.origin.x + t * ray.direction.x,
+          ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+        if (tree && hit)
+        {
+          // A node whose whole range cannot beat the current extreme adds nothing. The leaf
+          // cache is only valid for one extreme, so it is reset whenever that changes.
+          const std::int64_t more = this->OctreeLeap(p, step,
+            [tree, maximum, extreme](int level, std::uint64_t index)
+            {
+              const OctreeLevel& l = tree->GetLevel(level);
+              return maximum ? l.maximum[index] <= extreme : l.minimum[index] >= extreme;
+            });
+          if (more >= 0)
+          {
+            const std::int64_t skipped = std::min(more + 1, count - k);
+            this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+            k += skipped - 1;
+            continue;
+          }
+        }
+        ++this->Counters.samples;
+        const float value = this->Sampling.Sample(p, this->Settings.nearest);
+        if (value != value)
+        {
+          continue;
+        }
+        if (!hit || (maximum ? value > extreme : value < extreme))
+        {
+          extreme = value;
+          this->ForgetRejectedLeaf();
+        }
+        hit = true;
+      }
+    }
+    if (!hit)
+    {
+      return;
+    }
+    int i;
+    float fraction;
+    TablePosition(this->Frame, extreme, i, fraction);
+    const float* e0 = this->Frame.rgba + 4 * i;
+    const float* e1 = e0 + 4;
+    const float a = Lerp(e0[3], e1[3], fraction);
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] = Lerp(e0[c], e1[c], fraction) * a;
+    }
+    out[3] = a;
+  }
+
+  void Integrate(const PixelRay& pixel, float* out)
+  {
+    const KernelFrame& frame = this->Frame;
+    const bool additive = this->Settings.blend == Blend::Additive;
+    const float lower = static_cast<float>(this->Settings.averageRange[0]);
+    const float upper = static_cast<float>(this->Settings.averageRange[1]);
+    double sum = 0;
+    double count = 0;
+    // Zero-opacity samples add nothing to the raysum; the average counts them, so it never
+    // leaps.
+    this->Walk(pixel, additive,
+      [&](const double*, const SampleCell&, float value)
+      {
+        if (value != value || (!additive && !(value >= lower && value <= upper)))
+        {
+          this->LastContributed = false;
+          return true;
+        }
+        int i;
+        float fraction;
+        TablePosition(frame, value, i, fraction);
+        const float a = Lerp(frame.rgba[4 * i + 3], frame.rgba[4 * i + 7], fraction);
+        this->LastContributed = a > 0.0f;
+        const float s = value * frame.normalScale + frame.normalBias;
+        sum += static_cast<double>(a) * s;
+        count += 1;
+        return true;
+      });
+    float grey = 0;
+    if (additive)
+    {
+      grey = static_cast<float>(
+        sum * this->Settings.sampleDistance / this->Settings.additiveUnitDistance);
+    }
+    else
+    {
+      if (count <= 0)
+      {
+        return;
+      }
+      grey = static_cast<float>(sum / count);
+    }
+    grey = std::min(std::max(grey, 0.0f), 1.0f);
+    out[0] = out[1] = out[2] = grey;
+    out[3] = 1.0f;
+  }
+
+  // Central differences of trilinear samples one voxel apart (what the slice mapper's gradient
+  // texture holds), in normalised units, taken to eye space. With precomputed per-voxel
+  // differences this is one trilinear interpolation of them (equal inside the volume, as
+  // interpolation is linear); without, six extra samples.
+  void Gradient(const double p[3], const SampleCell& cell, float eyeGradient[3]) const
+  {
+    float g[3];
+    if (const std::int16_t* gradients = this->Frame.gradients)
+    {
+      // Interpolated per-voxel differences; their scale is folded into the normal matrix.
+      const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1],
+                           oz = 3 * cell.offset[2];
+      const std::int16_t* d = gradients + 3 * cell.base;
+      // The 8 trilinear weights once for the three components.
+      const float fx = cell.f[0], fy = cell.f[1], fz = cell.f[2];
+      const float wy[2] = { (1 - fy), fy };
+      const float wz[2] = { (1 - fz), fz };
+      const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
+      g[0] = g[1] = g[2] = 0;
+      for (int c = 0; c < 8; ++c)
+      {
+        const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
+        const std::int16_t* v = d + at[c];
+        g[0] += w * v[0];
+        g[1] += w * v[1];
+        g[2] += w * v[2];
+      }
+    }
+    else
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        double forward[3] = { p[0], p[1], p[2] };
+        double backward[3] = { p[0], p[1], p[2] };
+        forward[a] += 1.0;
+        backward[a] -= 1.0;
+        g[a] = 0.5f *
+          (this->Sampling.Sample(forward, this->Settings.nearest) -
+            this->Sampling.Sample(backward, this->Settings.nearest));
+      }
+    }
+    const float(*m)[3] = this->Frame.normalMatrix;
+    for (int r = 0; r < 3; ++r)
+    {
+      eyeGradient[r] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
+    }
+  }
+
+  float GradientOpacity(float magnitude) const
+  {
+    const int n = this->Frame.gradientOpacitySize;
+    float u = magnitude / this->Frame.gradientOpacityMaximum * static_cast<float>(n - 1);
+    u = u > 0 ? (u < n - 1 ? u : static_cast<float>(n - 1)) : 0.0f;
+    const int i = std::min(static_cast<int>(u), n - 2);
+    return Lerp(this->Frame.gradientOpacity[i], this->Frame.gradientOpacity[i + 1], u - i);
+  }
+
+  // Phong with VTK's coefficients, two-sided, lights as directions (the slice mapper's shader).
+  void Shade(const PixelRay& pixel, const float eyeGradient[3], float rgb[3]) const
+  {
+    const RayCastLighting& l = *this->Frame.lighting;
+    float shaded[3] = { l.ambient * rgb[0], l.ambient * rgb[1], l.ambient * rgb[2] };
+    const float squared = eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
+      eyeGradient[2] * eyeGradient[2];
+    if (squared > 1.0e-16f)
+    {
+      const float inverse = -1.0f / std::sqrt(squared);
+      const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
+        eyeGradient[2] * inverse };
+      const float* toViewer = pixel.toViewer;
+      const float* table = this->Frame.specularTable;
+      const float last = static_cast<float>(this->Frame.specularTableSize - 1);
+      for (int i = 0; i < l.lightCount; ++i)
+      {
+        const float* light = l.directions[i];
+        float nDotL = normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2];
+        const float twice = 2.0f * nDotL; // = 2 |n.l| times the facing normal's sign
+        nDotL = std::abs(nDotL);
+        float rDotV = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          rDotV += (twice * normal[c] - light[c]) * toViewer[c];
+        }
+        float specular = 0;
+        if (rDotV > 0)
+        {
+          const float u = std::min(rDotV, 1.0f) * last;
+          const int k = std::min(static_cast<int>(u), this->Frame.specularTableSize - 2);
+          specular = l.specular * Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          shaded[c] += (l.diffuse * nDotL * rgb[c] + specular) * l.colours[i][c];
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = std::min(shaded[c], 1.0f);
+    }
+  }
+
+  const KernelFrame& Frame;
+  const RayCastSettings& Settings;
+  Sampler<T> Sampling;
+  RayCastCounters& Counters;
+  const std::array<CellLeapCase, 256>& Table;
+  DistanceTemplate Template;
+  std::vector<Interval> RayIntervals;
+  std::vector<PixelRay> Rays;
+  int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
+  int LeafShift = 0;                    // log2 of the octree leaf size
+  bool LastContributed = false;         // the ray's last sample added something
+};
+
+}
+
+void CastTile(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters)
+{
+  DispatchScalarType(frame.volume,
+    [&](const auto* data)
+    {
+      using T = std::remove_const_t<std::remove_pointer_t<decltype(data)>>;
+      RayCasterTile<T> tile(frame, counters);
+      tile.Cast(x0, y0, x1, y1, rgba);
+    });
+}
+
+}
+}

@@ -1,0 +1,66 @@
+// RayCastKernel: the per-tile inner loops of the CPU ray caster (internal to RayCastEngine).
+#ifndef accelvolume_RayCastKernel_h
+#define accelvolume_RayCastKernel_h
+
+#include "skipping/CellClassification.h"
+#include "raycast/RayCastEngine.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace accelvolume
+{
+namespace detail
+{
+
+// Everything a tile reads, prepared once per frame by RayCaster::Render.
+struct KernelFrame
+{
+  VolumeView volume;
+  // Table position of a raw value: u = value * tableScale + tableBias, in [0, tableSize - 1].
+  float tableScale = 1, tableBias = 0;
+  int tableSize = 0;
+  const float* rgba = nullptr;           // 4 * tableSize, colour + table opacity
+  const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
+  // Normalised scalar: s = value * normalScale + normalBias.
+  float normalScale = 1, normalBias = 0;
+  float rangeWidth = 1; // data units per normalised unit
+  const float* gradientOpacity = nullptr;
+  int gradientOpacitySize = 0;
+  float gradientOpacityMaximum = 1;
+  float opacityExponent = 1; // sample distance / opacity unit distance
+  const RayCastLighting* lighting = nullptr;
+  // Optional per-voxel central differences (x, y, z interleaved, raw units times
+  // 1 / gradientScale), interpolated trilinearly instead of six extra samples per shaded one.
+  const std::int16_t* gradients = nullptr;
+  float gradientScale = 1;
+  // Shading, prepared once per frame: the gradient-to-eye matrix in float with the gradient
+  // scale folded in, and the specular term pow(x, power) tabulated over x in [0, 1].
+  float normalMatrix[3][3] = {};
+  const float* specularTable = nullptr;
+  int specularTableSize = 0;
+  const RayCastView* view = nullptr;
+  const RayCastSettings* settings = nullptr;
+  const MinMaxOctree* octree = nullptr; // built; classified for composite / additive
+  // Per cell: distance map (low byte) and Marching Cubes configuration (high byte).
+  const std::uint16_t* cellInfo = nullptr;    // with cell leaping
+  const std::uint8_t* distanceOnly = nullptr; // distance map alone, without cell leaping
+  float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
+  bool useOctree = false, useDistance = false, useCellLeap = false;
+  // With octree or distance-map leaping: the index-space box of everything that may be
+  // opaque; samples outside it are leaped without visiting them. Empty box: nothing visible.
+  bool useOpaqueBox = false;
+  Box opaqueBox;
+  // Pixels [visible[0], visible[1]] x [visible[2], visible[3]] (inclusive) hold every ray that
+  // can meet what is drawn (the projected box); the others stay empty without a ray.
+  int visible[4] = { 0, -1, 0, -1 };
+};
+
+// Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
+void CastTile(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters);
+
+}
+}
+
+#endif

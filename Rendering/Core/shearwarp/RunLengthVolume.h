@@ -1,0 +1,128 @@
+// RunLengthVolume: a volume classified for one principal viewing axis and stored as runs of
+// non-transparent voxels per scanline (Lacroute's run-length encoding; plain C++, no VTK).
+//
+// For axis k (i = (k + 1) % 3, j = (k + 2) % 3) scanline (j, k) runs along i. Each scanline keeps
+// the runs of voxels that can contribute [begin, end) with the offset of their first voxel in
+// one packed voxel array; transparent voxels are not stored at all. Encoding is parallel over
+// slices and identical for any thread count. A dense encoding (one run covering every scanline;
+// for MIP / MinIP, runs broken only at NaN voxels) serves as the "no run-length encoding"
+// baseline with the same compositing code.
+#ifndef accelvolume_RunLengthVolume_h
+#define accelvolume_RunLengthVolume_h
+
+#include "common/ParallelFor.h"
+#include "common/VolumeView.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace accelvolume
+{
+
+// Opacity is quantized to 0..OpacityLevels (12 bits): the per-frame correction table then has
+// 4096 entries and stays in the L1 cache, where 16 bits cost a cache miss per voxel.
+inline constexpr int OpacityLevels = 4095;
+
+// A classified voxel for compositing: opacity for a unit sample distance (0..OpacityLevels),
+// quantized gradient direction (NoNormal when the gradient vanishes) and colour (8 bits per
+// channel).
+struct ShadedVoxel
+{
+  std::uint16_t opacity;
+  std::uint16_t normal;
+  std::uint8_t colour[4]; // r, g, b, unused
+};
+
+// A voxel for MIP / MinIP: its scalar quantized to 0..65535 over the data range.
+using ScalarVoxel = std::uint16_t;
+
+// Octahedral normal code: NormalBits per coordinate, so the shading table has NormalCodes rows
+// (6 bits: 1.4 degrees off on average, 3.8 at worst; 4096 rows that stay in cache; Lacroute
+// used 13 bits).
+inline constexpr int NormalBits = 6;
+inline constexpr int NormalCodes = 1 << (2 * NormalBits);
+inline constexpr std::uint16_t NoNormal = 0xFFFF;
+std::uint16_t EncodeNormal(float x, float y, float z); // NoNormal for a zero vector
+void DecodeNormal(std::uint16_t code, float normal[3]); // unit vector
+
+// 8 bytes: compositing reads the runs of every scanline pair it visits, so their size is memory
+// traffic (axes are limited to 65535 voxels and an encoding to 2^32 - 1 stored voxels and runs).
+struct VoxelRun
+{
+  std::uint16_t begin, end; // voxel positions along i, end exclusive
+  std::uint32_t offset;     // index of voxel `begin` in the voxel array
+};
+inline constexpr int MaximumRunLengthAxis = 65535;
+
+template <typename Voxel>
+struct RunLengthVolume
+{
+  int axis = -1;                  // principal axis k (object axis), -1 when empty
+  int sliceDims[3] = { 0, 0, 0 }; // ni, nj, nk
+  bool dense = false;             // one run per scanline, transparent voxels stored too
+  std::vector<std::uint32_t> rowStart; // runs of scanline (j, k): [rowStart[r], rowStart[r + 1]), r = j + nj k
+  std::vector<VoxelRun> runs;
+  std::vector<Voxel> voxels;
+
+  std::size_t Row(int j, int k) const { return static_cast<std::size_t>(j) + static_cast<std::size_t>(this->sliceDims[1]) * k; }
+  const VoxelRun* RunsBegin(int j, int k) const { return this->runs.data() + this->rowStart[this->Row(j, k)]; }
+  const VoxelRun* RunsEnd(int j, int k) const { return this->runs.data() + this->rowStart[this->Row(j, k) + 1]; }
+  std::size_t Bytes() const
+  {
+    return this->rowStart.size() * sizeof(std::uint32_t) + this->runs.size() * sizeof(VoxelRun) +
+      this->voxels.size() * sizeof(Voxel);
+  }
+  void Clear() { *this = RunLengthVolume(); }
+};
+
+// What makes a voxel contribute, and what it carries, for composite rendering.
+struct CompositeClassification
+{
+  double rangeMin = 0, rangeMax = 1;
+  // 4 N floats: colour and opacity over [rangeMin, rangeMax], interpolated linearly like
+  // OpacityTable::Lookup (the ray caster's convention). N >= 2.
+  std::vector<float> rgba;
+  // Gradient opacity over [0, gradientOpacityMaximum] data units per world unit; empty: off.
+  std::vector<float> gradientOpacity;
+  double gradientOpacityMaximum = 1;
+  // Index-space gradient -> world-space gradient (inverse transpose of the index -> world
+  // linear map), row-major: gives the magnitude gradient opacity needs.
+  double gradientToWorld[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  bool normals = true; // quantize gradient directions (index space) for shading
+};
+
+// Classifies and encodes `volume` for principal axis `axis` (0, 1, 2). Voxels of zero opacity
+// are left out (all kept when dense). NaN voxels are transparent. False with error on bad input.
+bool EncodeComposite(const VolumeView& volume, const CompositeClassification& classification,
+  int axis, bool dense, const ParallelFor& parallel, RunLengthVolume<ShadedVoxel>& encoded,
+  std::string& error);
+
+// Quantized scalar for MIP / MinIP: round(65535 (s - rangeMin) / (rangeMax - rangeMin)), clamped.
+// Voxels that cannot decide a visible pixel are left out: for MIP those below `threshold`
+// (quantized; no value below it is visible), for MinIP those above it; every kept voxel's
+// in-slice 3x3 neighbours are kept too, so each bilinear sample that touches a kept voxel sees
+// its four true corners (the image is exact). NaN voxels are never kept.
+bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, bool maximum,
+  std::uint16_t threshold, int axis, bool dense, const ParallelFor& parallel,
+  RunLengthVolume<ScalarVoxel>& encoded, std::string& error);
+
+// The voxel at (i, j, k) of an encoding, or nullptr when not stored (tests and tools).
+template <typename Voxel>
+const Voxel* FindVoxel(const RunLengthVolume<Voxel>& encoded, int i, int j, int k)
+{
+  for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+  {
+    if (static_cast<std::uint32_t>(i) >= run->begin && static_cast<std::uint32_t>(i) < run->end)
+    {
+      return &encoded.voxels[run->offset + (i - run->begin)];
+    }
+  }
+  return nullptr;
+}
+
+}
+
+#endif

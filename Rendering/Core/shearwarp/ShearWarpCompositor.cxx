@@ -1,0 +1,603 @@
+// Front-to-back compositing of sheared slices into one intermediate scanline, walking voxel runs
+// and skip links over saturated pixels together.
+#include "shearwarp/ShearWarpCompositor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__x86_64__) || defined(__i386__)
+#include <x86intrin.h>
+#endif
+#include <chrono>
+
+namespace accelvolume
+{
+namespace
+{
+
+// A cheap clock for per-scanline costs: the time-stamp counter where there is one (a few
+// cycles a read, so every scanline of every slice can be timed), else a steady clock.
+inline std::uint64_t Ticks()
+{
+#if defined(__x86_64__) || defined(__i386__)
+  return __rdtsc();
+#else
+  return static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
+
+// Skip links: next[u] == u for a pixel still open, else a link towards the next open pixel
+// (path-compressed as it is followed); next[width] == width closes the scanline.
+inline int FindOpen(std::int32_t* next, int u)
+{
+  int open = u;
+  while (next[open] != open)
+  {
+    open = next[open];
+  }
+  while (next[u] != open)
+  {
+    const int link = next[u];
+    next[u] = open;
+    u = link;
+  }
+  return open;
+}
+
+// Premultiplied colour of a classified voxel with the frame's tables.
+inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float out[4])
+{
+  const float opacity = voxel ? t.opacity[voxel->opacity] : 0.0f;
+  if (opacity <= 0)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0;
+    return;
+  }
+  constexpr float toUnit = 1.0f / 255.0f;
+  float rgb[3] = { voxel->colour[0] * toUnit, voxel->colour[1] * toUnit,
+    voxel->colour[2] * toUnit };
+  if (t.shade && !t.phong)
+  {
+    const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
+    const float* s = &t.shading[static_cast<std::size_t>(t.shadingStride) * row];
+    if (t.shadingStride == 2)
+    {
+      for (float& channel : rgb)
+      {
+        channel = std::min(channel * s[0] + s[1], 1.0f);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+      }
+    }
+  }
+  else if (t.shade)
+  {
+    float factor[3] = { t.ambient, t.ambient, t.ambient };
+    float specular[3] = { 0, 0, 0 };
+    if (voxel->normal != NoNormal)
+    {
+      float g[3];
+      DecodeNormal(voxel->normal, g);
+      PhongTerms(t, g, factor, specular);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = std::min(rgb[c] * factor[c] + specular[c], 1.0f);
+    }
+  }
+  out[0] = rgb[0] * opacity;
+  out[1] = rgb[1] * opacity;
+  out[2] = rgb[2] * opacity;
+  out[3] = opacity;
+}
+
+
+// Compositing of one blend, as a policy for the band loop below.
+struct CompositePolicy
+{
+  using Voxel = ShadedVoxel;
+  static constexpr int Channels = 4;
+  const CompositeTables& tables;
+  float Empty() const { return 0.0f; }
+  void Load(const ShadedVoxel& voxel, float* cell) const { ShadeVoxel(this->tables, &voxel, cell); }
+  // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
+  // the pixel; true once the pixel is saturated.
+  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
+  {
+#if defined(__SSE2__)
+    // One RGBA pixel per SSE register; same operation order as the scalar code below.
+    const __m128 sample = _mm_add_ps(
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(w[0]), _mm_loadu_ps(a)),
+                   _mm_mul_ps(_mm_set1_ps(w[1]), _mm_loadu_ps(a + 4))),
+        _mm_mul_ps(_mm_set1_ps(w[2]), _mm_loadu_ps(b))),
+      _mm_mul_ps(_mm_set1_ps(w[3]), _mm_loadu_ps(b + 4)));
+    const float transmit = 1.0f - pixel[3];
+    const __m128 result =
+      _mm_add_ps(_mm_loadu_ps(pixel), _mm_mul_ps(_mm_set1_ps(transmit), sample));
+    _mm_storeu_ps(pixel, result);
+#else
+    float sample[4];
+    for (int c = 0; c < 4; ++c)
+    {
+      sample[c] = ((w[0] * a[c] + w[1] * a[4 + c]) + w[2] * b[c]) + w[3] * b[4 + c];
+    }
+    const float transmit = 1.0f - pixel[3];
+    for (int c = 0; c < 4; ++c)
+    {
+      pixel[c] += transmit * sample[c];
+    }
+#endif
+    return pixel[3] >= this->tables.terminationThreshold;
+  }
+};
+
+struct ExtremePolicy
+{
+  using Voxel = ScalarVoxel;
+  static constexpr int Channels = 1;
+  bool maximum;
+  float saturation;
+  // A corner that is not stored is +-inf, which drops every sample it weighs.
+  float Empty() const
+  {
+    return this->maximum ? -std::numeric_limits<float>::infinity()
+                         : std::numeric_limits<float>::infinity();
+  }
+  void Load(ScalarVoxel voxel, float* cell) const { *cell = static_cast<float>(voxel); }
+  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
+  {
+    float sample = 0;
+    sample += w[0] > 0 ? w[0] * a[0] : 0.0f;
+    sample += w[1] > 0 ? w[1] * a[1] : 0.0f;
+    sample += w[2] > 0 ? w[2] * b[0] : 0.0f;
+    sample += w[3] > 0 ? w[3] * b[1] : 0.0f;
+    if (this->maximum)
+    {
+      *pixel = std::max(*pixel, sample);
+      return *pixel >= this->saturation;
+    }
+    *pixel = std::min(*pixel, sample);
+    return *pixel <= this->saturation;
+  }
+};
+
+// The band loop shared by every blend: slices front to back (the encoding streams in order);
+// in each, the scanlines of the band, each resampling two voxel scanlines shaded once into
+// dense buffers (padded by one cell on each side), walking the pixels their runs cover with
+// skip links over saturated pixels.
+// Marks a row buffer that holds no voxel scanline of the current slice (-1 is a real row: the
+// empty one above the slice).
+constexpr int NoRow = std::numeric_limits<int>::min();
+
+template <typename Policy>
+void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWarpFactorization& f,
+  const Policy& policy, bool skip, int v0, int v1, float* pixels, ScanlineWorkspace& ws,
+  ScanlineCounters& counters, double* work)
+{
+  constexpr int C = Policy::Channels;
+  const int width = f.intermediateSize[0];
+  const int ni = f.sliceDims[0];
+  const int nj = f.sliceDims[1];
+  const int nk = f.sliceDims[2];
+  const int rows = v1 - v0;
+  if (rows <= 0)
+  {
+    return;
+  }
+  const std::size_t stride = static_cast<std::size_t>(width) + 1;
+  ws.next.resize(stride * rows);
+  for (int r = 0; r < rows; ++r)
+  {
+    std::int32_t* links = ws.next.data() + stride * r;
+    for (int u = 0; u <= width; ++u)
+    {
+      links[u] = u;
+    }
+  }
+  ws.open.assign(static_cast<std::size_t>(rows), width);
+  const float empty = policy.Empty();
+  for (int b = 0; b < 2; ++b)
+  {
+    ws.rows[b].assign(static_cast<std::size_t>(C) * (ni + 2), empty);
+    ws.written[b].clear();
+    ws.rowIndex[b] = NoRow;
+  }
+  if (work)
+  {
+    std::fill(work, work + rows, 0.0);
+  }
+  int openRows = rows;
+  const typename Policy::Voxel* voxels = encoded.voxels.data();
+
+  for (int s = 0; s < nk && openRows > 0; ++s)
+  {
+    const int k = f.firstSlice + s * f.sliceStep;
+    double offset[2];
+    f.SliceOffset(k, offset);
+    const double floorI = std::floor(offset[0]);
+    const double floorJ = std::floor(offset[1]);
+    const int shiftI = static_cast<int>(floorI);
+    const int shiftJ = static_cast<int>(floorJ);
+    const float aI = static_cast<float>(offset[0] - floorI);
+    const float aJ = static_cast<float>(offset[1] - floorJ);
+    // Corners (j0, i0), (j0, i0 + 1), (j0 + 1, i0), (j0 + 1, i0 + 1) of pixel u: i0 = u - shiftI - 1.
+    const float w[4] = { aJ * aI, aJ * (1.0f - aI), (1.0f - aJ) * aI, (1.0f - aJ) * (1.0f - aI) };
+    ws.rowIndex[0] = ws.rowIndex[1] = NoRow; // last slice's scanlines
+
+    // Buffer holding voxel scanline j of this slice, loaded on demand (never evicting `keep`).
+    auto ensure = [&](int j, int keep, std::uint64_t& loaded) -> int
+    {
+      for (int b = 0; b < 2; ++b)
+      {
+        if (ws.rowIndex[b] == j)
+        {
+          return b;
+        }
+      }
+      const int b = keep == 0 ? 1 : 0;
+      float* cells = ws.rows[b].data();
+      std::vector<std::int32_t>& written = ws.written[b];
+      for (std::size_t q = 0; q < written.size(); q += 2)
+      {
+        std::fill(cells + C * written[q], cells + C * written[q + 1], empty);
+      }
+      written.clear();
+      ws.rowIndex[b] = j;
+      if (j < 0 || j >= nj)
+      {
+        return b;
+      }
+      // Row j serves scanline j + shiftJ (as its second row) and j + shiftJ + 1 (as its first);
+      // voxel i is read by pixels i + shiftI and i + shiftI + 1 of those. Only voxels one of
+      // them still needs open are shaded (Lacroute's walk of voxel runs and pixel runs
+      // together): voxels behind saturated pixels are never touched.
+      std::int32_t* userLinks[2] = { nullptr, nullptr };
+      int users = 0;
+      for (int q = 0; q < 2; ++q)
+      {
+        const int user = j + shiftJ + q - v0;
+        if (user >= 0 && user < rows && ws.open[user] > 0)
+        {
+          userLinks[users++] = ws.next.data() + stride * user;
+        }
+      }
+      // First voxel >= i that an open pixel reads (i + shiftI or i + shiftI + 1 open), or a
+      // large value when none.
+      auto nextNeeded = [&](int i) -> int
+      {
+        if (!skip)
+        {
+          return i;
+        }
+        int best = std::numeric_limits<int>::max();
+        const int u = std::max(i + shiftI, 0);
+        for (int q = 0; q < users; ++q)
+        {
+          const int open = FindOpen(userLinks[q], std::min(u, width));
+          if (open < width)
+          {
+            best = std::min(best, std::max(i, open - shiftI - 1));
+          }
+        }
+        return best;
+      };
+      auto isOpen = [&](int u) -> bool
+      {
+        if (u < 0 || u >= width)
+        {
+          return false;
+        }
+        for (int q = 0; q < users; ++q)
+        {
+          if (userLinks[q][u] == u)
+          {
+            return true;
+          }
+        }
+        return false;
+      };
+      if (skip && users == 0)
+      {
+        return b;
+      }
+      // First open pixel at or after the runs walked so far: runs whose pixels all lie before
+      // it are passed over with one comparison.
+      int frontier = skip ? std::numeric_limits<int>::min() : std::numeric_limits<int>::max();
+      for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+      {
+        const int runEnd = static_cast<int>(run->end);
+        if (skip)
+        {
+          const int runPixels = runEnd + shiftI + 1; // pixels [begin + shiftI, runPixels)
+          if (frontier < static_cast<int>(run->begin) + shiftI)
+          {
+            frontier = width;
+            const int from = std::min(std::max(static_cast<int>(run->begin) + shiftI, 0), width);
+            for (int q = 0; q < users; ++q)
+            {
+              frontier = std::min(frontier, FindOpen(userLinks[q], from));
+            }
+          }
+          if (frontier >= std::min(runPixels, width))
+          {
+            continue;
+          }
+        }
+        int i = nextNeeded(static_cast<int>(run->begin));
+        while (i < runEnd)
+        {
+          int end = i + 1;
+          if (skip)
+          {
+            while (end < runEnd && (isOpen(end + shiftI) || isOpen(end + shiftI + 1)))
+            {
+              ++end;
+            }
+          }
+          else
+          {
+            end = runEnd;
+          }
+          const typename Policy::Voxel* voxel = voxels + run->offset + (i - static_cast<int>(run->begin));
+          for (int x = i; x < end; ++x, ++voxel)
+          {
+            policy.Load(*voxel, cells + C * (x + 1));
+          }
+          loaded += static_cast<std::uint64_t>(end - i);
+          written.push_back(i + 1);
+          written.push_back(end + 1);
+          i = end < runEnd ? nextNeeded(end) : runEnd;
+        }
+      }
+      return b;
+    };
+
+    const int vBegin = std::max(v0, shiftJ);
+    const int vEnd = std::min(v1, shiftJ + nj + 1);
+    std::uint64_t previousTicks = work ? Ticks() : 0;
+    int previousRow = -1;
+    for (int v = vBegin; v < vEnd; ++v)
+    {
+      const int r = v - v0;
+      if (work)
+      {
+        // The time since the last mark belongs to the scanline worked on before it.
+        const std::uint64_t now = Ticks();
+        if (previousRow >= 0)
+        {
+          work[previousRow] += static_cast<double>(now - previousTicks);
+        }
+        previousTicks = now;
+        previousRow = r;
+      }
+      if (ws.open[r] == 0)
+      {
+        continue;
+      }
+      const int j0 = v - shiftJ - 1;
+      if (j0 + 3 < nj)
+      {
+        // The scanline after next: its runs and first voxels arrive while this pair works.
+        const VoxelRun* ahead = encoded.RunsBegin(j0 + 3, k);
+        __builtin_prefetch(ahead);
+        if (ahead != encoded.RunsEnd(j0 + 3, k))
+        {
+          __builtin_prefetch(voxels + ahead->offset);
+        }
+      }
+      // The pixels the two voxel scanlines can reach at all; when every one of them is already
+      // saturated (the common case behind an opaque surface), nothing of this pair is touched.
+      int reachBegin = std::numeric_limits<int>::max();
+      int reachEnd = std::numeric_limits<int>::min();
+      for (int q = 0; q < 2; ++q)
+      {
+        const int j = j0 + q;
+        if (j >= 0 && j < nj && encoded.RunsBegin(j, k) != encoded.RunsEnd(j, k))
+        {
+          reachBegin = std::min(reachBegin, static_cast<int>(encoded.RunsBegin(j, k)->begin) + shiftI);
+          reachEnd = std::max(reachEnd, static_cast<int>((encoded.RunsEnd(j, k) - 1)->end) + shiftI + 1);
+        }
+      }
+      if (reachEnd <= reachBegin)
+      {
+        continue;
+      }
+      std::int32_t* links = ws.next.data() + stride * r;
+      if (skip)
+      {
+        const int first = std::max(reachBegin, 0);
+        const int last = std::min(reachEnd, width);
+        const int found = first < last ? FindOpen(links, first) : last;
+        if (found >= last)
+        {
+          counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, last - first));
+          continue;
+        }
+      }
+      std::uint64_t loaded = 0;
+      const int bufferA = ensure(j0, -1, loaded);
+      const int bufferB = ensure(j0 + 1, bufferA, loaded);
+      counters.voxels += loaded;
+      // The pixels the two scanlines' runs cover, in order: voxel run [b, e) reaches pixels u
+      // whose i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1). `done` keeps overlapping
+      // runs of the two scanlines from compositing a pixel twice; `frontier`, the first open
+      // pixel at or after the runs walked, passes over runs behind saturated pixels with one
+      // comparison.
+      const VoxelRun* runs[2] = { nullptr, nullptr };
+      const VoxelRun* ends[2] = { nullptr, nullptr };
+      for (int q = 0; q < 2; ++q)
+      {
+        const int j = j0 + q;
+        if (j >= 0 && j < nj)
+        {
+          runs[q] = encoded.RunsBegin(j, k);
+          ends[q] = encoded.RunsEnd(j, k);
+        }
+      }
+      const float* cellsA = ws.rows[bufferA].data();
+      const float* cellsB = ws.rows[bufferB].data();
+      float* row = pixels + static_cast<std::size_t>(C) * width * r;
+      std::uint64_t samples = 0;
+      int done = 0;
+      int frontier = skip ? std::numeric_limits<int>::min() : 0;
+      while (runs[0] != ends[0] || runs[1] != ends[1])
+      {
+        const int q =
+          (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
+        const VoxelRun* run = runs[q]++;
+        const int spanBegin = std::max({ static_cast<int>(run->begin) + shiftI, done, 0 });
+        const int spanEnd = std::min(static_cast<int>(run->end) + shiftI + 1, width);
+        if (spanBegin >= spanEnd)
+        {
+          continue;
+        }
+        done = spanEnd;
+        int u = spanBegin;
+        if (skip)
+        {
+          if (frontier < spanBegin)
+          {
+            frontier = FindOpen(links, spanBegin);
+          }
+          counters.skippedOpaque +=
+            static_cast<std::uint64_t>(std::max(0, std::min(frontier, spanEnd) - spanBegin));
+          u = frontier;
+        }
+        while (u < spanEnd)
+        {
+          // Cell i sits at i + 1: pixel u's corner i0 = u - shiftI - 1 is cell u - shiftI.
+          const int cell = u - shiftI;
+          ++samples;
+          if (policy.Sample(cellsA + C * cell, cellsB + C * cell, w, row + C * u) && skip)
+          {
+            links[u] = u + 1;
+            if (--ws.open[r] == 0)
+            {
+              --openRows;
+            }
+          }
+          ++u;
+          if (skip)
+          {
+            const int found = FindOpen(links, u);
+            counters.skippedOpaque +=
+              static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
+            u = found;
+          }
+        }
+        if (skip)
+        {
+          frontier = u; // the first open pixel at or after spanEnd
+        }
+      }
+      counters.samples += samples;
+    }
+    if (work && previousRow >= 0)
+    {
+      work[previousRow] += static_cast<double>(Ticks() - previousTicks);
+    }
+  }
+}
+
+}
+
+void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], float specular[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    factor[c] = t.ambient;
+    specular[c] = 0;
+  }
+  float n[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    n[r] = t.normalMatrix[r][0] * g[0] + t.normalMatrix[r][1] * g[1] + t.normalMatrix[r][2] * g[2];
+  }
+  const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(length > 0))
+  {
+    return; // a vanishing gradient: ambient only, as the ray caster
+  }
+  for (float& value : n)
+  {
+    value /= -length;
+  }
+  for (int i = 0; i < t.lightCount; ++i)
+  {
+    const float* l = t.lightDirections[i];
+    const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+    const float rDotV = 2.0f * nDotL * n[2] - l[2];
+    const float highlight =
+      rDotV > 0 ? t.specular * std::pow(std::min(rDotV, 1.0f), t.specularPower) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      factor[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
+      specular[c] += highlight * t.lightColours[i][c];
+    }
+  }
+}
+
+void BuildShadingTable(CompositeTables& t)
+{
+  // One row per quantized normal: the view vector is +z in eye space for every pixel of a
+  // parallel view, so the specular term is fixed per normal too. White lights (VTK's default)
+  // need one factor and one highlight per normal, not three.
+  bool white = true;
+  for (int i = 0; i < t.lightCount; ++i)
+  {
+    white = white && t.lightColours[i][0] == t.lightColours[i][1] &&
+      t.lightColours[i][0] == t.lightColours[i][2];
+  }
+  t.shadingStride = white ? 2 : 6;
+  t.shading.assign(static_cast<std::size_t>(t.shadingStride) * (NormalCodes + 1), 0.0f);
+  for (int code = 0; code <= NormalCodes; ++code)
+  {
+    float factor[3] = { t.ambient, t.ambient, t.ambient };
+    float specular[3] = { 0, 0, 0 };
+    if (code < NormalCodes) // the last row is NoNormal: ambient only
+    {
+      float g[3];
+      DecodeNormal(static_cast<std::uint16_t>(code), g);
+      PhongTerms(t, g, factor, specular);
+    }
+    float* row = &t.shading[static_cast<std::size_t>(t.shadingStride) * code];
+    if (white)
+    {
+      row[0] = factor[0];
+      row[1] = specular[0];
+    }
+    else
+    {
+      std::copy(factor, factor + 3, row);
+      std::copy(specular, specular + 3, row + 3);
+    }
+  }
+}
+
+void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpFactorization& f,
+  const CompositeTables& tables, int v0, int v1, float* rgba, ScanlineWorkspace& workspace,
+  ScanlineCounters& counters, double* work)
+{
+  const CompositePolicy policy{ tables };
+  Band(encoded, f, policy, tables.skipLinks && tables.earlyTermination, v0, v1, rgba, workspace,
+    counters, work);
+}
+
+void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded, const ShearWarpFactorization& f,
+  bool maximum, float saturation, bool skipLinks, int v0, int v1, float* value,
+  ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work)
+{
+  const ExtremePolicy policy{ maximum, saturation };
+  Band(encoded, f, policy, skipLinks, v0, v1, value, workspace, counters, work);
+}
+
+}

@@ -1,0 +1,114 @@
+// ShearWarpCompositor: composites the sheared slices into one intermediate-image scanline,
+// front to back (plain C++, no VTK; internal to ShearWarpEngine, exposed for tests).
+//
+// Intermediate pixel (u, v) resamples slice k bilinearly at (u - offset[0], v - offset[1]); the
+// two voxel scanlines it needs are walked by their runs, and the pixels they cover are walked
+// with skip links that jump over saturated (opaque) pixels, so neither transparent voxels nor
+// opaque pixels are touched. Each scanline depends only on the volume, the view and the tables,
+// never on which worker composites it.
+#ifndef accelvolume_ShearWarpCompositor_h
+#define accelvolume_ShearWarpCompositor_h
+
+#include "shearwarp/RunLengthVolume.h"
+#include "shearwarp/ShearWarpFactorization.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace accelvolume
+{
+
+// Per-frame tables for composite scanlines.
+struct CompositeTables
+{
+  // Opacity for the frame's slice-to-slice ray length, by ShadedVoxel::opacity (OpacityLevels + 1
+  // entries).
+  std::vector<float> opacity;
+  bool shade = false;
+  bool phong = false; // true: Phong per voxel from the decoded normal; false: shading table
+  // Shading table, NormalCodes + 1 rows (the last for NoNormal) of shadingStride floats: the
+  // factor on the voxel colour (ambient + diffuse) and the specular term added, per channel
+  // (stride 6: r, g, b factors then r, g, b terms) or, with white lights, once (stride 2).
+  std::vector<float> shading;
+  int shadingStride = 6;
+  // Per-voxel Phong: eye-space lights, the index-gradient -> eye normal matrix (row-major) and
+  // the material, as RayCastLighting.
+  float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
+  int lightCount = 0;
+  float lightDirections[4][3] = {};
+  float lightColours[4][3] = {};
+  float halfVectors[4][3] = {};
+  float normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  bool earlyTermination = true;
+  float terminationThreshold = 0.99f;
+  bool skipLinks = true; // false: no pixel is ever skipped (the brute-force baseline)
+};
+
+// Phong with VTK's coefficients, two-sided, for an index-space gradient direction g (eye space
+// through normalMatrix; parallel view, so the view vector is +z): the factor on the voxel colour
+// (ambient + diffuse) and the specular term, per channel. The ray caster's model.
+void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3], float specular[3]);
+
+// Lacroute's shading table over the quantized normals (tables.shading and shadingStride).
+void BuildShadingTable(CompositeTables& tables);
+
+struct ScanlineCounters
+{
+  std::uint64_t voxels = 0;         // voxel values read (a voxel serves up to four pixels)
+  std::uint64_t samples = 0;        // intermediate pixels composited (per slice)
+  std::uint64_t skippedOpaque = 0;  // pixel visits skipped by skip links (saturated pixels)
+  void Add(const ScanlineCounters& other)
+  {
+    this->voxels += other.voxels;
+    this->samples += other.samples;
+    this->skippedOpaque += other.skippedOpaque;
+  }
+};
+
+// Scratch space per worker: skip links per scanline, open pixels per scanline, the two shaded
+// voxel scanlines of the current slice.
+struct ScanlineWorkspace
+{
+  std::vector<std::int32_t> next;
+  std::vector<std::int32_t> open;
+  std::vector<float> rows[2];
+  std::vector<std::int32_t> written[2];
+  int rowIndex[2] = { 0, 0 }; // voxel scanline each buffer holds (set by the band loop)
+};
+
+// Composites every slice, front to back and slice by slice (the encoding is streamed in
+// order), into intermediate scanlines [v0, v1): rgba holds (v1 - v0) scanlines of
+// intermediateSize[0] premultiplied pixels (4 floats each), transparent on entry. work, when
+// not null, receives a relative cost per scanline (clock ticks spent on it, over all slices),
+// which turns the band's measured time into per-scanline times.
+void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded,
+  const ShearWarpFactorization& factorization, const CompositeTables& tables, int v0, int v1,
+  float* rgba, ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work);
+
+// MIP (maximum) or MinIP over scanlines [v0, v1): value holds (v1 - v0) scanlines of
+// intermediateSize[0] floats, the extreme quantized scalar of the samples whose weighted
+// corners are all stored (-inf for MIP / +inf for MinIP on entry: no sample). A pixel that
+// reaches `saturation` (the volume's extreme) can change no further and is skipped.
+void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded,
+  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool skipLinks,
+  int v0, int v1, float* value, ScanlineWorkspace& workspace, ScanlineCounters& counters,
+  double* work);
+
+// One scanline of the above (tests).
+inline void CompositeScanline(const RunLengthVolume<ShadedVoxel>& encoded,
+  const ShearWarpFactorization& factorization, const CompositeTables& tables, int v, float* rgba,
+  ScanlineWorkspace& workspace, ScanlineCounters& counters)
+{
+  CompositeBand(encoded, factorization, tables, v, v + 1, rgba, workspace, counters, nullptr);
+}
+inline void ExtremeScanline(const RunLengthVolume<ScalarVoxel>& encoded,
+  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool skipLinks,
+  int v, float* value, ScanlineWorkspace& workspace, ScanlineCounters& counters)
+{
+  ExtremeBand(encoded, factorization, maximum, saturation, skipLinks, v, v + 1, value, workspace,
+    counters, nullptr);
+}
+
+}
+
+#endif

@@ -1,0 +1,766 @@
+// Shear-warp frames: encodings cached per axis, per-frame tables, banded compositing, warp.
+#include "shearwarp/ShearWarpEngine.h"
+
+#include "shearwarp/RunLengthVolume.h"
+#include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpPartition.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace accelvolume
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// What an encoding was built from; any change rebuilds it.
+struct EncodingKey
+{
+  std::uint64_t volumeVersion = 0, transferVersion = 0;
+  bool normals = false;
+  bool maximum = false;
+  std::uint16_t threshold = 0;
+  bool valid = false;
+  bool operator==(const EncodingKey& o) const
+  {
+    return this->valid && o.valid && this->volumeVersion == o.volumeVersion &&
+      this->transferVersion == o.transferVersion && this->normals == o.normals &&
+      this->maximum == o.maximum && this->threshold == o.threshold;
+  }
+};
+
+template <typename Voxel>
+struct EncodingSlot
+{
+  RunLengthVolume<Voxel> encoded;
+  EncodingKey key;
+  float saturation = 0; // MIP / MinIP: the stored voxels' extreme
+  std::vector<std::uint32_t> rowVoxels; // per scanline (j, k), for cost estimates
+};
+
+template <typename Voxel>
+const std::vector<std::uint32_t>& RowVoxels(EncodingSlot<Voxel>& slot)
+{
+  if (slot.rowVoxels.empty())
+  {
+    const auto& e = slot.encoded;
+    slot.rowVoxels.resize(e.rowStart.size() - 1);
+    for (std::size_t r = 0; r + 1 < e.rowStart.size(); ++r)
+    {
+      std::uint32_t count = 0;
+      for (std::uint64_t q = e.rowStart[r]; q < e.rowStart[r + 1]; ++q)
+      {
+        count += e.runs[q].end - e.runs[q].begin;
+      }
+      slot.rowVoxels[r] = count;
+    }
+  }
+  return slot.rowVoxels;
+}
+
+// Lowest (MIP) / highest (MinIP) quantized scalar that may be visible: every value beyond it on
+// the other side has zero opacity in the (linearly interpolated) table.
+std::uint16_t VisibleThreshold(const std::vector<float>& rgba, bool maximum)
+{
+  const int n = static_cast<int>(rgba.size() / 4);
+  if (maximum)
+  {
+    for (int e = 0; e < n; ++e)
+    {
+      if (rgba[4 * e + 3] > 0)
+      {
+        return static_cast<std::uint16_t>(std::floor(65535.0 * std::max(0, e - 1) / (n - 1)));
+      }
+    }
+    return 65535;
+  }
+  for (int e = n - 1; e >= 0; --e)
+  {
+    if (rgba[4 * e + 3] > 0)
+    {
+      return static_cast<std::uint16_t>(std::ceil(65535.0 * std::min(n - 1, e + 1) / (n - 1)));
+    }
+  }
+  return 0;
+}
+}
+
+struct ShearWarpRenderer::Internals
+{
+  EncodingSlot<ShadedVoxel> composite[2][3]; // [dense][axis]
+  EncodingSlot<ScalarVoxel> extreme[2][3];
+
+  // The frame.
+  ShearWarpFactorization factorization;
+  ShearWarpSettings settings;
+  CompositeTables tables;
+  EncodingSlot<ShadedVoxel>* compositeSlot = nullptr;
+  EncodingSlot<ScalarVoxel>* extremeSlot = nullptr;
+  std::vector<float> transfer; // RGBA table for MIP / MinIP classification
+  std::vector<float> intermediate;
+  std::vector<double> scanlineSeconds;
+  int imageSize[2] = { 0, 0 };
+  double opacityRatio = -1; // ray length between slices / opacity unit distance of tables.opacity
+  std::atomic<std::uint64_t> voxels{ 0 }, samples{ 0 }, skippedOpaque{ 0 };
+
+  // Balancing: the costs of the last frame, for its principal axis.
+  std::vector<double> costs;
+  int costAxis = -1;
+
+  ProgressFunction progress;
+
+  std::vector<double> EstimateCosts();
+  void ClassifyExtremeRow(const float* values, float* rgba) const;
+};
+
+std::vector<double> ShearWarpRenderer::Internals::EstimateCosts()
+{
+  const ShearWarpFactorization& f = this->factorization;
+  const std::vector<std::uint32_t>& rows =
+    this->compositeSlot ? RowVoxels(*this->compositeSlot) : RowVoxels(*this->extremeSlot);
+  const int height = f.intermediateSize[1];
+  std::vector<double> cost(static_cast<std::size_t>(height), 0.0);
+  const int nj = f.sliceDims[1];
+  for (int k = 0; k < f.sliceDims[2]; ++k)
+  {
+    double offset[2];
+    f.SliceOffset(k, offset);
+    const int shift = static_cast<int>(std::floor(offset[1]));
+    for (int j = 0; j < nj; ++j)
+    {
+      // Scanline j serves intermediate rows j + shift (as row 1) and j + shift + 1 (as row 0).
+      const double c = 1.0 + rows[static_cast<std::size_t>(j) + static_cast<std::size_t>(nj) * k];
+      cost[j + shift] += c;
+      if (j + shift + 1 < height)
+      {
+        cost[j + shift + 1] += c;
+      }
+    }
+  }
+  return cost;
+}
+
+void ShearWarpRenderer::Internals::ClassifyExtremeRow(const float* values, float* rgba) const
+{
+  const int width = this->factorization.intermediateSize[0];
+  const int n = static_cast<int>(this->transfer.size() / 4);
+  const float scale = static_cast<float>(n - 1) / 65535.0f;
+  for (int u = 0; u < width; ++u)
+  {
+    float* out = rgba + 4 * static_cast<std::size_t>(u);
+    const float value = values[u];
+    if (!std::isfinite(value))
+    {
+      out[0] = out[1] = out[2] = out[3] = 0;
+      continue;
+    }
+    const float x = std::min(std::max(value * scale, 0.0f), static_cast<float>(n - 1));
+    const int e = std::min(static_cast<int>(x), n - 2);
+    const float t = x - static_cast<float>(e);
+    const float* lo = &this->transfer[4 * static_cast<std::size_t>(e)];
+    const float opacity = lo[3] + (lo[7] - lo[3]) * t;
+    for (int c = 0; c < 3; ++c)
+    {
+      out[c] = (lo[c] + (lo[c + 4] - lo[c]) * t) * opacity;
+    }
+    out[3] = opacity;
+  }
+}
+
+ShearWarpRenderer::ShearWarpRenderer()
+  : Impl(new Internals)
+{
+}
+
+ShearWarpRenderer::~ShearWarpRenderer() = default;
+
+void ShearWarpRenderer::SetProgressFunction(ProgressFunction report)
+{
+  this->Impl->progress = std::move(report);
+}
+
+bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, double rangeMax,
+  std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+  const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+  const ParallelFor& parallel, ShearWarpStats& stats, std::string& error)
+{
+  return this->BeginFrameReporting(volume, rangeMin, rangeMax, volumeVersion, transfer,
+    transferVersion, lighting, view, settings, parallel, this->Impl->progress, stats, error);
+}
+
+bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double rangeMin,
+  double rangeMax, std::uint64_t volumeVersion, const RayCastTransfer& transfer,
+  std::uint64_t transferVersion, const RayCastLighting& lighting, const ShearWarpView& view,
+  const ShearWarpSettings& settings, const ParallelFor& parallel,
+  const ProgressFunction& encodeProgress, ShearWarpStats& stats, std::string& error)
+{
+  Internals& impl = *this->Impl;
+  stats = ShearWarpStats();
+  impl.compositeSlot = nullptr;
+  impl.extremeSlot = nullptr;
+  if (!volume.data || volume.dims[0] < 1 || volume.dims[1] < 1 || volume.dims[2] < 1)
+  {
+    error = "shear-warp: the volume is empty";
+    return false;
+  }
+  if (view.width < 1 || view.height < 1)
+  {
+    error = "shear-warp: the image has no pixels";
+    return false;
+  }
+  if (transfer.rgba.size() < 8 || transfer.rgba.size() % 4 != 0)
+  {
+    error = "shear-warp: the transfer function table needs at least 2 RGBA entries";
+    return false;
+  }
+  if (!std::isfinite(rangeMin) || !std::isfinite(rangeMax) || settings.bands < 1 ||
+    !(transfer.opacityUnitDistance > 0))
+  {
+    error = "shear-warp: bad scalar range, band count or opacity unit distance";
+    return false;
+  }
+  if (settings.blend == Blend::Additive || settings.blend == Blend::Average)
+  {
+    error = "shear-warp: additive and average blending are not supported";
+    return false;
+  }
+  if (!FactorizeShearWarp(view.voxelToImage, volume.dims, impl.factorization, error))
+  {
+    return false;
+  }
+  const ShearWarpFactorization& f = impl.factorization;
+  impl.settings = settings;
+  impl.imageSize[0] = view.width;
+  impl.imageSize[1] = view.height;
+  const int axis = f.axes[2];
+  const int dense = settings.runLengthEncoding ? 0 : 1;
+  const bool composite = settings.blend == Blend::Composite;
+  const bool maximum = settings.blend == Blend::Maximum;
+
+  // Encodings built from other scalars or another transfer function are dropped right away.
+  auto stale = [&](const EncodingKey& key)
+  {
+    return key.valid &&
+      (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
+  };
+  for (int d = 0; d < 2; ++d)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (stale(impl.composite[d][a].key))
+      {
+        impl.composite[d][a] = EncodingSlot<ShadedVoxel>();
+      }
+      if (stale(impl.extreme[d][a].key))
+      {
+        impl.extreme[d][a] = EncodingSlot<ScalarVoxel>();
+      }
+    }
+  }
+
+  EncodingKey key;
+  key.valid = true;
+  key.volumeVersion = volumeVersion;
+  key.transferVersion = transferVersion;
+  const Clock::time_point encodeStart = Clock::now();
+  // With progress: the slices as they are encoded, reported by this thread.
+  const ParallelFor encodeParallel = ReportingParallelFor(parallel, encodeProgress);
+  if (composite)
+  {
+    key.normals = lighting.shade;
+    EncodingSlot<ShadedVoxel>& slot = impl.composite[dense][axis];
+    if (!(slot.key == key))
+    {
+      CompositeClassification classification;
+      classification.rangeMin = rangeMin;
+      classification.rangeMax = rangeMax;
+      classification.rgba = transfer.rgba;
+      classification.gradientOpacity = transfer.gradientOpacity;
+      classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
+      classification.normals = lighting.shade;
+      // World gradient = inverse transpose of the index -> world linear map times the index one.
+      Affine indexToWorld = Affine::Identity();
+      for (int r = 0; r < 3; ++r)
+      {
+        std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
+      }
+      Affine worldToIndex;
+      try
+      {
+        worldToIndex = indexToWorld.Inverse();
+      }
+      catch (const std::domain_error&)
+      {
+        error = "shear-warp: the index-to-world map is singular";
+        return false;
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
+        }
+      }
+      slot = EncodingSlot<ShadedVoxel>();
+      if (!EncodeComposite(
+            volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
+      {
+        return false;
+      }
+      slot.key = key;
+      stats.encodeSeconds = Seconds(encodeStart);
+    }
+    impl.compositeSlot = &slot;
+  }
+  else
+  {
+    key.maximum = maximum;
+    key.threshold = VisibleThreshold(transfer.rgba, maximum);
+    EncodingSlot<ScalarVoxel>& slot = impl.extreme[dense][axis];
+    if (!(slot.key == key))
+    {
+      slot = EncodingSlot<ScalarVoxel>();
+      if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
+            encodeParallel, slot.encoded, error))
+      {
+        return false;
+      }
+      slot.key = key;
+      float extreme = maximum ? 0.0f : 65535.0f;
+      for (ScalarVoxel value : slot.encoded.voxels)
+      {
+        extreme = maximum ? std::max(extreme, float(value)) : std::min(extreme, float(value));
+      }
+      slot.saturation = extreme;
+      stats.encodeSeconds = Seconds(encodeStart);
+    }
+    impl.extremeSlot = &slot;
+    impl.transfer = transfer.rgba;
+  }
+
+  // Per-frame tables: opacity for this view's ray length between slices, and shading.
+  const Clock::time_point tableStart = Clock::now();
+  CompositeTables& t = impl.tables;
+  t.earlyTermination = settings.earlyTermination;
+  t.skipLinks = settings.earlyTermination;
+  t.terminationThreshold = static_cast<float>(settings.terminationThreshold);
+  if (composite)
+  {
+    double world[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      world[r] = view.indexToWorld[r][0] * f.rayStep[0] + view.indexToWorld[r][1] * f.rayStep[1] +
+        view.indexToWorld[r][2] * f.rayStep[2];
+    }
+    const double ratio =
+      std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]) /
+      transfer.opacityUnitDistance;
+    if (ratio != impl.opacityRatio || t.opacity.size() != OpacityLevels + 1)
+    {
+      t.opacity.resize(OpacityLevels + 1);
+      for (int q = 0; q <= OpacityLevels; ++q)
+      {
+        t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
+      }
+      impl.opacityRatio = ratio;
+    }
+    t.shade = lighting.shade;
+    t.phong = settings.shading == ShearWarpShading::Phong;
+    t.ambient = lighting.ambient;
+    t.diffuse = lighting.diffuse;
+    t.specular = lighting.specular;
+    t.specularPower = lighting.specularPower;
+    t.lightCount = std::min(lighting.lightCount, 4);
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        t.lightDirections[i][c] = lighting.directions[i][c];
+        t.lightColours[i][c] = lighting.colours[i][c];
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        t.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c]);
+      }
+    }
+    if (t.shade && !t.phong)
+    {
+      BuildShadingTable(t);
+    }
+  }
+  stats.tableSeconds = Seconds(tableStart);
+
+  const std::size_t pixels =
+    static_cast<std::size_t>(f.intermediateSize[0]) * static_cast<std::size_t>(f.intermediateSize[1]);
+  // Resized only: each band clears its own rows (in parallel) before compositing them.
+  impl.intermediate.resize(4 * pixels);
+  impl.scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
+  impl.voxels = 0;
+  impl.samples = 0;
+  impl.skippedOpaque = 0;
+  stats.principalAxis = axis;
+  stats.intermediateSize[0] = f.intermediateSize[0];
+  stats.intermediateSize[1] = f.intermediateSize[1];
+  stats.encodedBytes = this->GetEncodedBytes();
+  if (impl.compositeSlot)
+  {
+    stats.storedVoxels = impl.compositeSlot->encoded.voxels.size();
+    stats.runs = impl.compositeSlot->encoded.runs.size();
+  }
+  else
+  {
+    stats.storedVoxels = impl.extremeSlot->encoded.voxels.size();
+    stats.runs = impl.extremeSlot->encoded.runs.size();
+  }
+  return true;
+}
+
+std::vector<int> ShearWarpRenderer::Bands(int parts, bool balance) const
+{
+  Internals& impl = *this->Impl;
+  const int height = impl.factorization.intermediateSize[1];
+  if (!balance || parts <= 1)
+  {
+    return EqualBands(height, parts);
+  }
+  if (impl.costAxis == impl.factorization.axes[2] && !impl.costs.empty())
+  {
+    const bool same = static_cast<int>(impl.costs.size()) == height;
+    return BalanceBands(same ? impl.costs : ResampleCosts(impl.costs, height), parts);
+  }
+  // No measured frame for this axis yet: stored voxels per scanline stand in for time.
+  return BalanceBands(impl.EstimateCosts(), parts);
+}
+
+void ShearWarpRenderer::CompositeRows(int v0, int v1)
+{
+  Internals& impl = *this->Impl;
+  const ShearWarpFactorization& f = impl.factorization;
+  const int width = f.intermediateSize[0];
+  v0 = std::max(v0, 0);
+  v1 = std::min(v1, f.intermediateSize[1]);
+  if (v1 <= v0)
+  {
+    return;
+  }
+  const Clock::time_point start = Clock::now();
+  ScanlineWorkspace workspace;
+  ScanlineCounters counters;
+  std::vector<double> work(static_cast<std::size_t>(v1 - v0), 0.0);
+  float* rows = impl.intermediate.data() + 4 * static_cast<std::size_t>(width) * v0;
+  std::fill(rows, rows + 4 * static_cast<std::size_t>(width) * (v1 - v0), 0.0f);
+  if (impl.compositeSlot)
+  {
+    CompositeBand(impl.compositeSlot->encoded, f, impl.tables, v0, v1, rows, workspace, counters,
+      work.data());
+  }
+  else
+  {
+    const bool maximum = impl.settings.blend == Blend::Maximum;
+    std::vector<float> values(static_cast<std::size_t>(width) * (v1 - v0),
+      maximum ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity());
+    ExtremeBand(impl.extremeSlot->encoded, f, maximum, impl.extremeSlot->saturation,
+      impl.settings.earlyTermination, v0, v1, values.data(), workspace, counters, work.data());
+    for (int v = v0; v < v1; ++v)
+    {
+      impl.ClassifyExtremeRow(values.data() + static_cast<std::size_t>(width) * (v - v0),
+        rows + 4 * static_cast<std::size_t>(width) * (v - v0));
+    }
+  }
+  // The band's time, shared out over its scanlines by the work each took.
+  const double seconds = Seconds(start);
+  double total = 0;
+  for (double w : work)
+  {
+    total += w;
+  }
+  for (int v = v0; v < v1; ++v)
+  {
+    impl.scanlineSeconds[v] =
+      total > 0 ? seconds * work[v - v0] / total : seconds / static_cast<double>(v1 - v0);
+  }
+  impl.voxels += counters.voxels;
+  impl.samples += counters.samples;
+  impl.skippedOpaque += counters.skippedOpaque;
+}
+
+void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4])
+{
+  Internals& impl = *this->Impl;
+  const ShearWarpFactorization& f = impl.factorization;
+  const int width = impl.imageSize[0];
+  const int height = impl.imageSize[1];
+  // Every pixel is written below (zero outside the warped image), so no clearing pass first.
+  rgba.resize(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  const int iw = f.intermediateSize[0];
+  const int ih = f.intermediateSize[1];
+  // The final pixels the intermediate image (with its one-pixel bilinear fringe) can reach.
+  double lower[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double upper[2] = { -lower[0], -lower[1] };
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    const double u = (corner & 1) ? iw : -1.0;
+    const double v = (corner & 2) ? ih : -1.0;
+    for (int r = 0; r < 2; ++r)
+    {
+      const double x = f.warp[r][0] * u + f.warp[r][1] * v + f.warp[r][2];
+      lower[r] = std::min(lower[r], x);
+      upper[r] = std::max(upper[r], x);
+    }
+  }
+  rectangle[0] = static_cast<int>(std::max(0.0, std::floor(lower[0])));
+  rectangle[1] = static_cast<int>(std::min(width - 1.0, std::ceil(upper[0])));
+  rectangle[2] = static_cast<int>(std::max(0.0, std::floor(lower[1])));
+  rectangle[3] = static_cast<int>(std::min(height - 1.0, std::ceil(upper[1])));
+  if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
+  {
+    rectangle[0] = rectangle[2] = 0;
+    rectangle[1] = rectangle[3] = -1;
+    std::fill(rgba.begin(), rgba.end(), 0.0f);
+    return;
+  }
+  const float* image = impl.intermediate.data();
+  const double(*m)[3] = f.inverseWarp;
+  const int x0 = rectangle[0];
+  const int x1 = rectangle[1];
+  // Every row, so that the rows outside the rectangle are cleared in parallel too.
+  parallel(static_cast<std::size_t>(height),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t row = begin; row < end; ++row)
+      {
+        const int y = static_cast<int>(row);
+        float* out = rgba.data() + 4 * (static_cast<std::size_t>(y) * width);
+        if (y < rectangle[2] || y > rectangle[3])
+        {
+          std::fill(out, out + 4 * static_cast<std::size_t>(width), 0.0f);
+          continue;
+        }
+        // (u, v) of pixel x's centre is (uStart + x du, vStart + x dv): linear along the row.
+        const double uStart = m[0][0] * 0.5 + m[0][1] * (y + 0.5) + m[0][2];
+        const double vStart = m[1][0] * 0.5 + m[1][1] * (y + 0.5) + m[1][2];
+        const double du = m[0][0];
+        const double dv = m[1][0];
+        // Only x with u in (-1, iw) and v in (-1, ih) meet the intermediate image.
+        double lowX = x0;
+        double highX = x1;
+        auto clip = [&](double start, double step, double limit)
+        {
+          if (step == 0)
+          {
+            if (!(start > -1.0 && start < limit))
+            {
+              highX = lowX - 1;
+            }
+            return;
+          }
+          double a = (-1.0 - start) / step;
+          double b = (limit - start) / step;
+          if (a > b)
+          {
+            std::swap(a, b);
+          }
+          lowX = std::max(lowX, std::floor(a));
+          highX = std::min(highX, std::ceil(b));
+        };
+        clip(uStart, du, iw);
+        clip(vStart, dv, ih);
+        if (!(lowX <= highX)) // also keeps huge bounds (a nearly constant u) from the casts
+        {
+          std::fill(out, out + 4 * static_cast<std::size_t>(width), 0.0f);
+          continue;
+        }
+        const int first = static_cast<int>(lowX);
+        const int last = static_cast<int>(highX);
+        std::fill(out, out + 4 * static_cast<std::size_t>(first), 0.0f);
+        std::fill(out + 4 * static_cast<std::size_t>(last + 1), out + 4 * static_cast<std::size_t>(width), 0.0f);
+        for (int x = first; x <= last; ++x)
+        {
+          // Shifted by one so the truncation is a floor (u, v > -1 here).
+          const double u = uStart + du * x + 1.0;
+          const double v = vStart + dv * x + 1.0;
+          const int u1 = static_cast<int>(u);
+          const int v1 = static_cast<int>(v);
+          const int u0 = u1 - 1;
+          const int v0 = v1 - 1;
+          const float a = static_cast<float>(u - u1);
+          const float b = static_cast<float>(v - v1);
+          float* pixel = out + 4 * static_cast<std::size_t>(x);
+          if (u0 >= 0 && v0 >= 0 && u0 + 1 < iw && v0 + 1 < ih)
+          {
+            const float* p00 = image + 4 * (static_cast<std::size_t>(v0) * iw + u0);
+            const float* p10 = p00 + 4 * static_cast<std::size_t>(iw);
+#if defined(__SSE2__)
+            const __m128 wa = _mm_set1_ps(a);
+            const __m128 bottom0 = _mm_loadu_ps(p00);
+            const __m128 top0 = _mm_loadu_ps(p10);
+            const __m128 bottom =
+              _mm_add_ps(bottom0, _mm_mul_ps(wa, _mm_sub_ps(_mm_loadu_ps(p00 + 4), bottom0)));
+            const __m128 top =
+              _mm_add_ps(top0, _mm_mul_ps(wa, _mm_sub_ps(_mm_loadu_ps(p10 + 4), top0)));
+            _mm_storeu_ps(
+              pixel, _mm_add_ps(bottom, _mm_mul_ps(_mm_set1_ps(b), _mm_sub_ps(top, bottom))));
+#else
+            for (int c = 0; c < 4; ++c)
+            {
+              const float bottom = p00[c] + a * (p00[c + 4] - p00[c]);
+              const float top = p10[c] + a * (p10[c + 4] - p10[c]);
+              pixel[c] = bottom + b * (top - bottom);
+            }
+#endif
+            continue;
+          }
+          // The image's one-pixel fringe: taps outside it are transparent.
+          pixel[0] = pixel[1] = pixel[2] = pixel[3] = 0.0f;
+          const float weights[4] = { (1 - a) * (1 - b), a * (1 - b), (1 - a) * b, a * b };
+          for (int q = 0; q < 4; ++q)
+          {
+            const int uu = u0 + (q & 1);
+            const int vv = v0 + (q >> 1);
+            if (uu < 0 || vv < 0 || uu >= iw || vv >= ih)
+            {
+              continue;
+            }
+            const float* source = image + 4 * (static_cast<std::size_t>(vv) * iw + uu);
+            for (int c = 0; c < 4; ++c)
+            {
+              pixel[c] += weights[q] * source[c];
+            }
+          }
+        }
+      }
+    });
+}
+
+bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double rangeMax,
+  std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+  const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+  const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4], ShearWarpStats& stats,
+  std::string& error)
+{
+  // Shares of the frame's progress: the encoding (when this frame encodes), then compositing.
+  constexpr double EncodeShare = 0.8;
+  constexpr double CompositeEnd = 0.95;
+  const ProgressFunction& progress = this->Impl->progress;
+  if (!this->BeginFrameReporting(volume, rangeMin, rangeMax, volumeVersion, transfer,
+        transferVersion, lighting, view, settings, parallel,
+        ProgressRange(progress, 0.0, EncodeShare), stats, error))
+  {
+    return false;
+  }
+  const Clock::time_point compositeStart = Clock::now();
+  const std::vector<int> bounds = this->Bands(settings.bands, settings.balance);
+  const int bands = static_cast<int>(bounds.size()) - 1;
+  stats.bandSeconds.assign(static_cast<std::size_t>(bands), 0.0);
+  parallel(static_cast<std::size_t>(bands),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        const Clock::time_point start = Clock::now();
+        this->CompositeRows(bounds[b], bounds[b + 1]);
+        stats.bandSeconds[b] = Seconds(start);
+      }
+    });
+  stats.compositeSeconds = Seconds(compositeStart);
+  stats.bandBounds = bounds;
+  stats.imbalance = Imbalance(stats.bandSeconds);
+  this->SetScanlineCosts(this->Impl->scanlineSeconds);
+  this->GetCounters(stats);
+  if (progress)
+  {
+    progress(CompositeEnd);
+  }
+  const Clock::time_point warpStart = Clock::now();
+  this->Warp(parallel, rgba, rectangle);
+  stats.warpSeconds = Seconds(warpStart);
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void ParallelVoxelToImage(const double indexToWorld[3][4], const double worldToView[4][4],
+  double parallelScale, int width, int height, double voxelToImage[3][4])
+{
+  // View coordinates: x right, y up, the camera looking down -z; a parallel projection shows
+  // [-scale * aspect, scale * aspect] x [-scale, scale].
+  const double aspect = static_cast<double>(width) / height;
+  const double scale[3] = { width / (2.0 * parallelScale * aspect), height / (2.0 * parallelScale), -1.0 };
+  const double offset[3] = { width / 2.0, height / 2.0, 0.0 };
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      double value = c == 3 ? worldToView[r][3] : 0.0;
+      for (int q = 0; q < 3; ++q)
+      {
+        value += worldToView[r][q] * indexToWorld[q][c];
+      }
+      voxelToImage[r][c] = scale[r] * value + (c == 3 ? offset[r] : 0.0);
+    }
+  }
+}
+
+const ShearWarpFactorization& ShearWarpRenderer::GetFactorization() const
+{
+  return this->Impl->factorization;
+}
+
+float* ShearWarpRenderer::GetIntermediateImage()
+{
+  return this->Impl->intermediate.data();
+}
+
+const std::vector<double>& ShearWarpRenderer::GetScanlineSeconds() const
+{
+  return this->Impl->scanlineSeconds;
+}
+
+void ShearWarpRenderer::SetScanlineCosts(const std::vector<double>& seconds)
+{
+  this->Impl->costs = seconds;
+  this->Impl->costAxis = this->Impl->factorization.axes[2];
+}
+
+void ShearWarpRenderer::GetCounters(ShearWarpStats& stats) const
+{
+  stats.voxels = this->Impl->voxels;
+  stats.samples = this->Impl->samples;
+  stats.skippedOpaque = this->Impl->skippedOpaque;
+}
+
+std::size_t ShearWarpRenderer::GetEncodedBytes() const
+{
+  std::size_t bytes = 0;
+  for (int d = 0; d < 2; ++d)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      bytes += this->Impl->composite[d][a].encoded.Bytes();
+      bytes += this->Impl->extreme[d][a].encoded.Bytes();
+    }
+  }
+  return bytes;
+}
+
+}

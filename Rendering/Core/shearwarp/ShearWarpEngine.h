@@ -1,0 +1,153 @@
+// ShearWarpEngine: Lacroute's shear-warp volume renderer behind vtkAccelVolumeShearWarpMapper
+// (plain C++, no VTK).
+//
+// A frame: factorize the parallel view (ShearWarpFactorization); classify and run-length encode
+// the volume for the principal axis (kept until the scalars or the transfer function change:
+// one encoding per axis, built when first needed); composite the sheared slices front to back
+// into the intermediate image, scanline band by band; warp it bilinearly into the final image.
+// Composite colours are classified before resampling (pre-classification, as Lacroute): each
+// voxel's opacity is corrected for the ray length between slices and its colour is shaded by a
+// per-frame table over quantized normals (or by Phong per voxel), then resampled bilinearly in
+// the slice. MIP / MinIP resample the quantized scalars and classify the extreme.
+//
+// Bands are contiguous runs of intermediate scanlines (planes parallel to the rays): workers never
+// share a pixel, and bands are balanced with the per-scanline times of the previous frame. The
+// image never depends on the band count or the worker count. The phases are public so that MPI
+// ranks can each composite their bands and gather them (vtkAccelVolumeShearWarpMapper).
+#ifndef accelvolume_ShearWarpEngine_h
+#define accelvolume_ShearWarpEngine_h
+
+#include "common/Blend.h"
+#include "common/ParallelFor.h"
+#include "common/VolumeView.h"
+#include "common/Progress.h"
+#include "raycast/RayCastEngine.h" // RayCastTransfer, RayCastLighting
+#include "shearwarp/ShearWarpFactorization.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace accelvolume
+{
+
+enum class ShearWarpShading
+{
+  LookupTable, // Lacroute: one table per frame over the quantized normals
+  Phong        // Phong per voxel from the decoded normal
+};
+
+struct ShearWarpSettings
+{
+  Blend blend = Blend::Composite;
+  bool runLengthEncoding = true; // false: dense volume, every voxel and pixel visited
+  bool earlyTermination = true;  // skip links over saturated pixels (composite, MIP, MinIP)
+  double terminationThreshold = 0.99;
+  ShearWarpShading shading = ShearWarpShading::LookupTable;
+  int bands = 1;        // scanline bands composited in parallel (>= 1)
+  bool balance = true;  // bands from the previous frame's per-scanline times; else equal sizes
+};
+
+struct ShearWarpView
+{
+  int width = 0, height = 0;
+  // Voxel index -> continuous image coordinates (x, y from the bottom-left corner, pixel (a, b)
+  // covering [a, a + 1) x [b, b + 1); z: depth away from the viewer), row-major 3x4. Parallel.
+  double voxelToImage[3][4] = {};
+  // Linear part of voxel index -> world, row-major (ray length between slices in world units).
+  double indexToWorld[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+};
+
+struct ShearWarpStats
+{
+  int principalAxis = -1;
+  int intermediateSize[2] = { 0, 0 };
+  double encodeSeconds = 0;    // classification + run-length encoding done this frame
+  double tableSeconds = 0;     // opacity correction and shading tables
+  double compositeSeconds = 0; // all bands (wall clock)
+  double warpSeconds = 0;
+  std::vector<double> bandSeconds; // per band
+  std::vector<int> bandBounds;     // bands + 1 scanline boundaries
+  double imbalance = 1;            // max / mean band time
+  std::uint64_t voxels = 0, samples = 0, skippedOpaque = 0;
+  std::size_t encodedBytes = 0;   // all encodings held
+  std::uint64_t storedVoxels = 0; // voxels in the current axis's encoding
+  std::uint64_t runs = 0;
+};
+
+class ShearWarpRenderer
+{
+public:
+  ShearWarpRenderer();
+  ~ShearWarpRenderer();
+  ShearWarpRenderer(const ShearWarpRenderer&) = delete;
+  ShearWarpRenderer& operator=(const ShearWarpRenderer&) = delete;
+
+  // Renders premultiplied RGBA (4 floats per pixel, x + y * width, rows from the bottom) and the
+  // rectangle [x0, x1] x [y0, y1] outside which every pixel is transparent (x1 < x0: none).
+  // volumeVersion / transferVersion identify the scalars and the transfer function: encodings
+  // are rebuilt only when they change. False with error on bad arguments.
+  bool Render(const VolumeView& volume, double rangeMin, double rangeMax,
+    std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+    const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+    const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4], ShearWarpStats& stats,
+    std::string& error);
+
+  // Progress of every later frame, reported from the thread that calls Render / BeginFrame.
+  // Render reports the whole frame: classification and encoding (when the frame needs them) up
+  // to 0.8 as the slices finish (ReportingParallelFor: no extra barrier); compositing 0.95; the
+  // warp 1. BeginFrame reports its encoding alone, 0 to 1, and nothing when it reuses an
+  // encoding. The image does not depend on it. Empty (the default): none.
+  void SetProgressFunction(ProgressFunction report);
+
+  // The phases of Render, for distributed compositing:
+  // BeginFrame factorizes, encodes when needed, builds the tables and clears the intermediate
+  // image; Bands partitions its scanlines (balanced with the last costs given or measured);
+  // CompositeRows composites scanlines [v0, v1) (concurrent calls on disjoint ranges are safe)
+  // and records their times; Warp resamples the intermediate image into the final image.
+  bool BeginFrame(const VolumeView& volume, double rangeMin, double rangeMax,
+    std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+    const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+    const ParallelFor& parallel, ShearWarpStats& stats, std::string& error);
+  std::vector<int> Bands(int parts, bool balance) const;
+  void CompositeRows(int v0, int v1);
+  void Warp(const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4]);
+
+  const ShearWarpFactorization& GetFactorization() const;
+  // Intermediate image: intermediateSize[0] * intermediateSize[1] premultiplied RGBA pixels.
+  // A scanline is defined once CompositeRows has composited it this frame (or a caller has
+  // written it, e.g. rows received from other MPI ranks); Warp reads every scanline.
+  float* GetIntermediateImage();
+  // Seconds per intermediate scanline of the last CompositeRows calls (0 where not composited):
+  // each call's time shared out over its scanlines by the clock ticks each took.
+  const std::vector<double>& GetScanlineSeconds() const;
+  // Costs used to balance the next frame (e.g. the sum of every rank's scanline seconds).
+  void SetScanlineCosts(const std::vector<double>& seconds);
+  // Counters of the CompositeRows calls since BeginFrame.
+  void GetCounters(ShearWarpStats& stats) const;
+  std::size_t GetEncodedBytes() const;
+
+  struct Internals;
+
+private:
+  // BeginFrame, reporting the encoding (when it encodes) through encodeProgress.
+  bool BeginFrameReporting(const VolumeView& volume, double rangeMin, double rangeMax,
+    std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+    const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+    const ParallelFor& parallel, const ProgressFunction& encodeProgress, ShearWarpStats& stats,
+    std::string& error);
+
+  std::unique_ptr<Internals> Impl;
+};
+
+// Voxel index -> image map for a VTK-style parallel camera (tests, benchmarks and tools):
+// indexToWorld (row-major 3x4), the camera's world -> view matrix (row-major 4x4), its parallel
+// scale (half the viewport height in world units) and the image size.
+void ParallelVoxelToImage(const double indexToWorld[3][4], const double worldToView[4][4],
+  double parallelScale, int width, int height, double voxelToImage[3][4]);
+
+}
+
+#endif
