@@ -19,6 +19,8 @@
 #include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataReader.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -126,38 +128,150 @@ struct DatasetEntry
   bool haveDims = false, haveSpacing = false;
 };
 
-// The numbers of a short flat JSON array starting at text[position] == '['; false (and position
-// left alone) for anything else, e.g. nested arrays or strings. The search for ']' is bounded so
-// that many unclosed arrays cannot make the scan quadratic.
-bool ReadNumberArray(const std::string& text, std::size_t& position, std::vector<double>& values)
+// Reads datasets.json as a stream of events (nlohmann's SAX interface): no document tree, and
+// an explicit stack of the open objects and arrays, so no sidecar can exhaust the call stack
+// or memory. Stops at the innermost object whose "file" is the raw file's name.
+class DatasetsJsonReader final : public nlohmann::json_sax<nlohmann::json>
 {
-  const std::string window = text.substr(position, 256);
-  const std::size_t close = window.find(']');
-  if (close == std::string::npos || window.find_first_of("[{\"", 1) < close)
+public:
+  explicit DatasetsJsonReader(std::string fileName)
+    : FileName(std::move(fileName))
   {
-    return false;
   }
-  values.clear();
-  std::istringstream list(window.substr(1, close - 1));
-  for (std::string item; std::getline(list, item, ',');)
+  bool Found = false;
+  DatasetEntry Entry;
+
+  bool null() override { return this->Scalar(); }
+  bool boolean(bool) override { return this->Scalar(); }
+  bool number_integer(number_integer_t value) override { return this->Number(double(value)); }
+  bool number_unsigned(number_unsigned_t value) override { return this->Number(double(value)); }
+  bool number_float(number_float_t value, const string_t&) override { return this->Number(value); }
+  bool binary(binary_t&) override { return this->Scalar(); }
+  bool string(string_t& value) override
   {
-    char* end = nullptr;
-    const std::string trimmed = Trim(item);
-    const double value = std::strtod(trimmed.c_str(), &end);
-    if (trimmed.empty() || *end || !std::isfinite(value))
+    Frame* object = this->OpenObject();
+    if (object && (this->Key == "file" || this->Key == "type"))
     {
-      return false;
+      (this->Key == "file" ? object->entry.file : object->entry.type) = value;
     }
-    values.push_back(value);
+    return this->Scalar();
   }
-  position += close;
-  return true;
-}
+  bool key(string_t& value) override
+  {
+    this->Key = value;
+    return true;
+  }
+  bool start_object(std::size_t) override
+  {
+    if (++this->Objects > MaxObjects || this->Stack.size() >= MaxDepth)
+    {
+      return false; // nested deeper than any dataset list: not ours
+    }
+    this->Invalidate();
+    this->Stack.push_back(Frame{});
+    return true;
+  }
+  bool end_object() override
+  {
+    --this->Objects;
+    const DatasetEntry entry = this->Stack.back().entry;
+    this->Stack.pop_back();
+    this->Key.clear();
+    if (entry.file == this->FileName)
+    {
+      this->Found = true;
+      this->Entry = entry;
+      return false; // the innermost object naming the file: done
+    }
+    return true;
+  }
+  bool start_array(std::size_t) override
+  {
+    if (this->Stack.size() >= MaxDepth)
+    {
+      return false; // nested deeper than any dataset list: not ours
+    }
+    Frame* object = this->OpenObject();
+    this->Invalidate();
+    Frame array;
+    array.array = true;
+    array.collect = object && (this->Key == "dims" || this->Key == "spacing");
+    array.target = this->Key;
+    this->Stack.push_back(array);
+    return true;
+  }
+  bool end_array() override
+  {
+    const Frame array = this->Stack.back();
+    this->Stack.pop_back();
+    Frame* object = this->OpenObject();
+    if (array.collect && object)
+    {
+      DatasetEntry& entry = object->entry;
+      (array.target == "dims" ? entry.dims : entry.spacing) = array.values;
+      (array.target == "dims" ? entry.haveDims : entry.haveSpacing) = true;
+    }
+    this->Key.clear();
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override
+  {
+    return false; // optional metadata: what was read before the error stands
+  }
+
+private:
+  static constexpr int MaxObjects = 64;
+  static constexpr std::size_t MaxDepth = 256;
+  struct Frame
+  {
+    bool array = false;
+    bool collect = false; // a flat array of numbers under "dims" or "spacing"
+    std::string target;
+    std::vector<double> values;
+    DatasetEntry entry; // objects only
+  };
+
+  Frame* OpenObject()
+  {
+    return !this->Stack.empty() && !this->Stack.back().array ? &this->Stack.back() : nullptr;
+  }
+  // A value that is not a number (or a nested container) spoils the array being collected.
+  void Invalidate()
+  {
+    if (!this->Stack.empty() && this->Stack.back().array)
+    {
+      this->Stack.back().collect = false;
+    }
+  }
+  bool Scalar()
+  {
+    this->Invalidate();
+    if (this->OpenObject())
+    {
+      this->Key.clear();
+    }
+    return true;
+  }
+  bool Number(double value)
+  {
+    if (!this->Stack.empty() && this->Stack.back().array)
+    {
+      Frame& array = this->Stack.back();
+      array.collect = array.collect && std::isfinite(value);
+      array.values.push_back(value);
+      return true;
+    }
+    return this->Scalar();
+  }
+
+  std::string FileName;
+  std::string Key;
+  std::vector<Frame> Stack;
+  int Objects = 0;
+};
 
 // datasets.json is optional metadata: the innermost object holding "file": <the raw file's name>
-// supplies "dims", "type" and "spacing"; anything unreadable is ignored. A linear scan with an
-// explicit stack of open objects, so no sidecar can exhaust the call stack (std::regex recursed
-// per character and crashed on long strings).
+// supplies "dims", "type" and "spacing"; anything unreadable is ignored.
 void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
 {
   const fs::path jsonPath = rawPath.parent_path() / "datasets.json";
@@ -169,68 +283,31 @@ void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
   std::ifstream stream(jsonPath, std::ios::binary);
   const std::string text(
     (std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-  std::vector<DatasetEntry> open;
-  std::string key;
-  bool value = false; // after "key":
-  for (std::size_t i = 0; i < text.size(); ++i)
+  DatasetsJsonReader reader(rawPath.filename().string());
+  try
   {
-    const char c = text[i];
-    if (c == '"')
-    {
-      std::size_t end = i + 1;
-      while (end < text.size() && text[end] != '"')
-      {
-        end += text[end] == '\\' ? 2 : 1;
-      }
-      const std::string string = text.substr(i + 1, std::min(end, text.size()) - i - 1);
-      if (value && !open.empty() && (key == "file" || key == "type"))
-      {
-        (key == "file" ? open.back().file : open.back().type) = string;
-      }
-      key = value ? key : string;
-      value = false;
-      i = end;
-    }
-    else if (c == '[' && value && !open.empty() && (key == "dims" || key == "spacing"))
-    {
-      DatasetEntry& entry = open.back();
-      (key == "dims" ? entry.haveDims : entry.haveSpacing) =
-        ReadNumberArray(text, i, key == "dims" ? entry.dims : entry.spacing);
-      value = false;
-    }
-    else if (c == ':' || c == ',' || c == '{' || c == '}')
-    {
-      value = c == ':';
-      if (c == '{' && open.size() == 64)
-      {
-        return; // nested deeper than any dataset list: not ours
-      }
-      if (c == '{')
-      {
-        open.emplace_back();
-      }
-      else if (c == '}' && !open.empty())
-      {
-        const DatasetEntry entry = open.back();
-        open.pop_back();
-        if (entry.file == rawPath.filename().string())
-        {
-          layout.haveSpacing = entry.haveSpacing && entry.spacing.size() == 3 &&
-            std::all_of(entry.spacing.begin(), entry.spacing.end(), [](double v) { return v > 0; });
-          std::copy(entry.spacing.begin(), entry.spacing.begin() + (layout.haveSpacing ? 3 : 0),
-            layout.spacing);
-          layout.haveDims = entry.haveDims && entry.dims.size() == 3;
-          for (std::size_t axis = 0; axis < 3 && layout.haveDims; ++axis)
-          {
-            // Out-of-range values become 0 or 1e12, which CheckSize refuses with their text.
-            layout.dims[axis] = static_cast<std::int64_t>(std::clamp(entry.dims[axis], 0.0, 1e12));
-          }
-          layout.kind = ParseScalarKind(entry.type);
-          return;
-        }
-      }
-    }
+    nlohmann::json::sax_parse(text, &reader);
   }
+  catch (const nlohmann::json::exception&)
+  {
+    return; // e.g. a number too large for a double: unreadable, ignored
+  }
+  if (!reader.Found)
+  {
+    return;
+  }
+  const DatasetEntry& entry = reader.Entry;
+  layout.haveSpacing = entry.haveSpacing && entry.spacing.size() == 3 &&
+    std::all_of(entry.spacing.begin(), entry.spacing.end(), [](double v) { return v > 0; });
+  std::copy(
+    entry.spacing.begin(), entry.spacing.begin() + (layout.haveSpacing ? 3 : 0), layout.spacing);
+  layout.haveDims = entry.haveDims && entry.dims.size() == 3;
+  for (std::size_t axis = 0; axis < 3 && layout.haveDims; ++axis)
+  {
+    // Out-of-range values become 0 or 1e12, which CheckSize refuses with their text.
+    layout.dims[axis] = static_cast<std::int64_t>(std::clamp(entry.dims[axis], 0.0, 1e12));
+  }
+  layout.kind = ParseScalarKind(entry.type);
 }
 
 void ParseRawName(const std::string& name, RawLayout& layout)

@@ -2,7 +2,12 @@
 # Sanitizer runs: builds AccelVolume with AddressSanitizer + UndefinedBehaviorSanitizer, and with
 # ThreadSanitizer, each in a build folder of its own, and runs the tests there. Any finding fails
 # the run. What runs and why: docs/sanitizers.md.
-#   ./scripts/sanitize.sh [asan|tsan|all]     (default: all)
+#   ./scripts/sanitize.sh [asan|tsan|all|ci]  (default: all)
+#
+# ci: the subset CI runs (scripts/test.sh, so .ci/run): ASan + UBSan over the self-tests, the
+#   Core unit tests and the CPU mappers' image tests (ray caster, shear-warp, octree), then the
+#   tsan run below as it is. The slice mapper's image tests, the CLI and MPI tests run only in
+#   the full asan mode (time: the whole of .ci/run must stay under 30 minutes on 2 cores).
 #
 # asan: -DACCELVOLUME_SANITIZE="address;undefined" (UBSan with float-cast-overflow, no recovery;
 #   LeakSanitizer on, Testing/Sanitizers/lsan.supp), GL tests on EGL (Mesa surfaceless: nothing
@@ -46,13 +51,13 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mode="${1:-all}"
 case "$mode" in
-  asan | tsan | all) ;;
+  asan | tsan | all | ci) ;;
   -h | --help)
     sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'
     exit 0
     ;;
   *)
-    echo "sanitize.sh: unknown mode '$mode' (asan, tsan or all)" >&2
+    echo "sanitize.sh: unknown mode '$mode' (asan, tsan, all or ci)" >&2
     exit 2
     ;;
 esac
@@ -68,6 +73,8 @@ fi
 # Timing tests measure speed, which a sanitizer build does not have.
 timing_tests='^(ReferenceRenderer\.Speed|MinMaxOctree\.TimingPrint)$'
 tsan_unit_regex='^((RayCastEngine|ShearWarpEngine|ShearWarpPartition|RunLengthVolume|ReferenceRenderer|ReferenceComposite|Progress|ClassifyCells|ClassifyCellsTyped)\.|MinMaxOctreeBuild\.ParallelIsDeterministic|MinMaxOctree\.ClassifyDegenerateRange$|DistanceMap\.(SaturatesIn3D|ThreadCountIndependent|ReusesTheOutputBuffer)$|Phantoms\.DeterministicAcrossRunsAndThreads$)'
+# The CPU mappers' image tests (ci mode's ASan run).
+cpu_image_regex='TestAccelVolume(RayCast[A-Za-z]*|ShearWarp(Agreement|Exact|Modes)|MinMaxOctree|Progress)$'
 tsan_image_regex='TestAccelVolume(RayCastExact|RayCastModes|RayCastSampleDistances|ShearWarpExact|ShearWarpModes|MinMaxOctree|Progress|CompositeShaded)$'
 
 phase() { echo; echo "=== $* ==="; }
@@ -110,6 +117,25 @@ run_asan() {
   echo "asan: tests $((SECONDS - tt)) s, total $((SECONDS - t)) s"
 }
 
+# The ci subset of run_asan: Core unit tests and the CPU mappers' image tests.
+run_asan_ci() {
+  local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
+  phase "ASan + UBSan (ci subset): configure and build ($build)"
+  configure "$build" "address;undefined" egl || { failed+=("asan: configure"); return; }
+  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest AccelVolumeUnitTests \
+    AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
+    || { failed+=("asan: build"); return; }
+  echo "asan: configure + build $((SECONDS - t)) s"
+  phase "ASan + UBSan (ci subset): tests"
+  local tt=$SECONDS
+  pushd "$build" >/dev/null
+  run_ctest "asan: self-tests" -L '^sanitizer$'
+  run_ctest "asan: unit tests" -L '^unit$' -E "$timing_tests"
+  run_ctest "asan: CPU mapper image tests" -L '^image$' -LE '^mpi$' -R "$cpu_image_regex"
+  popd >/dev/null
+  echo "asan: tests $((SECONDS - tt)) s, total $((SECONDS - t)) s"
+}
+
 run_tsan() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_TSAN:-$root/build-tsan}" t=$SECONDS
   if [ "$jobs" -lt 2 ]; then
@@ -136,6 +162,10 @@ case "$mode" in
   tsan) run_tsan ;;
   all)
     run_asan
+    run_tsan
+    ;;
+  ci)
+    run_asan_ci
     run_tsan
     ;;
 esac

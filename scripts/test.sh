@@ -8,7 +8,9 @@
 #   2. the image tests (label "image") again on EGL (surfaceless Mesa or a GPU driver);
 #   3. the X-window tests (label "xwindow") under xvfb-run, when xvfb-run exists;
 #   4. libFuzzer on the CLI's loaders for a bounded time (scripts/fuzz.sh; skip with
-#      ACCELVOLUME_FUZZ=0; ACCELVOLUME_FUZZ_SECONDS per target, default 60).
+#      ACCELVOLUME_FUZZ=0; ACCELVOLUME_FUZZ_SECONDS per target, default 60);
+#   5. ASan + UBSan and TSan builds over the Core unit tests and the CPU mappers' image tests
+#      (scripts/sanitize.sh ci; skip with ACCELVOLUME_SANITIZERS=0).
 # The build is always left configured for OSMesa. Exits non-zero if any run failed.
 set -euo pipefail
 
@@ -73,6 +75,16 @@ if [ "${ACCELVOLUME_FUZZ:-1}" != "0" ]; then
   ACCELVOLUME_FUZZ_BUILD_DIR="${ACCELVOLUME_FUZZ_BUILD_DIR:-$build-fuzz}" "$root/scripts/fuzz.sh" \
     || failed+=("fuzzing (scripts/fuzz.sh)")
   echo "fuzz run: $((SECONDS - t)) s"
+fi
+
+if [ "${ACCELVOLUME_SANITIZERS:-1}" != "0" ]; then
+  phase "sanitizers: ASan + UBSan and TSan (scripts/sanitize.sh ci)"
+  t=$SECONDS
+  ACCELVOLUME_SKIP_SETUP=1 \
+    ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$build-asan}" \
+    ACCELVOLUME_SANITIZE_BUILD_DIR_TSAN="${ACCELVOLUME_SANITIZE_BUILD_DIR_TSAN:-$build-tsan}" \
+    "$root/scripts/sanitize.sh" ci || failed+=("sanitizers (scripts/sanitize.sh ci)")
+  echo "sanitizer run: $((SECONDS - t)) s"
 fi
 
 restore

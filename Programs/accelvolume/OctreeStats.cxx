@@ -1,6 +1,7 @@
 // OctreeStats: the JSON document and summary line of `accelvolume octree`.
 #include "OctreeCommand.h"
 
+#include "JsonOutput.h"
 #include "Stats.h"
 
 #include <vtkAccelVolumeMinMaxOctree.h>
@@ -37,18 +38,6 @@ Spread SpreadOf(std::vector<double> values)
   return spread;
 }
 
-std::string Number(double value)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream.precision(10);
-  stream << value;
-  return stream.str();
-}
-
 } // namespace
 
 const char* BuilderName(int builder)
@@ -73,46 +62,41 @@ void WriteOctreeStats(
   int dims[3];
   image->GetDimensions(dims);
   const std::string description = DescribeVolume(image);
-  const std::string type = description.substr(description.find(' ') + 1);
-  std::string list;
+  const bool phantom = options.volume.inputPath.empty();
+  JsonDocument buildMs = JsonDocument::array();
   for (const double ms : result.buildMs)
   {
-    list += (list.empty() ? "" : ", ") + Number(ms);
+    buildMs.push_back(JsonNumber(ms));
   }
-  const bool phantom = options.volume.inputPath.empty();
-  out << "{\n"
-      << "  \"tool\": \"accelvolume octree\",\n"
-      << "  \"version\": " << JsonString(ACCELVOLUME_VERSION) << ",\n"
-      << "  \"builder\": " << JsonString(BuilderName(options.builder)) << ",\n"
-      << "  \"threads\": " << result.threads << ",\n"
-      << "  \"leaf\": " << options.leaf << ",\n"
-      << "  \"input\": " << JsonString(phantom ? options.volume.phantom : options.volume.inputPath)
-      << ",\n"
-      << "  \"input_kind\": " << JsonString(phantom ? "phantom" : "file") << ",\n"
-      << "  \"dims\": [" << dims[0] << ", " << dims[1] << ", " << dims[2] << "],\n"
-      << "  \"type\": " << JsonString(type) << ",\n"
-      << "  \"scalar_range\": [" << Number(result.range[0]) << ", " << Number(result.range[1])
-      << "],\n"
-      << "  \"repeat\": " << options.repeat << ",\n"
-      << "  \"ms\": {\"median\": " << Number(build.median) << ", \"min\": " << Number(build.min)
-      << ", \"max\": " << Number(build.max) << "},\n"
-      << "  \"build_ms\": [" << list << "],\n"
-      << "  \"nodes\": " << result.nodes << ",\n"
-      << "  \"depth\": " << result.depth << ",\n"
-      << "  \"leaf_grid\": [" << result.leafGrid[0] << ", " << result.leafGrid[1] << ", "
-      << result.leafGrid[2] << "],\n"
-      << "  \"bytes\": " << result.bytes << ",\n"
-      << "  \"bytes_per_s\": " << Number(result.bytes / (build.median / 1000.0)) << ",\n"
-      << "  \"read_floor_ms\": " << Number(floor.median) << ",\n"
-      << "  \"ratio_to_floor\": " << Number(build.median / floor.median) << ",\n"
-      << "  \"tf_low\": " << Number(result.tfLow) << ",\n"
-      << "  \"tf_low_alternate\": " << Number(result.tfLowAlternate) << ",\n"
-      << "  \"classify_ms\": {\"median\": " << Number(classify.median)
-      << ", \"min\": " << Number(classify.min) << "},\n"
-      << "  \"transparent_leaf_fraction\": " << Number(result.transparentLeafFraction) << ",\n"
-      << "  \"gl_renderer\": "
-      << (result.glRenderer.empty() ? "null" : JsonString(result.glRenderer)) << "\n"
-      << "}\n";
+  JsonDocument d;
+  d["tool"] = "accelvolume octree";
+  d["version"] = ACCELVOLUME_VERSION;
+  d["builder"] = BuilderName(options.builder);
+  d["threads"] = result.threads;
+  d["leaf"] = options.leaf;
+  d["input"] = phantom ? options.volume.phantom : options.volume.inputPath;
+  d["input_kind"] = phantom ? "phantom" : "file";
+  d["dims"] = { dims[0], dims[1], dims[2] };
+  d["type"] = description.substr(description.find(' ') + 1);
+  d["scalar_range"] = { JsonNumber(result.range[0]), JsonNumber(result.range[1]) };
+  d["repeat"] = options.repeat;
+  d["ms"] = { { "median", JsonNumber(build.median) }, { "min", JsonNumber(build.min) },
+    { "max", JsonNumber(build.max) } };
+  d["build_ms"] = buildMs;
+  d["nodes"] = result.nodes;
+  d["depth"] = result.depth;
+  d["leaf_grid"] = { result.leafGrid[0], result.leafGrid[1], result.leafGrid[2] };
+  d["bytes"] = result.bytes;
+  d["bytes_per_s"] = JsonNumber(result.bytes / (build.median / 1000.0));
+  d["read_floor_ms"] = JsonNumber(floor.median);
+  d["ratio_to_floor"] = JsonNumber(build.median / floor.median);
+  d["tf_low"] = JsonNumber(result.tfLow);
+  d["tf_low_alternate"] = JsonNumber(result.tfLowAlternate);
+  d["classify_ms"] = { { "median", JsonNumber(classify.median) },
+    { "min", JsonNumber(classify.min) } };
+  d["transparent_leaf_fraction"] = JsonNumber(result.transparentLeafFraction);
+  d["gl_renderer"] = result.glRenderer.empty() ? JsonDocument(nullptr) : JsonDocument(result.glRenderer);
+  WriteJsonDocument(out, d);
 }
 
 std::string OctreeSummary(

@@ -1,6 +1,7 @@
 // Stats: JSON output of accelvolume render --stats.
 #include "Stats.h"
 
+#include "JsonOutput.h"
 #include "VolumeIO.h"
 
 #include <vtkDataArray.h>
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -22,41 +22,29 @@ namespace accelvolume::cli
 namespace
 {
 
-std::string Number(double value)
-{
-  if (!std::isfinite(value))
-  {
-    return "null";
-  }
-  std::ostringstream stream;
-  stream.precision(12);
-  stream << value;
-  return stream.str();
-}
-
-std::string Array(const double* values, int count)
-{
-  std::string text = "[";
-  for (int i = 0; i < count; ++i)
-  {
-    text += (i ? ", " : "") + Number(values[i]);
-  }
-  return text + "]";
-}
-
 // [[g, a], ...] or null when no gradient opacity was set.
-std::string GradientOpacity(const AppliedTransferFunction& applied)
+JsonDocument GradientOpacity(const AppliedTransferFunction& applied)
 {
   if (applied.gradientOpacity.empty())
   {
-    return "null";
+    return nullptr;
   }
-  std::string text = "[";
+  JsonDocument points = JsonDocument::array();
   for (const auto& point : applied.gradientOpacity)
   {
-    text += (text.size() > 1 ? ", " : "") + Array(point.data(), 2);
+    points.push_back({ JsonNumber(point[0]), JsonNumber(point[1]) });
   }
-  return text + "]";
+  return points;
+}
+
+JsonDocument Numbers(const double* values, int count)
+{
+  JsonDocument array = JsonDocument::array();
+  for (int i = 0; i < count; ++i)
+  {
+    array.push_back(JsonNumber(values[i]));
+  }
+  return array;
 }
 
 struct FrameStatistics
@@ -81,104 +69,111 @@ FrameStatistics Statistics(std::vector<double> ms)
 }
 
 // The "raycast" object: the ray caster's settings and last-frame counters, or null.
-std::string RayCastObject(const RenderResult& result)
+JsonDocument RayCastObject(const RenderResult& result)
 {
   if (!result.rayCastUsed)
   {
-    return "null";
+    return nullptr;
   }
   const RayCastResult& r = result.rayCast;
-  std::ostringstream text;
-  text << "{\"leap\": " << JsonString(LeapName(r.leap))
-       << ", \"cell_leap\": " << (r.cellLeap ? "true" : "false") << ", \"threads\": " << r.threads
-       << ", \"octree_leaf_size\": " << r.octreeLeafSize
-       << ", \"image_sample_distance\": " << Number(r.imageSampleDistance)
-       << ",\n    \"rays\": " << r.rays << ", \"samples\": " << r.samples
-       << ", \"leaped_octree\": " << r.leapedOctree
-       << ", \"leaped_distance_map\": " << r.leapedDistanceMap
-       << ", \"leaped_cell_table\": " << r.leapedCellTable
-       << ", \"transparent_cell_samples\": " << r.transparentCellSamples
-       << ", \"terminated_rays\": " << r.terminatedRays
-       << ", \"octree_leaps\": " << r.octreeLeaps
-       << ", \"distance_map_leaps\": " << r.distanceMapLeaps
-       << ", \"acceleration_bytes\": " << r.accelerationBytes
-       << ",\n    \"render_ms\": " << Number(r.renderMs) << ", \"cast_ms\": " << Number(r.castMs)
-       << ", \"prepare_ms\": " << Number(r.prepareMs)
-       << ", \"first_prepare_ms\": " << Number(r.firstPrepareMs) << "}";
-  return text.str();
+  JsonDocument o;
+  o["leap"] = LeapName(r.leap);
+  o["cell_leap"] = r.cellLeap;
+  o["threads"] = r.threads;
+  o["octree_leaf_size"] = r.octreeLeafSize;
+  o["image_sample_distance"] = JsonNumber(r.imageSampleDistance);
+  o["rays"] = r.rays;
+  o["samples"] = r.samples;
+  o["leaped_octree"] = r.leapedOctree;
+  o["leaped_distance_map"] = r.leapedDistanceMap;
+  o["leaped_cell_table"] = r.leapedCellTable;
+  o["transparent_cell_samples"] = r.transparentCellSamples;
+  o["terminated_rays"] = r.terminatedRays;
+  o["octree_leaps"] = r.octreeLeaps;
+  o["distance_map_leaps"] = r.distanceMapLeaps;
+  o["acceleration_bytes"] = r.accelerationBytes;
+  o["render_ms"] = JsonNumber(r.renderMs);
+  o["cast_ms"] = JsonNumber(r.castMs);
+  o["prepare_ms"] = JsonNumber(r.prepareMs);
+  o["first_prepare_ms"] = JsonNumber(r.firstPrepareMs);
+  return o;
 }
 
 // The "shearwarp" object: the shear-warp mapper's settings, last-frame timings (rank 0's; band_ms
 // holds every rank's bands) and counters (voxels, samples, skipped pixels summed over the ranks;
 // stored voxels and encoded bytes per rank), or null.
-std::string ShearWarpObject(const RenderResult& result)
+JsonDocument ShearWarpObject(const RenderResult& result)
 {
   if (!result.shearWarpUsed)
   {
-    return "null";
+    return nullptr;
   }
   const ShearWarpResult& w = result.shearWarp;
-  std::string bands;
-  for (std::size_t i = 0; i < w.bandMs.size(); ++i)
-  {
-    bands += (i ? ", " : "") + Number(w.bandMs[i]);
-  }
   static const char* const axes[] = { "x", "y", "z" };
-  std::ostringstream text;
-  text << "{\"rle\": " << (w.runLengthEncoding ? "true" : "false")
-       << ", \"ert\": " << (w.earlyRayTermination ? "true" : "false")
-       << ", \"balance\": " << (w.balance ? "true" : "false")
-       << ", \"shading\": " << JsonString(w.phongShading ? "phong" : "table")
-       << ", \"threads\": " << w.threads << ", \"ranks\": " << w.ranks
-       << ",\n    \"render_ms\": " << Number(w.renderMs) << ", \"encode_ms\": " << Number(w.encodeMs)
-       << ", \"first_encode_ms\": " << Number(w.firstEncodeMs)
-       << ", \"table_ms\": " << Number(w.tableMs) << ", \"composite_ms\": " << Number(w.compositeMs)
-       << ", \"gather_ms\": " << Number(w.gatherMs) << ", \"warp_ms\": " << Number(w.warpMs)
-       << ",\n    \"imbalance\": " << Number(w.imbalance) << ", \"bands\": " << w.bandMs.size()
-       << ", \"band_ms\": [" << bands << "]"
-       << ",\n    \"voxels\": " << w.voxels << ", \"samples\": " << w.samples
-       << ", \"skipped_pixels\": " << w.skippedPixels << ", \"principal_axis\": "
-       << (w.principalAxis >= 0 && w.principalAxis < 3 ? JsonString(axes[w.principalAxis])
-                                                       : std::string("null"))
-       << ", \"stored_voxels\": " << w.storedVoxels << ", \"encoded_bytes\": " << w.encodedBytes
-       << "}";
-  return text.str();
+  JsonDocument o;
+  o["rle"] = w.runLengthEncoding;
+  o["ert"] = w.earlyRayTermination;
+  o["balance"] = w.balance;
+  o["shading"] = w.phongShading ? "phong" : "table";
+  o["threads"] = w.threads;
+  o["ranks"] = w.ranks;
+  o["render_ms"] = JsonNumber(w.renderMs);
+  o["encode_ms"] = JsonNumber(w.encodeMs);
+  o["first_encode_ms"] = JsonNumber(w.firstEncodeMs);
+  o["table_ms"] = JsonNumber(w.tableMs);
+  o["composite_ms"] = JsonNumber(w.compositeMs);
+  o["gather_ms"] = JsonNumber(w.gatherMs);
+  o["warp_ms"] = JsonNumber(w.warpMs);
+  o["imbalance"] = JsonNumber(w.imbalance);
+  o["bands"] = w.bandMs.size();
+  o["band_ms"] = Numbers(w.bandMs.data(), static_cast<int>(w.bandMs.size()));
+  o["voxels"] = w.voxels;
+  o["samples"] = w.samples;
+  o["skipped_pixels"] = w.skippedPixels;
+  o["principal_axis"] = w.principalAxis >= 0 && w.principalAxis < 3
+    ? JsonDocument(axes[w.principalAxis])
+    : JsonDocument(nullptr);
+  o["stored_voxels"] = w.storedVoxels;
+  o["encoded_bytes"] = w.encodedBytes;
+  return o;
 }
 
 // The "slice" object: the slice mapper's last frame (its slice count, passes and skipping
 // fractions are top-level keys), or null.
-std::string SliceObject(const RenderResult& result)
+JsonDocument SliceObject(const RenderResult& result)
 {
   if (!result.sliceUsed)
   {
-    return "null";
+    return nullptr;
   }
   const SliceResult& s = result.slice;
-  std::ostringstream text;
-  text << "{\"render_ms\": " << Number(s.renderMs) << ", \"slices\": " << result.slices
-       << ", \"proxy_polygons\": " << s.proxyPolygons
-       << ", \"boundary_faces\": " << s.boundaryFaces
-       << ", \"termination_passes\": " << result.terminationPasses
-       << ", \"bricks\": " << s.bricks << ", \"bricks_drawn\": " << s.bricksDrawn
-       << ", \"brick_uploads\": " << s.brickUploads
-       << ", \"uploaded_bytes\": " << Number(s.uploadedBytes)
-       << ", \"resident_bytes\": " << Number(s.residentBytes) << "}";
-  return text.str();
+  JsonDocument o;
+  o["render_ms"] = JsonNumber(s.renderMs);
+  o["slices"] = result.slices;
+  o["proxy_polygons"] = s.proxyPolygons;
+  o["boundary_faces"] = s.boundaryFaces;
+  o["termination_passes"] = result.terminationPasses;
+  o["bricks"] = s.bricks;
+  o["bricks_drawn"] = s.bricksDrawn;
+  o["brick_uploads"] = s.brickUploads;
+  o["uploaded_bytes"] = JsonNumber(s.uploadedBytes);
+  o["resident_bytes"] = JsonNumber(s.residentBytes);
+  return o;
 }
 
 // The "smart" object: the smart mapper's choice for the last frame, why, and its own time (the
 // chosen mapper's counters are in its own object), or null.
-std::string SmartObject(const RenderResult& result)
+JsonDocument SmartObject(const RenderResult& result)
 {
   if (!result.smartUsed)
   {
-    return "null";
+    return nullptr;
   }
-  const SmartResult& s = result.smart;
-  std::ostringstream text;
-  text << "{\"mode\": " << JsonString(s.mode) << ", \"reason\": " << JsonString(s.reason)
-       << ", \"render_ms\": " << Number(s.renderMs) << "}";
-  return text.str();
+  JsonDocument o;
+  o["mode"] = result.smart.mode;
+  o["reason"] = result.smart.reason;
+  o["render_ms"] = JsonNumber(result.smart.renderMs);
+  return o;
 }
 
 std::string TypeName(vtkImageData* image)
@@ -191,137 +186,80 @@ std::string TypeName(vtkImageData* image)
 
 } // namespace
 
-std::string JsonString(const std::string& text)
-{
-  std::string out = "\"";
-  for (const char c : text)
-  {
-    switch (c)
-    {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20)
-        {
-          char escape[8];
-          std::snprintf(escape, sizeof(escape), "\\u%04x", static_cast<unsigned char>(c));
-          out += escape;
-        }
-        else
-        {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 void WriteStats(std::ostream& stream, const Options& options, vtkImageData* image,
   const RenderResult& result, int warnings)
 {
   const FrameStatistics frames = Statistics(result.frameMs);
   int dims[3];
   image->GetDimensions(dims);
-  const double dimsDouble[3] = { double(dims[0]), double(dims[1]), double(dims[2]) };
   const bool phantom = options.volume.inputPath.empty();
-  const std::string input = phantom ? options.volume.phantom : options.volume.inputPath;
   const bool smart = options.mapper == MapperKind::Smart;
   const bool sampledImage =
     options.mapper == MapperKind::RayCast || options.mapper == MapperKind::VTKFixed || smart;
   const bool cpu = sampledImage || options.mapper == MapperKind::ShearWarp;
-  std::string frameList;
-  for (std::size_t i = 0; i < result.frameMs.size() && i < 10000; ++i)
-  {
-    frameList += (i ? ", " : "") + Number(result.frameMs[i]);
-  }
-  stream << "{\n"
-         << "  \"tool\": \"accelvolume\",\n"
-         << "  \"version\": " << JsonString(ACCELVOLUME_VERSION) << ",\n"
-         << "  \"mapper\": " << JsonString(MapperName(options.mapper)) << ",\n"
-         << "  \"blend\": " << JsonString(BlendName(options.blend)) << ",\n"
-         << "  \"width\": " << options.size[0] << ",\n"
-         << "  \"height\": " << options.size[1] << ",\n"
-         << "  \"frames\": " << options.frames << ",\n"
-         << "  \"ms_per_frame\": {\"median\": " << Number(frames.median)
-         << ", \"min\": " << Number(frames.min) << ", \"max\": " << Number(frames.max)
-         << ", \"mean\": " << Number(frames.mean) << "},\n"
-         << "  \"first_frame_ms\": " << Number(result.firstFrameMs) << ",\n"
-         << "  \"mapper_render_ms\": " << Number(result.mapperRenderMs) << ",\n"
-         << "  \"frame_ms\": [" << frameList << "],\n"
-         << "  \"gl_renderer\": " << JsonString(result.glRenderer) << ",\n"
-         << "  \"gl_backend\": " << JsonString(result.glBackend) << ",\n"
-         << "  \"input\": " << JsonString(input) << ",\n"
-         << "  \"input_kind\": " << JsonString(phantom ? "phantom" : "file") << ",\n"
-         << "  \"dims\": " << Array(dimsDouble, 3) << ",\n"
-         << "  \"type\": " << JsonString(TypeName(image)) << ",\n"
-         << "  \"spacing\": " << Array(image->GetSpacing(), 3) << ",\n"
-         << "  \"origin\": " << Array(image->GetOrigin(), 3) << ",\n"
-         << "  \"scalar_range\": " << Array(result.scalarRange, 2) << ",\n"
-         << "  \"window\": " << Array(result.window, 2) << ",\n"
-         << "  \"raysum_unit\": "
-         << (options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast || smart
-                ? Number(result.raysumUnit)
-                : "null")
-         << ",\n"
-         << "  \"sample_distance\": " << Number(result.sampleDistance) << ",\n"
-         << "  \"sample_distance_source\": " << JsonString(result.sampleDistanceSource) << ",\n"
-         << "  \"slices\": " << (result.slices >= 0 ? std::to_string(result.slices) : "null")
-         << ",\n"
-         << "  \"ert\": " << (options.earlyRayTermination ? "true" : "false") << ",\n"
-         << "  \"ert_passes\": " << result.terminationPasses << ",\n"
-         << "  \"ess\": " << options.emptySpaceSkipping << ",\n"
-         << "  \"transparent_leaf_fraction\": " << Number(result.transparentLeafFraction) << ",\n"
-         << "  \"slice_area_kept\": " << Number(result.proxyAreaFraction) << ",\n"
-         << "  \"slab_samples\": "
-         << (result.slabSamples >= 0 ? std::to_string(result.slabSamples) : "null") << ",\n"
-         << "  \"boundary_rerender\": "
-         << (options.mapper == MapperKind::Slice || smart
-                ? (options.boundaryRerender ? "true" : "false")
-                : "null")
-         << ",\n"
-         << "  \"tf\": "
-         << (options.transferFunction.empty() ? "null" : JsonString(options.transferFunction))
-         << ",\n"
-         << "  \"shade\": " << (result.transferFunction.shade ? "true" : "false") << ",\n"
-         << "  \"gradient_opacity\": " << GradientOpacity(result.transferFunction) << ",\n"
-         << "  \"lighting\": {\"ambient\": " << Number(result.transferFunction.ambient)
-         << ", \"diffuse\": " << Number(result.transferFunction.diffuse)
-         << ", \"specular\": " << Number(result.transferFunction.specular)
-         << ", \"specular_power\": " << Number(result.transferFunction.specularPower) << "},\n"
-         << "  \"crop\": " << (options.haveCrop ? Array(options.crop, 6) : "null") << ",\n"
-         << "  \"crop_planes\": " << (options.haveCrop ? Array(result.cropPlanes, 6) : "null")
-         << ",\n"
-         << "  \"camera\": {\"azimuth\": " << Number(options.azimuth)
-         << ", \"elevation\": " << Number(options.elevation)
-         << ", \"roll\": " << Number(options.roll) << ", \"zoom\": " << Number(options.zoom)
-         << ", \"parallel\": " << (options.parallel ? "true" : "false")
-         << ", \"final_azimuth\": " << Number(options.azimuth + 2.0 * (options.frames - 1))
-         << "},\n"
-         << "  \"background\": " << Array(options.background, 3) << ",\n"
-         << "  \"out\": " << (options.outPath.empty() ? "null" : JsonString(options.outPath))
-         << ",\n"
-         << "  \"threads\": " << (cpu ? std::to_string(options.threads) : "null") << ",\n"
-         << "  \"image_sample_distance\": " << (sampledImage ? Number(options.imageSampleDistance) : "null")
-         << ",\n"
-         << "  \"raycast\": " << RayCastObject(result) << ",\n"
-         << "  \"shearwarp\": " << ShearWarpObject(result) << ",\n"
-         << "  \"slice\": " << SliceObject(result) << ",\n"
-         << "  \"smart\": " << SmartObject(result) << ",\n"
-         << "  \"vtk_warnings\": " << warnings << "\n"
-         << "}\n";
+  const std::size_t listed = std::min<std::size_t>(result.frameMs.size(), 10000);
+  const auto optional = [](bool present, const JsonDocument& value)
+  { return present ? value : JsonDocument(nullptr); };
+  JsonDocument d;
+  d["tool"] = "accelvolume";
+  d["version"] = ACCELVOLUME_VERSION;
+  d["mapper"] = MapperName(options.mapper);
+  d["blend"] = BlendName(options.blend);
+  d["width"] = options.size[0];
+  d["height"] = options.size[1];
+  d["frames"] = options.frames;
+  d["ms_per_frame"] = { { "median", JsonNumber(frames.median) }, { "min", JsonNumber(frames.min) },
+    { "max", JsonNumber(frames.max) }, { "mean", JsonNumber(frames.mean) } };
+  d["first_frame_ms"] = JsonNumber(result.firstFrameMs);
+  d["mapper_render_ms"] = JsonNumber(result.mapperRenderMs);
+  d["frame_ms"] = Numbers(result.frameMs.data(), static_cast<int>(listed));
+  d["gl_renderer"] = result.glRenderer;
+  d["gl_backend"] = result.glBackend;
+  d["input"] = phantom ? options.volume.phantom : options.volume.inputPath;
+  d["input_kind"] = phantom ? "phantom" : "file";
+  d["dims"] = { dims[0], dims[1], dims[2] };
+  d["type"] = TypeName(image);
+  d["spacing"] = Numbers(image->GetSpacing(), 3);
+  d["origin"] = Numbers(image->GetOrigin(), 3);
+  d["scalar_range"] = Numbers(result.scalarRange, 2);
+  d["window"] = Numbers(result.window, 2);
+  d["raysum_unit"] = optional(
+    options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast || smart,
+    JsonNumber(result.raysumUnit));
+  d["sample_distance"] = JsonNumber(result.sampleDistance);
+  d["sample_distance_source"] = result.sampleDistanceSource;
+  d["slices"] = optional(result.slices >= 0, result.slices);
+  d["ert"] = options.earlyRayTermination;
+  d["ert_passes"] = result.terminationPasses;
+  d["ess"] = options.emptySpaceSkipping;
+  d["transparent_leaf_fraction"] = JsonNumber(result.transparentLeafFraction);
+  d["slice_area_kept"] = JsonNumber(result.proxyAreaFraction);
+  d["slab_samples"] = optional(result.slabSamples >= 0, result.slabSamples);
+  d["boundary_rerender"] =
+    optional(options.mapper == MapperKind::Slice || smart, options.boundaryRerender);
+  d["tf"] = optional(!options.transferFunction.empty(), options.transferFunction);
+  d["shade"] = result.transferFunction.shade;
+  d["gradient_opacity"] = GradientOpacity(result.transferFunction);
+  const AppliedTransferFunction& lighting = result.transferFunction;
+  d["lighting"] = { { "ambient", JsonNumber(lighting.ambient) },
+    { "diffuse", JsonNumber(lighting.diffuse) }, { "specular", JsonNumber(lighting.specular) },
+    { "specular_power", JsonNumber(lighting.specularPower) } };
+  d["crop"] = optional(options.haveCrop, Numbers(options.crop, 6));
+  d["crop_planes"] = optional(options.haveCrop, Numbers(result.cropPlanes, 6));
+  d["camera"] = { { "azimuth", JsonNumber(options.azimuth) },
+    { "elevation", JsonNumber(options.elevation) }, { "roll", JsonNumber(options.roll) },
+    { "zoom", JsonNumber(options.zoom) }, { "parallel", options.parallel },
+    { "final_azimuth", JsonNumber(options.azimuth + 2.0 * (options.frames - 1)) } };
+  d["background"] = Numbers(options.background, 3);
+  d["out"] = optional(!options.outPath.empty(), options.outPath);
+  d["threads"] = optional(cpu, options.threads);
+  d["image_sample_distance"] = optional(sampledImage, JsonNumber(options.imageSampleDistance));
+  d["raycast"] = RayCastObject(result);
+  d["shearwarp"] = ShearWarpObject(result);
+  d["slice"] = SliceObject(result);
+  d["smart"] = SmartObject(result);
+  d["vtk_warnings"] = warnings;
+  WriteJsonDocument(stream, d);
 }
 
 std::string Summary(const Options& options, vtkImageData* image, const RenderResult& result)

@@ -14,8 +14,6 @@ namespace accelvolume::cli
 {
 
 // `"text"` with JSON escapes (quotes, backslashes, control characters).
-std::string JsonString(const std::string& text);
-
 // Writes one JSON object (see the keys in the code; README of the CLI in --help).
 void WriteStats(std::ostream& stream, const Options& options, vtkImageData* image,
   const RenderResult& result, int warnings);

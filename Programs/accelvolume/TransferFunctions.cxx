@@ -1,7 +1,7 @@
 // TransferFunctions: --tf presets, the JSON transfer-function schema and the volume property.
 #include "TransferFunctions.h"
 
-#include "JsonReader.h"
+#include <nlohmann/json.hpp>
 
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -31,6 +32,86 @@ constexpr double DefaultSpecularPower = 10;
 // being read whole into memory.
 constexpr std::uintmax_t MaxFileBytes = 16u << 20;
 
+using Json = nlohmann::json;
+
+// "a number", "an array", ...: the kind a schema error names.
+const char* KindName(const Json& value)
+{
+  switch (value.type())
+  {
+    case Json::value_t::null:
+      return "null";
+    case Json::value_t::boolean:
+      return "a boolean";
+    case Json::value_t::number_integer:
+    case Json::value_t::number_unsigned:
+    case Json::value_t::number_float:
+      return "a number";
+    case Json::value_t::string:
+      return "a string";
+    case Json::value_t::array:
+      return "an array";
+    case Json::value_t::object:
+      return "an object";
+    default:
+      return "unknown";
+  }
+}
+
+// nlohmann's parse error as one line "line L, column C: expected ..., got ...". In an array or
+// object after a value both the closing bracket and a comma may follow, which the library's
+// message names only as the bracket.
+std::string DescribeParseError(const Json::parse_error& error)
+{
+  static const std::regex pattern(
+    R"(parse error at line ([0-9]+), column ([0-9]+): syntax error while parsing ([a-z ]+?)(?: value)? - (.*))");
+  std::smatch match;
+  const std::string what = error.what();
+  if (!std::regex_search(what, match, pattern))
+  {
+    return what;
+  }
+  std::string detail = match[4].str();
+  static const std::regex unexpected(R"(^(.*); expected (.*)$)");
+  std::smatch parts;
+  if (std::regex_match(detail, parts, unexpected))
+  {
+    std::string expected = parts[2].str();
+    if (expected == "']'" || expected == "'}'")
+    {
+      expected += " or ','";
+    }
+    detail = "expected " + expected + ", " + parts[1].str();
+  }
+  return "line " + match[1].str() + ", column " + match[2].str() + ": " + detail;
+}
+
+// Parses a whole transfer-function file; a key repeated in one object is refused, since it is
+// almost certainly a mistake (the library would keep the last silently).
+Json ParseDocument(const std::string& text)
+{
+  std::vector<std::set<std::string>> keys;
+  const Json::parser_callback_t refuseDuplicates =
+    [&keys](int, Json::parse_event_t event, Json& parsed)
+  {
+    if (event == Json::parse_event_t::object_start)
+    {
+      keys.emplace_back();
+    }
+    else if (event == Json::parse_event_t::object_end && !keys.empty())
+    {
+      keys.pop_back();
+    }
+    else if (event == Json::parse_event_t::key && !keys.empty() &&
+      !keys.back().insert(parsed.get<std::string>()).second)
+    {
+      throw std::invalid_argument("duplicate key '" + parsed.get<std::string>() + "'");
+    }
+    return true;
+  };
+  return Json::parse(text, refuseDuplicates);
+}
+
 class SchemaReader
 {
 public:
@@ -39,50 +120,51 @@ public:
   {
   }
 
-  [[noreturn]] void Fail(const JsonValue& where, const std::string& message) const
+  [[noreturn]] void Fail(const std::string& message) const
   {
-    throw CliError(ExitRuntime, "--tf '" + this->Path + "': " + where.Where() + ": " + message);
+    throw CliError(ExitRuntime, "--tf '" + this->Path + "': " + message);
   }
 
-  double Number(const JsonValue& value, const std::string& name, double low, double high) const
+  double Number(const Json& value, const std::string& name, double low, double high) const
   {
-    if (value.kind != JsonValue::Kind::Number)
+    if (!value.is_number())
     {
-      this->Fail(value, name + " must be a number, got " + JsonKindName(value.kind));
+      this->Fail(name + " must be a number, got " + KindName(value));
     }
-    if (value.number < low || value.number > high)
+    const double number = value.get<double>();
+    if (number < low || number > high)
     {
       std::ostringstream message;
-      message << name << " must lie in [" << low << ", " << high << "], got " << value.number;
-      this->Fail(value, message.str());
+      message << name << " must lie in [" << low << ", " << high << "], got " << number;
+      this->Fail(message.str());
     }
-    return value.number;
+    return number;
   }
 
   // [[x, v...], ...] with N numbers per point, x strictly increasing, values in [0, 1].
   template <std::size_t N>
-  std::vector<std::array<double, N>> Points(const JsonValue& value, const std::string& key) const
+  std::vector<std::array<double, N>> Points(const Json& value, const std::string& key) const
   {
     const char* shape = N == 2 ? "[x, value]" : "[x, r, g, b]";
-    if (value.kind != JsonValue::Kind::Array || value.items.empty())
+    if (!value.is_array() || value.empty())
     {
-      this->Fail(value, key + " must be a non-empty array of " + shape + " points");
+      this->Fail(key + " must be a non-empty array of " + shape + " points");
     }
     std::vector<std::array<double, N>> points;
-    for (std::size_t i = 0; i < value.items.size(); ++i)
+    for (std::size_t i = 0; i < value.size(); ++i)
     {
-      const JsonValue& item = value.items[i];
+      const Json& item = value[i];
       const std::string name = key + "[" + std::to_string(i) + "]";
-      if (item.kind != JsonValue::Kind::Array || item.items.size() != N)
+      if (!item.is_array() || item.size() != N)
       {
-        this->Fail(item, name + " must be " + shape + " (" + std::to_string(N) + " numbers)");
+        this->Fail(name + " must be " + shape + " (" + std::to_string(N) + " numbers)");
       }
       std::array<double, N> point;
       for (std::size_t j = 0; j < N; ++j)
       {
         const double limit = j == 0 ? std::numeric_limits<double>::max() : 1.0;
         point[j] = this->Number(
-          item.items[j], name + "[" + std::to_string(j) + "]", j == 0 ? -limit : 0.0, limit);
+          item[j], name + "[" + std::to_string(j) + "]", j == 0 ? -limit : 0.0, limit);
       }
       // VTK's functions keep one value per x, so a repeated x would silently drop a point.
       if (!points.empty() && !(point[0] > points.back()[0]))
@@ -90,73 +172,71 @@ public:
         std::ostringstream message;
         message << key << " x values must increase (unsorted x: " << point[0] << " after "
                 << points.back()[0] << ")";
-        this->Fail(item, message.str());
+        this->Fail(message.str());
       }
       points.push_back(point);
     }
     return points;
   }
 
-  TransferFunctionSpec Read(const JsonValue& root) const
+  TransferFunctionSpec Read(const Json& root) const
   {
-    if (root.kind != JsonValue::Kind::Object)
+    if (!root.is_object())
     {
-      this->Fail(root, std::string("expected an object, got ") + JsonKindName(root.kind));
+      this->Fail(std::string("expected an object, got ") + KindName(root));
     }
     // Unknown keys are refused so that a misspelt optional key (say "specularpower") is not
     // silently ignored; name and description are free-form labels.
     static const std::set<std::string> known = { "scalarOpacity", "color", "gradientOpacity",
       "shade", "ambient", "diffuse", "specular", "specularPower", "name", "description" };
-    for (const auto& member : root.members)
+    for (const auto& member : root.items())
     {
-      if (!known.count(member.first))
+      if (!known.count(member.key()))
       {
-        this->Fail(member.second,
-          "unknown key '" + member.first +
+        this->Fail("unknown key '" + member.key() +
             "' (expected scalarOpacity, color, gradientOpacity, shade, ambient, diffuse, "
             "specular, specularPower, name, description)");
       }
     }
     for (const char* required : { "scalarOpacity", "color" })
     {
-      if (!root.members.count(required))
+      if (!root.contains(required))
       {
-        this->Fail(root, std::string("missing required key '") + required + "'");
+        this->Fail(std::string("missing required key '") + required + "'");
       }
     }
     TransferFunctionSpec spec;
     spec.source = this->Path;
-    spec.scalarOpacity = this->Points<2>(root.members.at("scalarOpacity"), "scalarOpacity");
-    spec.color = this->Points<4>(root.members.at("color"), "color");
-    const auto member = [&](const char* key) -> const JsonValue*
+    spec.scalarOpacity = this->Points<2>(root.at("scalarOpacity"), "scalarOpacity");
+    spec.color = this->Points<4>(root.at("color"), "color");
+    const auto member = [&](const char* key) -> const Json*
     {
-      const auto found = root.members.find(key);
-      return found == root.members.end() ? nullptr : &found->second;
+      const auto found = root.find(key);
+      return found == root.end() ? nullptr : &*found;
     };
-    if (const JsonValue* gradient = member("gradientOpacity"))
+    if (const Json* gradient = member("gradientOpacity"))
     {
       spec.gradientOpacity = this->Points<2>(*gradient, "gradientOpacity");
     }
-    if (const JsonValue* shade = member("shade"))
+    if (const Json* shade = member("shade"))
     {
-      if (shade->kind != JsonValue::Kind::Bool)
+      if (!shade->is_boolean())
       {
-        this->Fail(
-          *shade, std::string("shade must be true or false, got ") + JsonKindName(shade->kind));
+        this->Fail(std::string("shade must be true or false, got ") + KindName(*shade));
       }
-      spec.shade = shade->boolean;
+      spec.shade = shade->get<bool>();
     }
     const std::pair<const char*, std::optional<double>*> coefficients[] = {
       { "ambient", &spec.ambient }, { "diffuse", &spec.diffuse }, { "specular", &spec.specular }
     };
     for (const auto& coefficient : coefficients)
     {
-      if (const JsonValue* value = member(coefficient.first))
+      if (const Json* value = member(coefficient.first))
       {
         *coefficient.second = this->Number(*value, coefficient.first, 0, 1);
       }
     }
-    if (const JsonValue* power = member("specularPower"))
+    if (const Json* power = member("specularPower"))
     {
       // vtkVolumeProperty clamps the power to [0, 128]; say so instead of clamping silently.
       spec.specularPower = this->Number(*power, "specularPower", 0, 128);
@@ -193,12 +273,25 @@ TransferFunctionSpec ReadFile(const std::string& path)
   {
     throw CliError(ExitRuntime, "cannot read --tf '" + path + "'");
   }
-  JsonValue root;
+  Json root;
   try
   {
-    root = ParseJson(text.str());
+    root = ParseDocument(text.str());
   }
-  catch (const JsonError& error)
+  catch (const Json::parse_error& error)
+  {
+    throw CliError(
+      ExitRuntime, "--tf '" + path + "': malformed JSON: " + DescribeParseError(error));
+  }
+  catch (const Json::exception& error) // e.g. a number too large for a double
+  {
+    // The library's what() starts with "[json.exception.<kind>.<id>] ".
+    const std::string what = error.what();
+    const std::size_t start = what.rfind("] ", what.find(' ') + 1);
+    throw CliError(ExitRuntime,
+      "--tf '" + path + "': malformed JSON: " + (start == std::string::npos ? what : what.substr(start + 2)));
+  }
+  catch (const std::invalid_argument& error) // a repeated key
   {
     throw CliError(ExitRuntime, "--tf '" + path + "': malformed JSON: " + error.what());
   }
