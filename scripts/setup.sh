@@ -13,6 +13,8 @@ packages=(
   libgl-dev libgl1-mesa-dri         # OpenGL headers, Mesa llvmpipe driver
   libgtest-dev libbenchmark-dev     # GoogleTest unit tests, Google Benchmark
   zlib1g-dev                        # gzipped volumes
+  libcli11-dev                      # CLI11, the accelvolume command line's options (header-only)
+  nlohmann-json3-dev                # nlohmann::json: every JSON read and written (header-only)
   libvolpack1-dev                   # VolPack (Lacroute's shear-warp), the shear-warp benchmark's anchor
   openmpi-bin                       # mpirun for the MPI shear-warp tests
   xvfb xauth                        # X-window tests under xvfb-run

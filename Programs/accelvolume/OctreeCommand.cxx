@@ -18,6 +18,8 @@
 #include <vtkPointData.h>
 #include <vtkSMPTools.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -48,156 +50,21 @@ long ParseLong(const std::string& flag, const std::string& text)
   return value;
 }
 
-// Splits the octree flags from the input flags; the latter go through render's parser so the
-// two commands accept (and reject) volume inputs identically.
-OctreeOptions ParseOctreeOptions(const std::vector<std::string>& arguments, bool& help)
+// --flag N with N in [low, high].
+void AddBoundedInteger(CLI::App& command, const std::string& flag, const std::string& help,
+  long low, long high, int& target)
 {
-  // Input flags and their value counts.
-  static const std::map<std::string, int> inputFlags = { { "--phantom", 1 },
-    { "--phantom-dims", 3 }, { "--time", 1 }, { "--input", 1 }, { "--dims", 3 }, { "--type", 1 },
-    { "--spacing", 3 } };
-  OctreeOptions options;
-  std::vector<std::string> forwarded = { "accelvolume", "render" };
-  help = false;
-  auto value = [&](std::size_t& i, const std::string& flag) -> std::string
-  {
-    if (i + 1 >= arguments.size() ||
-      (flag != "--stats" && arguments[i + 1].size() > 2 &&
-        arguments[i + 1].compare(0, 2, "--") == 0))
+  AddFlag(command, flag, 1, "N", help,
+    [flag, low, high, &target](const FlagValues& values)
     {
-      throw CliError(ExitUsage, flag + " expects 1 value");
-    }
-    return arguments[++i];
-  };
-  for (std::size_t i = 2; i < arguments.size(); ++i)
-  {
-    const std::string& flag = arguments[i];
-    const auto input = inputFlags.find(flag);
-    if (input != inputFlags.end())
-    {
-      forwarded.push_back(flag);
-      for (int n = 0; n < input->second && i + 1 < arguments.size(); ++n)
-      {
-        forwarded.push_back(arguments[++i]);
-      }
-    }
-    else if (flag == "--help" || flag == "-h")
-    {
-      help = true;
-      return options;
-    }
-    else if (flag == "--leaf")
-    {
-      const long leaf = ParseLong(flag, value(i, flag));
-      if (leaf < 2 || leaf > 64 || (leaf & (leaf - 1)) != 0)
-      {
-        throw CliError(
-          ExitUsage, "--leaf must be a power of two between 2 and 64, got " + std::to_string(leaf));
-      }
-      options.leaf = static_cast<int>(leaf);
-    }
-    else if (flag == "--builder")
-    {
-      const std::string name = value(i, flag);
-      const std::map<std::string, int> builders = {
-        { "reference", vtkAccelVolumeMinMaxOctree::BUILDER_REFERENCE },
-        { "cpu", vtkAccelVolumeMinMaxOctree::BUILDER_CPU },
-        { "gpu", vtkAccelVolumeMinMaxOctree::BUILDER_GPU }
-      };
-      const auto found = builders.find(name);
-      if (found == builders.end())
-      {
-        throw CliError(
-          ExitUsage, "invalid value '" + name + "' for --builder (expected reference|cpu|gpu)");
-      }
-      options.builder = found->second;
-    }
-    else if (flag == "--threads" || flag == "--repeat")
-    {
-      const long number = ParseLong(flag, value(i, flag));
-      const long low = flag == "--threads" ? 0 : 1;
-      const long high = flag == "--threads" ? 1024 : 10000;
+      const long number = ParseLong(flag, values[0]);
       if (number < low || number > high)
       {
         throw CliError(ExitUsage,
           flag + " must be between " + std::to_string(low) + " and " + std::to_string(high));
       }
-      (flag == "--threads" ? options.threads : options.repeat) = static_cast<int>(number);
-    }
-    else if (flag == "--tf-low")
-    {
-      const std::string text = value(i, flag);
-      char* end = nullptr;
-      options.tfLow = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(options.tfLow))
-      {
-        throw CliError(ExitUsage, "--tf-low expects a number, got '" + text + "'");
-      }
-      options.haveTfLow = true;
-    }
-    else if (flag == "--gl")
-    {
-      const std::string name = value(i, flag);
-      options.glBackend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(name.c_str());
-      if (options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_EGL &&
-        options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_OSMESA)
-      {
-        throw CliError(ExitUsage, "invalid value '" + name + "' for --gl (expected osmesa|egl)");
-      }
-    }
-    else if (flag == "--stats")
-    {
-      options.statsPath = value(i, flag);
-    }
-    else if (flag == "--quiet")
-    {
-      options.quiet = true;
-    }
-    else if (flag == "--progress")
-    {
-      const std::string mode = value(i, flag);
-      if (!ParseProgressMode(mode, options.progress))
-      {
-        throw CliError(
-          ExitUsage, "invalid value '" + mode + "' for --progress (expected auto|off|on)");
-      }
-    }
-    else
-    {
-      throw CliError(ExitUsage,
-        flag.compare(0, 1, "-") == 0 ? "unknown flag '" + flag + "' (see accelvolume octree --help)"
-                                     : "unexpected argument '" + flag + "'");
-    }
-  }
-  options.volume = ParseOptions(forwarded).volume;
-  if (options.volume.inputPath.empty())
-  {
-    // render checks the phantom name before loading (a usage error, not a load failure).
-    const std::vector<std::string> names = accelvolume::PhantomNames();
-    if (std::find(names.begin(), names.end(), options.volume.phantom) == names.end())
-    {
-      throw CliError(ExitUsage, "invalid value '" + options.volume.phantom + "' for --phantom");
-    }
-    for (const int size : options.volume.phantomDims)
-    {
-      if (size < 1 || size > 4096)
-      {
-        throw CliError(ExitUsage, "--phantom-dims values must be between 1 and 4096");
-      }
-    }
-  }
-  if (!options.statsPath.empty() && options.statsPath != "-")
-  {
-    const auto parent = std::filesystem::path(options.statsPath).parent_path();
-    std::error_code code;
-    if (!parent.empty() && !std::filesystem::is_directory(parent, code))
-    {
-      throw CliError(ExitRuntime,
-        "cannot write --stats '" + options.statsPath + "': directory '" + parent.string() +
-          "' does not exist");
-    }
-  }
-  return options;
+      target = static_cast<int>(number);
+    });
 }
 
 double MillisecondsSince(std::chrono::steady_clock::time_point start)
@@ -244,18 +111,149 @@ void SetRamp(vtkPiecewiseFunction* opacity, double low, const double range[2])
   opacity->AddPoint(range[1], 1.0);
 }
 
+// --builder gpu: a headless OpenGL 4.3 context for the compute-shader builder (its renderer string
+// goes into result).
+vtkSmartPointer<vtkAccelVolumeHeadlessRenderWindow> CreateGpuBuilderWindow(
+  const OctreeOptions& options, VTKMessages& messages, OctreeResult& result)
+{
+  if (options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
+    !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(options.glBackend))
+  {
+    throw CliError(ExitRuntime,
+      std::string("the ") + vtkAccelVolumeHeadlessRenderWindow::GetBackendName(options.glBackend) +
+        " OpenGL backend is not available on this machine");
+  }
+  auto window = vtkSmartPointer<vtkAccelVolumeHeadlessRenderWindow>::New();
+  window->SetBackend(options.glBackend);
+  window->SetMultiSamples(0);
+  window->SetSize(16, 16);
+  window->Initialize();
+  messages.ThrowIfError("cannot create an OpenGL context");
+  const char* renderer = window->GetOpenGLRendererString();
+  result.glRenderer = renderer && *renderer ? renderer : "unknown";
+  int major = 0, minor = 0;
+  window->GetOpenGLVersion(major, minor);
+  if (major * 10 + minor < 43)
+  {
+    // The same message start the ctest gpu test keys its skip on.
+    throw CliError(ExitRuntime,
+      "--builder gpu needs OpenGL 4.3 compute shaders; the " +
+        std::string(
+          vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend())) +
+        " context offers " + std::to_string(major) + "." + std::to_string(minor) + " (" +
+        result.glRenderer + ")");
+  }
+  return window;
+}
+
 } // namespace
 
-int RunOctreeCommand(const std::vector<std::string>& arguments)
+void AddOctreeFlags(CLI::App& command, OctreeOptions& options)
 {
-  bool help = false;
-  const OctreeOptions options = ParseOctreeOptions(arguments, help);
-  if (help)
-  {
-    std::cout << OctreeHelp();
-    return 0;
-  }
+  command.option_defaults()->group("Octree");
+  AddFlag(command, "--leaf", 1, "L", "leaf block edge in voxels, a power of two 2..64 (default 8)",
+    [&](const FlagValues& values)
+    {
+      const long leaf = ParseLong("--leaf", values[0]);
+      if (leaf < 2 || leaf > 64 || (leaf & (leaf - 1)) != 0)
+      {
+        throw CliError(
+          ExitUsage, "--leaf must be a power of two between 2 and 64, got " + std::to_string(leaf));
+      }
+      options.leaf = static_cast<int>(leaf);
+    });
+  AddFlag(command, "--builder", 1, "B",
+    "reference (plain loops) | cpu (Morton order, vtkSMPTools;\n"
+    "default) | gpu (OpenGL 4.3 compute shaders)",
+    [&](const FlagValues& values)
+    {
+      const std::map<std::string, int> builders = {
+        { "reference", vtkAccelVolumeMinMaxOctree::BUILDER_REFERENCE },
+        { "cpu", vtkAccelVolumeMinMaxOctree::BUILDER_CPU },
+        { "gpu", vtkAccelVolumeMinMaxOctree::BUILDER_GPU }
+      };
+      const auto found = builders.find(values[0]);
+      if (found == builders.end())
+      {
+        throw CliError(ExitUsage,
+          "invalid value '" + values[0] + "' for --builder (expected reference|cpu|gpu)");
+      }
+      options.builder = found->second;
+    });
+  AddBoundedInteger(command, "--threads", "cpu builder threads (0 = vtkSMPTools' default)", 0, 1024,
+    options.threads);
+  AddBoundedInteger(command, "--repeat",
+    "builds, read-floor passes and classifications (default 5)", 1, 10000, options.repeat);
+  AddFlag(command, "--tf-low", 1, "V",
+    "opacity 0 up to V, ramping to 1 at the maximum\n"
+    "(default: 10% into the scalar range)",
+    [&](const FlagValues& values)
+    {
+      const std::string& text = values[0];
+      char* end = nullptr;
+      options.tfLow = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(options.tfLow))
+      {
+        throw CliError(ExitUsage, "--tf-low expects a number, got '" + text + "'");
+      }
+      options.haveTfLow = true;
+    });
+  AddFlag(command, "--gl", 1, "osmesa|egl",
+    "headless OpenGL backend of the gpu builder\n"
+    "(default: $ACCELVOLUME_GL, else EGL, then OSMesa)",
+    [&](const FlagValues& values)
+    {
+      options.glBackend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(values[0].c_str());
+      if (options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_EGL &&
+        options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_OSMESA)
+      {
+        throw CliError(
+          ExitUsage, "invalid value '" + values[0] + "' for --gl (expected osmesa|egl)");
+      }
+    });
+  command.option_defaults()->group("Output");
+  AddFlag(
+    command, "--stats", 1, "FILE.json", "write the results as JSON ('-' = stdout)",
+    [&](const FlagValues& values) { options.statsPath = values[0]; }, true);
+  AddProgressFlag(command, options.progress,
+    "progress bar of the builds on stderr (default auto: only\n"
+    "when stderr is a terminal)");
+  AddSwitch(command, "--quiet", "no summary line", [&]() { options.quiet = true; });
+}
 
+void CheckOctree(const OctreeOptions& options)
+{
+  if (options.volume.inputPath.empty())
+  {
+    // render checks the phantom name before loading (a usage error, not a load failure).
+    const std::vector<std::string> names = accelvolume::PhantomNames();
+    if (std::find(names.begin(), names.end(), options.volume.phantom) == names.end())
+    {
+      throw CliError(ExitUsage, "invalid value '" + options.volume.phantom + "' for --phantom");
+    }
+    for (const int size : options.volume.phantomDims)
+    {
+      if (size < 1 || size > 4096)
+      {
+        throw CliError(ExitUsage, "--phantom-dims values must be between 1 and 4096");
+      }
+    }
+  }
+  if (!options.statsPath.empty() && options.statsPath != "-")
+  {
+    const auto parent = std::filesystem::path(options.statsPath).parent_path();
+    std::error_code code;
+    if (!parent.empty() && !std::filesystem::is_directory(parent, code))
+    {
+      throw CliError(ExitRuntime,
+        "cannot write --stats '" + options.statsPath + "': directory '" + parent.string() +
+          "' does not exist");
+    }
+  }
+}
+
+int RunOctreeCommand(const OctreeOptions& options)
+{
   VTKMessages messages;
   std::string error;
   vtkSmartPointer<vtkImageData> image = LoadVolume(options.volume, error);
@@ -299,34 +297,7 @@ int RunOctreeCommand(const std::vector<std::string>& arguments)
   vtkSmartPointer<vtkAccelVolumeHeadlessRenderWindow> window;
   if (options.builder == vtkAccelVolumeMinMaxOctree::BUILDER_GPU)
   {
-    if (options.glBackend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
-      !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(options.glBackend))
-    {
-      throw CliError(ExitRuntime,
-        std::string("the ") +
-          vtkAccelVolumeHeadlessRenderWindow::GetBackendName(options.glBackend) +
-          " OpenGL backend is not available on this machine");
-    }
-    window = vtkSmartPointer<vtkAccelVolumeHeadlessRenderWindow>::New();
-    window->SetBackend(options.glBackend);
-    window->SetMultiSamples(0);
-    window->SetSize(16, 16);
-    window->Initialize();
-    messages.ThrowIfError("cannot create an OpenGL context");
-    const char* renderer = window->GetOpenGLRendererString();
-    result.glRenderer = renderer && *renderer ? renderer : "unknown";
-    int major = 0, minor = 0;
-    window->GetOpenGLVersion(major, minor);
-    if (major * 10 + minor < 43)
-    {
-      // The same message start the ctest gpu test keys its skip on.
-      throw CliError(ExitRuntime,
-        "--builder gpu needs OpenGL 4.3 compute shaders; the " +
-          std::string(
-            vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend())) +
-          " context offers " + std::to_string(major) + "." + std::to_string(minor) + " (" +
-          result.glRenderer + ")");
-    }
+    window = CreateGpuBuilderWindow(options, messages, result);
     octree->SetRenderWindow(window);
   }
 
@@ -427,38 +398,6 @@ int RunOctreeCommand(const std::vector<std::string>& arguments)
     out << OctreeSummary(options, image, result) << "\n";
   }
   return 0;
-}
-
-std::string OctreeHelp()
-{
-  return "usage: accelvolume octree [flags]\n"
-         "\n"
-         "Builds the min-max octree (Lim and Shin 2009: Morton-order min/max blocks for empty-space\n"
-         "skipping) of a volume --repeat times, each time as if the data had changed, and\n"
-         "reports the build time against a one-thread streaming read of the volume (the floor)\n"
-         "and the re-classification time after a transfer-function change.\n"
-         "\n"
-         "Input: --phantom, --phantom-dims, --time, --input, --dims, --type, --spacing as in\n"
-         "  accelvolume render --help (default: phantom vessels 128x128x128).\n"
-         "\n"
-         "Octree:\n"
-         "  --leaf L                   leaf block edge in voxels, a power of two 2..64 (default "
-         "8)\n"
-         "  --builder B                reference (plain loops) | cpu (Morton order, vtkSMPTools;\n"
-         "                             default) | gpu (OpenGL 4.3 compute shaders)\n"
-         "  --threads N                cpu builder threads (0 = vtkSMPTools' default)\n"
-         "  --repeat K                 builds, read-floor passes and classifications (default 5)\n"
-         "  --tf-low V                 opacity 0 up to V, ramping to 1 at the maximum\n"
-         "                             (default: 10% into the scalar range)\n"
-         "  --gl osmesa|egl            headless OpenGL backend of the gpu builder\n"
-         "                             (default: $ACCELVOLUME_GL, else EGL, then OSMesa)\n"
-         "\n"
-         "Output:\n"
-         "  --stats FILE.json          write the results as JSON ('-' = stdout)\n"
-         "  --progress auto|on|off     progress bar of the builds on stderr (default auto: only\n"
-         "                             when stderr is a terminal)\n"
-         "  --quiet                    no summary line\n"
-         "  --help                     this text\n";
 }
 
 } // namespace accelvolume::cli

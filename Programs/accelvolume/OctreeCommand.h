@@ -14,6 +14,11 @@
 #include <string>
 #include <vector>
 
+namespace CLI
+{
+class App;
+}
+
 namespace accelvolume::cli
 {
 
@@ -57,11 +62,14 @@ void WriteOctreeStats(
 std::string OctreeSummary(
   const OctreeOptions& options, vtkImageData* image, const OctreeResult& result);
 
-// Runs `accelvolume octree [flags]` (arguments as main received them, arguments[1] == "octree").
-// Returns the exit code; throws CliError for usage (2) and runtime (1) failures.
-int RunOctreeCommand(const std::vector<std::string>& arguments);
+// The octree flags of `accelvolume octree` (help groups "Octree" and "Output"; the input flags
+// are Options.h's AddInputFlags) and the checks after parsing (CheckInput first).
+void AddOctreeFlags(CLI::App& command, OctreeOptions& options);
+void CheckOctree(const OctreeOptions& options);
 
-std::string OctreeHelp();
+// Runs `accelvolume octree` with parsed options. Returns the exit code; throws CliError for
+// runtime failures (1).
+int RunOctreeCommand(const OctreeOptions& options);
 
 } // namespace accelvolume::cli
 

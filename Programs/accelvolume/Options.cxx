@@ -1,15 +1,19 @@
-// Options: parsing and help text of the accelvolume command line.
+// Options: the flags of `accelvolume render` (CLI11), their help text and the checks between them.
 #include "Options.h"
 
+#include "reference/Phantoms.h"
+
 #include <vtkAccelVolumeHeadlessRenderWindow.h>
+
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <functional>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 namespace accelvolume::cli
 {
@@ -70,440 +74,479 @@ Enum ParseChoice(
   return found->second;
 }
 
-class ArgumentReader
+// --flag X (one number), --flag N (one integer), and the same with count values.
+void AddNumber(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, std::function<void(double)> take)
 {
-public:
-  ArgumentReader(const std::vector<std::string>& arguments, std::size_t start)
-    : Arguments(arguments)
-    , Position(start)
-  {
-  }
-  bool Done() const { return this->Position >= this->Arguments.size(); }
-  std::string Next() { return this->Arguments[this->Position++]; }
-  // The values of flag; a missing value (end of line or another flag) is a usage error.
-  std::vector<std::string> Values(const std::string& flag, int count)
-  {
-    std::vector<std::string> values;
-    for (int i = 0; i < count; ++i)
+  AddFlag(command, flag, 1, text, help,
+    [flag, take](const FlagValues& values) { take(ParseNumber(flag, values[0])); });
+}
+
+void AddInteger(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, std::function<void(int)> take)
+{
+  AddFlag(command, flag, 1, text, help,
+    [flag, take](const FlagValues& values) { take(ParseInteger(flag, values[0])); });
+}
+
+void AddNumbers(CLI::App& command, const std::string& flag, int count, const std::string& text,
+  const std::string& help, std::function<void(const std::vector<double>&)> take)
+{
+  AddFlag(command, flag, count, text, help,
+    [flag, take](const FlagValues& values)
     {
-      const bool missing = this->Done() ||
-        (this->Arguments[this->Position].compare(0, 2, "--") == 0 &&
-          this->Arguments[this->Position].size() > 2);
-      if (missing)
+      std::vector<double> numbers;
+      for (const std::string& value : values)
+      {
+        numbers.push_back(ParseNumber(flag, value));
+      }
+      take(numbers);
+    });
+}
+
+void AddIntegers(CLI::App& command, const std::string& flag, int count, const std::string& text,
+  const std::string& help, std::function<void(const std::vector<int>&)> take)
+{
+  AddFlag(command, flag, count, text, help,
+    [flag, take](const FlagValues& values)
+    {
+      std::vector<int> numbers;
+      for (const std::string& value : values)
+      {
+        numbers.push_back(ParseInteger(flag, value));
+      }
+      take(numbers);
+    });
+}
+
+void AddText(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, std::string& target)
+{
+  AddFlag(
+    command, flag, 1, text, help, [&target](const FlagValues& values) { target = values[0]; });
+}
+
+template <typename Enum>
+void AddChoice(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, std::map<std::string, Enum> choices, std::function<void(Enum)> take)
+{
+  AddFlag(command, flag, 1, text, help,
+    [flag, choices, take](const FlagValues& values)
+    { take(ParseChoice<Enum>(flag, values[0], choices)); });
+}
+
+// --flag N (Number int) or --flag X (Number double) within [low, high]; outside it the error is
+// "--flag must be between low and high" + note.
+template <typename Number>
+void AddBounded(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, Number low, Number high, const std::string& note,
+  std::function<void(Number)> take)
+{
+  AddFlag(command, flag, 1, text, help,
+    [=](const FlagValues& values)
+    {
+      Number value;
+      if constexpr (std::is_integral<Number>::value)
+      {
+        value = ParseInteger(flag, values[0]);
+      }
+      else
+      {
+        value = ParseNumber(flag, values[0]);
+      }
+      if (!(value >= low && value <= high))
       {
         throw Usage(
-          flag + " expects " + std::to_string(count) + " value" + (count == 1 ? "" : "s"));
+          flag + " must be between " + FormatNumber(low) + " and " + FormatNumber(high) + note);
       }
-      values.push_back(this->Next());
-    }
-    return values;
-  }
-  std::string Value(const std::string& flag) { return this->Values(flag, 1)[0]; }
-  std::vector<double> Numbers(const std::string& flag, int count)
-  {
-    std::vector<double> numbers;
-    for (const std::string& text : this->Values(flag, count))
-    {
-      numbers.push_back(ParseNumber(flag, text));
-    }
-    return numbers;
-  }
-  std::vector<int> Integers(const std::string& flag, int count)
-  {
-    std::vector<int> numbers;
-    for (const std::string& text : this->Values(flag, count))
-    {
-      numbers.push_back(ParseInteger(flag, text));
-    }
-    return numbers;
-  }
+      take(value);
+    });
+}
 
-private:
-  const std::vector<std::string>& Arguments;
-  std::size_t Position;
-};
-
-void ParseRenderFlags(ArgumentReader& reader, Options& options)
+// --flag X with X > 0.
+void AddPositive(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, std::function<void(double)> take)
 {
-  using Handler = std::function<void(const std::string&)>;
-  VolumeRequest& volume = options.volume;
-  const std::map<std::string, Handler> handlers = {
-    { "--phantom", [&](const std::string& f) { volume.phantom = reader.Value(f); } },
-    { "--phantom-dims",
-      [&](const std::string& f)
-      {
-        const std::vector<int> dims = reader.Integers(f, 3);
-        std::copy(dims.begin(), dims.end(), volume.phantomDims);
-      } },
-    { "--time", [&](const std::string& f) { volume.phantomTime = reader.Numbers(f, 1)[0]; } },
-    { "--input", [&](const std::string& f) { volume.inputPath = reader.Value(f); } },
-    { "--dims",
-      [&](const std::string& f)
-      {
-        const std::vector<int> dims = reader.Integers(f, 3);
-        if (*std::min_element(dims.begin(), dims.end()) < 1)
-        {
-          throw Usage("--dims values must be at least 1, got " + std::to_string(dims[0]) + " " +
-            std::to_string(dims[1]) + " " + std::to_string(dims[2]));
-        }
-        std::copy(dims.begin(), dims.end(), volume.dims);
-        volume.haveDims = true;
-      } },
-    { "--type",
-      [&](const std::string& f)
-      {
-        const std::string name = reader.Value(f);
-        volume.kind = ParseScalarKind(name);
-        if (volume.kind == ScalarKind::Unknown)
-        {
-          throw Usage("invalid value '" + name +
-            "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
-        }
-      } },
-    { "--spacing",
-      [&](const std::string& f)
-      {
-        const std::vector<double> spacing = reader.Numbers(f, 3);
-        for (int axis = 0; axis < 3; ++axis)
-        {
-          if (spacing[axis] <= 0)
-          {
-            throw Usage("--spacing values must be positive");
-          }
-          volume.spacing[axis] = spacing[axis];
-        }
-        volume.haveSpacing = true;
-      } },
-    { "--mapper",
-      [&](const std::string& f)
-      {
-        options.mapper = ParseChoice<MapperKind>(f, reader.Value(f),
-          { { "slice", MapperKind::Slice }, { "raycast", MapperKind::RayCast },
-            { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed },
-            { "shearwarp", MapperKind::ShearWarp }, { "smart", MapperKind::Smart } });
-      } },
-    { "--blend",
-      [&](const std::string& f)
-      {
-        options.blend = ParseChoice<BlendKind>(f, reader.Value(f),
-          { { "mip", BlendKind::MIP }, { "minip", BlendKind::MinIP },
-            { "additive", BlendKind::Additive }, { "average", BlendKind::Average },
-            { "composite", BlendKind::Composite } });
-      } },
-    { "--window",
-      [&](const std::string& f)
-      {
-        const std::vector<double> window = reader.Numbers(f, 2);
-        if (!(window[0] < window[1]))
-        {
-          throw Usage("--window needs LO < HI, got " + FormatNumber(window[0]) + " " +
-            FormatNumber(window[1]));
-        }
-        options.window[0] = window[0];
-        options.window[1] = window[1];
-        options.haveWindow = true;
-      } },
-    { "--tf", [&](const std::string& f) { options.transferFunction = reader.Value(f); } },
-    { "--shade",
-      [&](const std::string& f)
-      {
-        options.shade = ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-        options.haveShade = true;
-      } },
-    { "--gradient-opacity",
-      [&](const std::string& f)
-      {
-        const std::vector<double> ramp = reader.Numbers(f, 4);
-        if (!(ramp[0] >= 0 && ramp[0] < ramp[2]))
-        {
-          throw Usage("--gradient-opacity needs 0 <= G0 < G1, got " + FormatNumber(ramp[0]) + " " +
-            FormatNumber(ramp[2]));
-        }
-        if (ramp[1] < 0 || ramp[1] > 1 || ramp[3] < 0 || ramp[3] > 1)
-        {
-          throw Usage("--gradient-opacity opacities A0 A1 must lie in [0, 1]");
-        }
-        std::copy(ramp.begin(), ramp.end(), options.gradientOpacity);
-        options.haveGradientOpacity = true;
-      } },
-    { "--raysum-unit",
-      [&](const std::string& f)
-      {
-        options.raysumUnit = reader.Numbers(f, 1)[0];
-        if (options.raysumUnit <= 0)
-        {
-          throw Usage("--raysum-unit must be positive");
-        }
-        options.haveRaysumUnit = true;
-      } },
-    { "--size",
-      [&](const std::string& f)
-      {
-        const std::vector<int> size = reader.Integers(f, 2);
-        for (int axis = 0; axis < 2; ++axis)
-        {
-          if (size[axis] <= 0 || size[axis] > 16384)
-          {
-            throw Usage("--size values must be between 1 and 16384, got " +
-              std::to_string(size[0]) + " " + std::to_string(size[1]));
-          }
-          options.size[axis] = size[axis];
-        }
-      } },
-    { "--azimuth", [&](const std::string& f) { options.azimuth = reader.Numbers(f, 1)[0]; } },
-    { "--elevation", [&](const std::string& f) { options.elevation = reader.Numbers(f, 1)[0]; } },
-    { "--roll", [&](const std::string& f) { options.roll = reader.Numbers(f, 1)[0]; } },
-    { "--zoom",
-      [&](const std::string& f)
-      {
-        options.zoom = reader.Numbers(f, 1)[0];
-        if (options.zoom <= 0)
-        {
-          throw Usage("--zoom must be positive");
-        }
-      } },
-    { "--parallel",
-      [&](const std::string&)
-      {
-        options.parallel = true;
-        options.havePerspective = false;
-      } },
-    { "--perspective",
-      [&](const std::string&)
-      {
-        options.parallel = false;
-        options.havePerspective = true;
-      } },
-    { "--crop",
-      [&](const std::string& f)
-      {
-        const std::vector<double> crop = reader.Numbers(f, 6);
-        std::copy(crop.begin(), crop.end(), options.crop);
-        options.haveCrop = true;
-      } },
-    { "--boundary-rerender",
-      [&](const std::string& f)
-      {
-        options.boundaryRerender =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-      } },
-    { "--ert",
-      [&](const std::string& f)
-      {
-        options.earlyRayTermination =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-      } },
-    { "--ert-interval",
-      [&](const std::string& f)
-      {
-        options.ertInterval = reader.Integers(f, 1)[0];
-        if (options.ertInterval < 1 || options.ertInterval > 4096)
-        {
-          throw Usage("--ert-interval must be between 1 and 4096");
-        }
-      } },
-    { "--jitter",
-      [&](const std::string& f) {
-        options.jitter =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-      } },
-    { "--gradients",
-      [&](const std::string& f)
-      {
-        options.precomputeGradients =
-          ParseChoice<bool>(f, reader.Value(f), { { "texture", true }, { "on-the-fly", false } });
-      } },
-    { "--ess",
-      [&](const std::string& f)
-      {
-        options.emptySpaceSkipping = ParseChoice<int>(
-          f, reader.Value(f), { { "none", 0 }, { "fragment", 1 }, { "octree", 2 }, { "both", 3 } });
-      } },
-    { "--slab-samples",
-      [&](const std::string& f)
-      {
-        options.slabSamples = reader.Integers(f, 1)[0];
-        if (options.slabSamples < 1 || options.slabSamples > 64)
-        {
-          throw Usage("--slab-samples must be between 1 and 64");
-        }
-      } },
-    { "--gpu-budget",
-      [&](const std::string& f)
-      {
-        options.gpuBudgetMiB = reader.Numbers(f, 1)[0];
-        if (!(options.gpuBudgetMiB >= 0 && options.gpuBudgetMiB <= 16.0 * 1024 * 1024))
-        {
-          throw Usage("--gpu-budget must be between 0 (no budget) and 16777216 MiB");
-        }
-      } },
-    { "--max-brick",
-      [&](const std::string& f)
-      {
-        options.maxBrick = reader.Integers(f, 1)[0];
-        if (options.maxBrick != 0 && (options.maxBrick < 4 || options.maxBrick > 65536))
-        {
-          throw Usage("--max-brick must be 0 (the GL limit) or between 4 and 65536 texels");
-        }
-      } },
-    { "--sample-distance",
-      [&](const std::string& f)
-      {
-        options.sampleDistance = reader.Numbers(f, 1)[0];
-        if (options.sampleDistance <= 0)
-        {
-          throw Usage("--sample-distance must be positive");
-        }
-        options.haveSampleDistance = true;
-      } },
-    { "--slices",
-      [&](const std::string& f)
-      {
-        options.slices = reader.Integers(f, 1)[0];
-        if (options.slices < 2 || options.slices > 65536)
-        {
-          throw Usage("--slices must be between 2 and 65536");
-        }
-      } },
-    { "--leap",
-      [&](const std::string& f)
-      {
-        options.leap = ParseChoice<LeapKind>(f, reader.Value(f),
-          { { "none", LeapKind::None }, { "octree", LeapKind::Octree },
-            { "distance", LeapKind::DistanceMap } });
-        options.haveLeap = true;
-      } },
-    { "--cell-leap",
-      [&](const std::string& f)
-      {
-        options.cellLeap =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-        options.haveCellLeap = true;
-      } },
-    { "--threads",
-      [&](const std::string& f)
-      {
-        options.threads = reader.Integers(f, 1)[0];
-        if (options.threads < 0 || options.threads > 1024)
-        {
-          throw Usage("--threads must be between 0 and 1024 (0 = the mapper's default)");
-        }
-        options.haveThreads = true;
-      } },
-    { "--image-sample-distance",
-      [&](const std::string& f)
-      {
-        options.imageSampleDistance = reader.Numbers(f, 1)[0];
-        if (options.imageSampleDistance < 1 || options.imageSampleDistance > 32)
-        {
-          throw Usage("--image-sample-distance must be between 1 and 32");
-        }
-        options.haveImageSampleDistance = true;
-      } },
-    { "--balance",
-      [&](const std::string& f)
-      {
-        options.balance =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-        options.haveBalance = true;
-      } },
-    { "--rle",
-      [&](const std::string& f)
-      {
-        options.runLengthEncoding =
-          ParseChoice<bool>(f, reader.Value(f), { { "on", true }, { "off", false } });
-        options.haveRunLengthEncoding = true;
-      } },
-    { "--shading",
-      [&](const std::string& f)
-      {
-        options.phongShading =
-          ParseChoice<bool>(f, reader.Value(f), { { "table", false }, { "phong", true } });
-        options.haveShading = true;
-      } },
-    { "--mpi", [&](const std::string&) { options.mpi = true; } },
-    { "--mpi-timeout",
-      [&](const std::string& f)
-      {
-        options.mpiTimeout = reader.Numbers(f, 1)[0];
-        if (!(options.mpiTimeout >= 0 && options.mpiTimeout <= 86400))
-        {
-          throw Usage("--mpi-timeout must be between 0 and 86400 seconds (0 = wait forever)");
-        }
-        options.haveMpiTimeout = true;
-      } },
-    { "--frames",
-      [&](const std::string& f)
-      {
-        options.frames = reader.Integers(f, 1)[0];
-        if (options.frames < 1 || options.frames > 100000)
-        {
-          throw Usage("--frames must be between 1 and 100000");
-        }
-      } },
-    { "--out", [&](const std::string& f) { options.outPath = reader.Value(f); } },
-    { "--stats",
-      [&](const std::string& f)
-      {
-        // "-" is a value here, so it is read without the flag check of Value().
-        if (reader.Done())
-        {
-          throw Usage(f + " expects 1 value");
-        }
-        options.statsPath = reader.Next();
-      } },
-    { "--gl",
-      [&](const std::string& f)
-      {
-        options.gl = reader.Value(f);
-        options.glBackend =
-          vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.gl.c_str());
-        if (options.glBackend < 0)
-        {
-          throw Usage("invalid value '" + options.gl + "' for --gl (expected osmesa|egl|x)");
-        }
-      } },
-    { "--background",
-      [&](const std::string& f)
-      {
-        const std::vector<double> colour = reader.Numbers(f, 3);
-        for (int i = 0; i < 3; ++i)
-        {
-          if (colour[i] < 0 || colour[i] > 1)
-          {
-            throw Usage("--background values must lie in [0, 1]");
-          }
-          options.background[i] = colour[i];
-        }
-      } },
-    { "--quiet", [&](const std::string&) { options.quiet = true; } },
-    { "--progress",
-      [&](const std::string& f)
-      {
-        const std::string mode = reader.Value(f);
-        if (!ParseProgressMode(mode, options.progress))
-        {
-          throw Usage("invalid value '" + mode + "' for --progress (expected auto|off|on)");
-        }
-      } },
-  };
-  while (!reader.Done())
-  {
-    const std::string flag = reader.Next();
-    if (flag == "--help" || flag == "-h")
+  AddNumber(command, flag, text, help,
+    [flag, take](double value)
     {
-      options.action = Options::Action::RenderHelp;
-      return;
-    }
-    const auto handler = handlers.find(flag);
-    if (handler == handlers.end())
+      if (value <= 0)
+      {
+        throw Usage(flag + " must be positive");
+      }
+      take(value);
+    });
+}
+
+// --flag on|off.
+void AddOnOff(CLI::App& command, const std::string& flag, const std::string& help,
+  std::function<void(bool)> take)
+{
+  AddChoice<bool>(command, flag, "on|off", help, { { "on", true }, { "off", false } }, take);
+}
+
+// The mapper and how it blends, classifies, shades and samples.
+void AddRenderingFlags(CLI::App& command, Options& options)
+{
+  AddChoice<MapperKind>(command, "--mapper", "M",
+    "slice (AccelVolume, default) | raycast (AccelVolume's CPU\n"
+    "ray caster) | shearwarp (AccelVolume's CPU shear-warp:\n"
+    "parallel projection, composite/mip/minip, one sample per\n"
+    "volume slice) | vtk-gpu (vtkGPUVolumeRayCastMapper) |\n"
+    "vtk-fixed (vtkFixedPointVolumeRayCastMapper) | smart\n"
+    "(vtkAccelVolumeSmartMapper: slice, raycast or shearwarp per\n"
+    "frame, each configured by its own flags); all use the\n"
+    "same camera, transfer functions and world sample distance",
+    { { "slice", MapperKind::Slice }, { "raycast", MapperKind::RayCast },
+      { "vtk-gpu", MapperKind::VTKGPU }, { "vtk-fixed", MapperKind::VTKFixed },
+      { "shearwarp", MapperKind::ShearWarp }, { "smart", MapperKind::Smart } },
+    [&](MapperKind mapper) { options.mapper = mapper; });
+  AddChoice<BlendKind>(command, "--blend", "B",
+    "mip (default) | minip | additive | average | composite",
+    { { "mip", BlendKind::MIP }, { "minip", BlendKind::MinIP }, { "additive", BlendKind::Additive },
+      { "average", BlendKind::Average }, { "composite", BlendKind::Composite } },
+    [&](BlendKind blend) { options.blend = blend; });
+  AddNumbers(command, "--window", 2, "LO HI",
+    "data values mapped to black..white, opacity 0..1\n"
+    "(default: the full scalar range; minip: opacity 1)",
+    [&](const std::vector<double>& window)
     {
-      throw Usage(flag.compare(0, 1, "-") == 0
-          ? "unknown flag '" + flag + "' (see accelvolume render --help)"
-          : "unexpected argument '" + flag + "'");
-    }
-    handler->second(flag);
-  }
+      if (!(window[0] < window[1]))
+      {
+        throw Usage(
+          "--window needs LO < HI, got " + FormatNumber(window[0]) + " " + FormatNumber(window[1]));
+      }
+      options.window[0] = window[0];
+      options.window[1] = window[1];
+      options.haveWindow = true;
+    });
+  AddText(command, "--tf", "tf1|tf2|FILE.json",
+    "transfer function for every blend mode, replacing the default\n"
+    "ramp; presets are laid out over --window LO HI or the data\n"
+    "range [lo, hi]: tf1 semi-transparent (opacity 0 below\n"
+    "lo+10%, rising to 0.35 at hi; dark red -> orange -> white),\n"
+    "tf2 opaque surfaces (opacity steps 0 -> 1 between lo+30% and\n"
+    "lo+32%; bone colour). A FILE (data units) is a JSON object:\n"
+    "\"scalarOpacity\": [[x, a], ...], \"color\": [[x, r, g, b], ...]\n"
+    "(both required; x increasing, a/r/g/b in 0..1), optional\n"
+    "\"gradientOpacity\": [[g, a], ...], \"shade\": true|false,\n"
+    "\"ambient\", \"diffuse\", \"specular\" (0..1),\n"
+    "\"specularPower\" (0..128), \"name\", \"description\"",
+    options.transferFunction);
+  AddOnOff(command, "--shade",
+    "gradient shading with one headlight (default off, or the\n"
+    "file's \"shade\"); lighting ambient 0.2 diffuse 0.7\n"
+    "specular 0.3 power 10 unless the file gives them (the slice\n"
+    "mapper may not shade yet; raycast, shearwarp, vtk-gpu and\n"
+    "vtk-fixed do)",
+    [&](bool shade)
+    {
+      options.shade = shade;
+      options.haveShade = true;
+    });
+  AddNumbers(command, "--gradient-opacity", 4, "G0 A0 G1 A1",
+    "opacity multiplier ramping A0..A1 over gradient magnitudes\n"
+    "G0..G1 (gradient-magnitude units; overrides the file's)",
+    [&](const std::vector<double>& ramp)
+    {
+      if (!(ramp[0] >= 0 && ramp[0] < ramp[2]))
+      {
+        throw Usage("--gradient-opacity needs 0 <= G0 < G1, got " + FormatNumber(ramp[0]) + " " +
+          FormatNumber(ramp[2]));
+      }
+      if (ramp[1] < 0 || ramp[1] > 1 || ramp[3] < 0 || ramp[3] > 1)
+      {
+        throw Usage("--gradient-opacity opacities A0 A1 must lie in [0, 1]");
+      }
+      std::copy(ramp.begin(), ramp.end(), options.gradientOpacity);
+      options.haveGradientOpacity = true;
+    });
+  AddPositive(command, "--raysum-unit", "D",
+    "world length counted as one raysum unit (slice and raycast\n"
+    "mappers, additive; default: largest world extent / 4)",
+    [&](double unit)
+    {
+      options.raysumUnit = unit;
+      options.haveRaysumUnit = true;
+    });
+  AddPositive(command, "--sample-distance", "D",
+    "world distance between samples/slices\n"
+    "(default: the smallest voxel spacing)",
+    [&](double distance)
+    {
+      options.sampleDistance = distance;
+      options.haveSampleDistance = true;
+    });
+  AddBounded<int>(command, "--slices", "N",
+    "slice count through the volume depth instead (slice mapper;\n"
+    "other mappers sample at the volume diagonal / N)",
+    2, 65536, "", [&](int slices) { options.slices = slices; });
+}
+
+// Cropping and the slice mapper's acceleration switches (ERT and ESS also reach other mappers).
+void AddAccelerationFlags(CLI::App& command, Options& options)
+{
+  AddNumbers(command, "--crop", 6, "X0 X1 Y0 Y1 Z0 Z1",
+    "keep this index-space sub-volume (cropping, SubVolume)",
+    [&](const std::vector<double>& crop)
+    {
+      std::copy(crop.begin(), crop.end(), options.crop);
+      options.haveCrop = true;
+    });
+  AddOnOff(command, "--boundary-rerender", "re-render the cut faces (slice mapper; default on)",
+    [&](bool on) { options.boundaryRerender = on; });
+  AddBounded<int>(command, "--slab-samples", "N",
+    "MIP/MinIP slice depths sampled per proxy fragment (slice\n"
+    "mapper; 1 = classic slicing, the default)",
+    1, 64, "", [&](int samples) { options.slabSamples = samples; });
+  AddNumber(command, "--gpu-budget", "MIB",
+    "GPU memory the volume's bricks may hold (slice mapper;\n"
+    "default 0 = no budget); beyond it bricks stream per frame",
+    [&](double budget)
+    {
+      if (!(budget >= 0 && budget <= 16.0 * 1024 * 1024))
+      {
+        throw Usage("--gpu-budget must be between 0 (no budget) and 16777216 MiB");
+      }
+      options.gpuBudgetMiB = budget;
+    });
+  AddInteger(command, "--max-brick", "N",
+    "largest brick texture per axis (slice mapper; default 0 =\n"
+    "GL_MAX_3D_TEXTURE_SIZE)",
+    [&](int brick)
+    {
+      if (brick != 0 && (brick < 4 || brick > 65536))
+      {
+        throw Usage("--max-brick must be 0 (the GL limit) or between 4 and 65536 texels");
+      }
+      options.maxBrick = brick;
+    });
+  AddOnOff(command, "--ert",
+    "early ray termination (slice, raycast: composite;\n"
+    "shearwarp: skip links over saturated pixels, every blend;\n"
+    "default on)",
+    [&](bool on) { options.earlyRayTermination = on; });
+  AddBounded<int>(command, "--ert-interval", "N", "slices between termination passes (default 16)",
+    1, 4096, "", [&](int interval) { options.ertInterval = interval; });
+  AddChoice<int>(command, "--ess", "none|fragment|octree|both",
+    "composite empty-space skipping (slice mapper; default both)",
+    { { "none", 0 }, { "fragment", 1 }, { "octree", 2 }, { "both", 3 } },
+    [&](int skipping) { options.emptySpaceSkipping = skipping; });
+  AddOnOff(command, "--jitter", "composite per-pixel sample jitter (slice mapper; default off)",
+    [&](bool on) { options.jitter = on; });
+  AddChoice<bool>(command, "--gradients", "texture|on-the-fly",
+    "shading gradients precomputed or by central differences\n"
+    "(slice mapper; default texture)",
+    { { "texture", true }, { "on-the-fly", false } },
+    [&](bool precompute) { options.precomputeGradients = precompute; });
+}
+
+// The CPU mappers' flags (usage errors with the GPU mappers: CheckRender).
+void AddCpuFlags(CLI::App& command, Options& options)
+{
+  AddBounded<int>(command, "--threads", "N",
+    "threads, 0..1024 (default 0: the mapper's default); the\n"
+    "raycast and shearwarp images do not depend on it",
+    0, 1024, " (0 = the mapper's default)",
+    [&](int threads)
+    {
+      options.threads = threads;
+      options.haveThreads = true;
+    });
+  AddBounded<double>(command, "--image-sample-distance", "D",
+    "pixels per ray along each image axis, 1..32 (default 1;\n"
+    "raycast and vtk-fixed)",
+    1, 32, "",
+    [&](double distance)
+    {
+      options.imageSampleDistance = distance;
+      options.haveImageSampleDistance = true;
+    });
+  AddChoice<LeapKind>(command, "--leap", "none|octree|distance",
+    "raycast and smart: empty-space leaping over a min-max octree\n"
+    "(every blend but average) or a per-cell distance map\n"
+    "(composite, additive); default distance",
+    { { "none", LeapKind::None }, { "octree", LeapKind::Octree },
+      { "distance", LeapKind::DistanceMap } },
+    [&](LeapKind leap)
+    {
+      options.leap = leap;
+      options.haveLeap = true;
+    });
+  AddOnOff(command, "--cell-leap",
+    "raycast and smart: semi-transparent cell leaping through the\n"
+    "Marching Cubes table (composite, additive; default off).\n"
+    "Every leap is exact: the image stays the same",
+    [&](bool on)
+    {
+      options.cellLeap = on;
+      options.haveCellLeap = true;
+    });
+}
+
+// --mapper shearwarp's flags (the smart mapper takes them too, except --mpi).
+void AddShearWarpFlags(CLI::App& command, Options& options)
+{
+  AddOnOff(command, "--balance",
+    "balance the scanline bands with the previous frame's\n"
+    "per-scanline times (default on); off: equal bands",
+    [&](bool on)
+    {
+      options.balance = on;
+      options.haveBalance = true;
+    });
+  AddOnOff(command, "--rle",
+    "run-length encode the classified volume (default on); off:\n"
+    "every voxel composited (with --ert off the image is the same)",
+    [&](bool on)
+    {
+      options.runLengthEncoding = on;
+      options.haveRunLengthEncoding = true;
+    });
+  AddChoice<bool>(command, "--shading", "table|phong",
+    "composite shading by a per-frame table over quantized normals\n"
+    "(default) or Phong per voxel (with --shade on)",
+    { { "table", false }, { "phong", true } },
+    [&](bool phong)
+    {
+      options.phongShading = phong;
+      options.haveShading = true;
+    });
+  AddSwitch(command, "--mpi",
+    "run under mpirun: every rank renders the same frames and\n"
+    "composites its bands, rank 0 gathers them and alone writes\n"
+    "--out, --stats and the summary; the image is the same as\n"
+    "one process's. A rank that fails makes every rank stop;\n"
+    "rank 0 names it",
+    [&]() { options.mpi = true; });
+  AddBounded<double>(command, "--mpi-timeout", "S",
+    "--mpi: the longest a rank waits for another, in seconds\n"
+    "(default 60; 0 = forever); then rank 0 names the rank it\n"
+    "waited for and the job is aborted (MPI_Abort)",
+    0, 86400, " seconds (0 = wait forever)",
+    [&](double timeout)
+    {
+      options.mpiTimeout = timeout;
+      options.haveMpiTimeout = true;
+    });
+}
+
+// The camera and the image.
+void AddViewFlags(CLI::App& command, Options& options)
+{
+  AddIntegers(command, "--size", 2, "W H", "image size, 1..16384 (default 512 512)",
+    [&](const std::vector<int>& size)
+    {
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        if (size[axis] <= 0 || size[axis] > 16384)
+        {
+          throw Usage("--size values must be between 1 and 16384, got " + std::to_string(size[0]) +
+            " " + std::to_string(size[1]));
+        }
+        options.size[axis] = size[axis];
+      }
+    });
+  AddNumber(command, "--azimuth", "A",
+    "camera azimuth in degrees from the front view (looking\n"
+    "along +z at the volume centre, view-up +y; default 0)",
+    [&](double degrees) { options.azimuth = degrees; });
+  AddNumber(command, "--elevation", "E",
+    "camera elevation in degrees from the front view (default 0)",
+    [&](double degrees) { options.elevation = degrees; });
+  AddNumber(command, "--roll", "R", "camera roll in degrees from the front view (default 0)",
+    [&](double degrees) { options.roll = degrees; });
+  AddPositive(command, "--zoom", "Z", "camera zoom factor (default 1)",
+    [&](double zoom) { options.zoom = zoom; });
+  AddSwitch(command, "--parallel", "parallel projection (default perspective; shearwarp: parallel)",
+    [&]()
+    {
+      options.parallel = true;
+      options.havePerspective = false;
+    });
+  AddSwitch(command, "--perspective", "perspective projection (default; not with shearwarp)",
+    [&]()
+    {
+      options.parallel = false;
+      options.havePerspective = true;
+    });
+  AddNumbers(command, "--background", 3, "R G B", "background colour in 0..1 (default 0 0 0)",
+    [&](const std::vector<double>& colour)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        if (colour[i] < 0 || colour[i] > 1)
+        {
+          throw Usage("--background values must lie in [0, 1]");
+        }
+        options.background[i] = colour[i];
+      }
+    });
+  AddBounded<int>(command, "--frames", "N",
+    "timed frames after one warm-up frame, each turned 2 degrees\n"
+    "further in azimuth (default 1)",
+    1, 100000, "", [&](int frames) { options.frames = frames; });
+}
+
+// Where the image, the timings and the progress go, and the OpenGL backend.
+void AddOutputFlags(CLI::App& command, Options& options)
+{
+  AddText(command, "--out", "FILE.png", "write the last frame", options.outPath);
+  AddFlag(
+    command, "--stats", 1, "FILE.json",
+    "write timings and settings as JSON ('-' = stdout); raycast\n"
+    "adds \"raycast\": rays, samples, samples leaped per\n"
+    "mechanism, leaps taken, terminated rays, acceleration\n"
+    "bytes, cast_ms and prepare_ms;\n"
+    "shearwarp adds \"shearwarp\": encode/table/composite/\n"
+    "gather/warp ms, bands and their ms, imbalance, voxels,\n"
+    "samples, skipped pixels, principal axis, stored voxels,\n"
+    "encoded bytes, ranks and threads; slice adds \"slice\":\n"
+    "render_ms, proxy polygons, boundary faces, termination\n"
+    "passes; smart adds \"smart\": the mode it chose, why, and\n"
+    "render_ms, with the chosen mapper's object filled; every\n"
+    "mapper reports mapper_render_ms (its own last render time)",
+    [&](const FlagValues& values) { options.statsPath = values[0]; }, true);
+  AddFlag(command, "--gl", 1, "osmesa|egl|x",
+    "OpenGL backend (default: $ACCELVOLUME_GL, else X when\n"
+    "DISPLAY is set, else EGL, then OSMesa)",
+    [&](const FlagValues& values)
+    {
+      options.gl = values[0];
+      options.glBackend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.gl.c_str());
+      if (options.glBackend < 0)
+      {
+        throw Usage("invalid value '" + options.gl + "' for --gl (expected osmesa|egl|x)");
+      }
+    });
+  AddProgressFlag(command, options.progress,
+    "progress bar on stderr, fed by the mapper's progress events\n"
+    "and the frame count (default auto: only when stderr is a\n"
+    "terminal; off: never)");
+  AddSwitch(command, "--quiet", "no summary", [&]() { options.quiet = true; });
+}
+
+} // namespace
+
+void AddRenderFlags(CLI::App& command, Options& options)
+{
+  AddInputFlags(command, options.volume);
+  command.option_defaults()->group("Rendering");
+  AddRenderingFlags(command, options);
+  AddAccelerationFlags(command, options);
+  command.option_defaults()->group(
+    "CPU mappers (raycast, shearwarp, vtk-fixed, and smart for the ones it may pick)");
+  AddCpuFlags(command, options);
+  command.option_defaults()->group(
+    "Shear-warp (--mapper shearwarp, and smart for its shear-warp frames)");
+  AddShearWarpFlags(command, options);
+  command.option_defaults()->group("View and output");
+  AddViewFlags(command, options);
+  AddOutputFlags(command, options);
+}
+
+void CheckRender(Options& options)
+{
   if (options.mapper == MapperKind::VTKFixed && options.blend == BlendKind::Average)
   {
     throw Usage("--mapper vtk-fixed does not support --blend average (VTK's fixed-point mapper "
@@ -514,7 +557,6 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
   const bool rayCast = options.mapper == MapperKind::RayCast || smart;
   const bool shearWarp = options.mapper == MapperKind::ShearWarp;
   const bool cpu = rayCast || shearWarp || options.mapper == MapperKind::VTKFixed;
-  // Mapper-specific flags that would silently do nothing elsewhere are usage errors.
   const auto onlyFor = [&](bool given, const char* flag, bool valid, const char* mappers)
   {
     if (given && !valid)
@@ -530,8 +572,8 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
   onlyFor(options.haveImageSampleDistance, "--image-sample-distance", cpu && !shearWarp,
     "--mapper raycast, vtk-fixed and smart");
   onlyFor(options.haveBalance, "--balance", shearWarp || smart, "--mapper shearwarp and smart");
-  onlyFor(options.haveRunLengthEncoding, "--rle", shearWarp || smart,
-    "--mapper shearwarp and smart");
+  onlyFor(
+    options.haveRunLengthEncoding, "--rle", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
   const bool slice = options.mapper == MapperKind::Slice || smart;
@@ -575,14 +617,82 @@ void ParseRenderFlags(ArgumentReader& reader, Options& options)
   {
     throw Usage("--sample-distance and --slices are mutually exclusive");
   }
-  if (options.volume.inputPath.empty() &&
-    (options.volume.haveDims || options.volume.kind != ScalarKind::Unknown))
+  CheckInput(options.volume);
+}
+
+void AddProgressFlag(CLI::App& command, ProgressMode& mode, const std::string& help)
+{
+  AddFlag(command, "--progress", 1, "auto|on|off", help,
+    [&mode](const FlagValues& values)
+    {
+      if (!ParseProgressMode(values[0], mode))
+      {
+        throw Usage("invalid value '" + values[0] + "' for --progress (expected auto|off|on)");
+      }
+    });
+}
+
+void AddInputFlags(CLI::App& command, VolumeRequest& volume)
+{
+  command.option_defaults()->group("Input (a phantom unless --input is given)");
+  std::string phantoms;
+  for (const std::string& name : accelvolume::PhantomNames())
+  {
+    phantoms += (phantoms.empty() ? "" : "|") + name;
+  }
+  AddText(command, "--phantom", "NAME", phantoms + " (default vessels)", volume.phantom);
+  AddIntegers(command, "--phantom-dims", 3, "X Y Z", "phantom size in voxels (default 128 128 128)",
+    [&](const std::vector<int>& dims) { std::copy(dims.begin(), dims.end(), volume.phantomDims); });
+  AddNumber(command, "--time", "T", "phantom animation time, period 1 (default 0)",
+    [&](double time) { volume.phantomTime = time; });
+  AddText(
+    command, "--input", "FILE", ".mhd/.mha, .vti, .nrrd/.nhdr, .raw or .raw.gz", volume.inputPath);
+  AddIntegers(command, "--dims", 3, "X Y Z",
+    "raw input dimensions (NAME_XxYxZ_type.raw[.gz] names\n"
+    "and a datasets.json beside the file supply them too)",
+    [&](const std::vector<int>& dims)
+    {
+      if (*std::min_element(dims.begin(), dims.end()) < 1)
+      {
+        throw Usage("--dims values must be at least 1, got " + std::to_string(dims[0]) + " " +
+          std::to_string(dims[1]) + " " + std::to_string(dims[2]));
+      }
+      std::copy(dims.begin(), dims.end(), volume.dims);
+      volume.haveDims = true;
+    });
+  AddFlag(command, "--type", 1, "T",
+    "raw scalar type: uint8|int8|uint16|int16|int32|float32|float64",
+    [&](const FlagValues& values)
+    {
+      volume.kind = ParseScalarKind(values[0]);
+      if (volume.kind == ScalarKind::Unknown)
+      {
+        throw Usage("invalid value '" + values[0] +
+          "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
+      }
+    });
+  AddNumbers(command, "--spacing", 3, "SX SY SZ", "voxel spacing (overrides the file's)",
+    [&](const std::vector<double>& spacing)
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        if (spacing[axis] <= 0)
+        {
+          throw Usage("--spacing values must be positive");
+        }
+        volume.spacing[axis] = spacing[axis];
+      }
+      volume.haveSpacing = true;
+    });
+}
+
+void CheckInput(const VolumeRequest& volume)
+{
+  if (volume.inputPath.empty() && (volume.haveDims || volume.kind != ScalarKind::Unknown))
   {
     throw Usage("--dims and --type need --input (a raw file)");
   }
 }
-
-} // namespace
 
 const char* MapperName(MapperKind mapper)
 {
@@ -634,34 +744,6 @@ const char* LeapName(LeapKind leap)
       return "distance";
   }
   return "unknown";
-}
-
-Options ParseOptions(const std::vector<std::string>& arguments)
-{
-  Options options;
-  if (arguments.size() < 2)
-  {
-    throw Usage("no command given (try accelvolume --help)");
-  }
-  const std::string command = arguments[1];
-  if (command == "--help" || command == "-h" || command == "help")
-  {
-    options.action = Options::Action::MainHelp;
-    return options;
-  }
-  if (command == "--version")
-  {
-    options.action = Options::Action::Version;
-    return options;
-  }
-  if (command != "render")
-  {
-    throw Usage((command.compare(0, 1, "-") == 0 ? "unknown flag '" : "unknown command '") +
-      command + "' (expected 'render' or 'octree'; try accelvolume --help)");
-  }
-  ArgumentReader reader(arguments, 2);
-  ParseRenderFlags(reader, options);
-  return options;
 }
 
 } // namespace accelvolume::cli

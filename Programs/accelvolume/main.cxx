@@ -28,6 +28,8 @@
 #include <memory>
 #include <new>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #ifndef ACCELVOLUME_VERSION
 #define ACCELVOLUME_VERSION "unknown"
@@ -282,17 +284,15 @@ void CheckPhantom(const Options& options)
 
 int Run(int argc, char* argv[])
 {
-  if (argc > 1 && std::string(argv[1]) == "octree")
-  {
-    return RunOctreeCommand(std::vector<std::string>(argv, argv + argc));
-  }
-  for (int i = 2; i < argc; ++i)
+  const std::vector<std::string> arguments(argv, argv + argc);
+  for (std::size_t i = 2; i < arguments.size() && arguments[1] != "octree"; ++i)
   {
     // Under mpirun, a usage error found before MPI starts is printed by rank 0 only.
-    SilentRank = SilentRank || (std::string(argv[i]) == "--mpi" && LauncherRank() > 0);
+    SilentRank = SilentRank || (arguments[i] == "--mpi" && LauncherRank() > 0);
   }
-  Options options = ParseOptions(std::vector<std::string>(argv, argv + argc));
-  switch (options.action)
+  Options options;
+  OctreeOptions octree;
+  switch (ParseCommandLine(arguments, options, octree))
   {
     case Options::Action::MainHelp:
       std::cout << MainHelp();
@@ -300,9 +300,14 @@ int Run(int argc, char* argv[])
     case Options::Action::RenderHelp:
       std::cout << RenderHelp();
       return 0;
+    case Options::Action::OctreeHelp:
+      std::cout << OctreeHelp();
+      return 0;
     case Options::Action::Version:
       std::cout << "accelvolume " << ACCELVOLUME_VERSION << "\n";
       return 0;
+    case Options::Action::Octree:
+      return RunOctreeCommand(octree);
     case Options::Action::Render:
       break;
   }

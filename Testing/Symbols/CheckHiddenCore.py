@@ -1,0 +1,34 @@
+#!/usr/bin/env python3
+"""The module library must define no Core (namespace accelvolume) symbol in its dynamic symbol
+table: CheckHiddenCore.py <library>.
+
+Core is a static library linked into the module with hidden visibility. When the module exported
+Core's functions (default visibility, -fPIC), every call between them went through the PLT and
+could be interposed, and in the ThreadSanitizer build (-O1) the ray caster's "NaN voxels" case of
+TestAccelVolumeRayCastExact drew a different image with cell leaping on than without (issue 15);
+with the same sources built with hidden Core symbols it draws the same image. A program that links
+both the module and Core (the tests, the CLI, the benchmarks) must also get its own copy, never
+the module's.
+"""
+import re
+import subprocess
+import sys
+
+
+def main():
+    library = sys.argv[1]
+    listing = subprocess.run(["nm", "-D", "-C", "--defined-only", library], check=True,
+                             capture_output=True, text=True).stdout
+    exported = [line for line in listing.splitlines()
+                if re.match(r"^[0-9a-f]+ [A-Za-z] (typeinfo (name )?for |vtable for )?accelvolume::",
+                            line)]
+    if exported:
+        print("%s exports %d Core symbols, e.g.:\n  %s" % (
+            library, len(exported), "\n  ".join(exported[:10])))
+        return 1
+    print("%s: no Core symbol exported" % library)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
