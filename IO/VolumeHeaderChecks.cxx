@@ -18,7 +18,7 @@ namespace accelvolume::cli::detail
 {
 namespace fs = std::filesystem;
 
-const KindInfo* FindKind(ScalarKind kind)
+const KindInfo* FindKind(OptionalScalarType kind)
 {
   for (const KindInfo& info : Kinds)
   {
@@ -407,10 +407,10 @@ bool CheckMetaImage(const std::string& path, HeaderSummary& summary, std::string
       " positive integer(s), one per axis, got '" + field("DimSize") + "'";
     return false;
   }
-  static const std::map<std::string, ScalarKind> types = { { "MET_UCHAR", ScalarKind::UInt8 },
-    { "MET_CHAR", ScalarKind::Int8 }, { "MET_USHORT", ScalarKind::UInt16 },
-    { "MET_SHORT", ScalarKind::Int16 }, { "MET_INT", ScalarKind::Int32 },
-    { "MET_FLOAT", ScalarKind::Float32 }, { "MET_DOUBLE", ScalarKind::Float64 } };
+  static const std::map<std::string, OptionalScalarType> types = { { "MET_UCHAR", ScalarType::UInt8 },
+    { "MET_CHAR", ScalarType::Int8 }, { "MET_USHORT", ScalarType::UInt16 },
+    { "MET_SHORT", ScalarType::Int16 }, { "MET_INT", ScalarType::Int32 },
+    { "MET_FLOAT", ScalarType::Float32 }, { "MET_DOUBLE", ScalarType::Float64 } };
   const auto type = types.find(field("ElementType"));
   if (type == types.end())
   {
@@ -489,22 +489,22 @@ std::vector<double> ParseNrrdVector(const std::string& text)
 }
 
 // vtkNrrdReader's names of the types supported here; Unknown for any other name.
-ScalarKind NrrdKind(const std::string& type)
+OptionalScalarType NrrdKind(const std::string& type)
 {
-  static const std::map<std::string, ScalarKind> kinds = { { "signed char", ScalarKind::Int8 },
-    { "int8", ScalarKind::Int8 }, { "int8_t", ScalarKind::Int8 }, { "uchar", ScalarKind::UInt8 },
-    { "unsigned char", ScalarKind::UInt8 }, { "uint8", ScalarKind::UInt8 },
-    { "uint8_t", ScalarKind::UInt8 }, { "short", ScalarKind::Int16 },
-    { "short int", ScalarKind::Int16 }, { "signed short", ScalarKind::Int16 },
-    { "signed short int", ScalarKind::Int16 }, { "int16", ScalarKind::Int16 },
-    { "int16_t", ScalarKind::Int16 }, { "ushort", ScalarKind::UInt16 },
-    { "unsigned short", ScalarKind::UInt16 }, { "unsigned short int", ScalarKind::UInt16 },
-    { "uint16", ScalarKind::UInt16 }, { "uint16_t", ScalarKind::UInt16 },
-    { "int", ScalarKind::Int32 }, { "signed int", ScalarKind::Int32 },
-    { "int32", ScalarKind::Int32 }, { "int32_t", ScalarKind::Int32 },
-    { "float", ScalarKind::Float32 }, { "double", ScalarKind::Float64 } };
+  static const std::map<std::string, OptionalScalarType> kinds = { { "signed char", ScalarType::Int8 },
+    { "int8", ScalarType::Int8 }, { "int8_t", ScalarType::Int8 }, { "uchar", ScalarType::UInt8 },
+    { "unsigned char", ScalarType::UInt8 }, { "uint8", ScalarType::UInt8 },
+    { "uint8_t", ScalarType::UInt8 }, { "short", ScalarType::Int16 },
+    { "short int", ScalarType::Int16 }, { "signed short", ScalarType::Int16 },
+    { "signed short int", ScalarType::Int16 }, { "int16", ScalarType::Int16 },
+    { "int16_t", ScalarType::Int16 }, { "ushort", ScalarType::UInt16 },
+    { "unsigned short", ScalarType::UInt16 }, { "unsigned short int", ScalarType::UInt16 },
+    { "uint16", ScalarType::UInt16 }, { "uint16_t", ScalarType::UInt16 },
+    { "int", ScalarType::Int32 }, { "signed int", ScalarType::Int32 },
+    { "int32", ScalarType::Int32 }, { "int32_t", ScalarType::Int32 },
+    { "float", ScalarType::Float32 }, { "double", ScalarType::Float64 } };
   const auto found = kinds.find(type);
-  return found != kinds.end() ? found->second : ScalarKind::Unknown;
+  return found != kinds.end() ? found->second : std::nullopt;
 }
 
 // What vtkNrrdReader's header parse leaves behind, field by field.

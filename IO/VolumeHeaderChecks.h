@@ -19,18 +19,18 @@ using Dimensions = std::int64_t[3];
 
 struct KindInfo
 {
-  ScalarKind kind;
+  ScalarType kind;
   const char* name;
   int vtkType;
   int size;
 };
 
-inline constexpr KindInfo Kinds[] = { { ScalarKind::UInt8, "uint8", VTK_UNSIGNED_CHAR, 1 },
-  { ScalarKind::Int8, "int8", VTK_SIGNED_CHAR, 1 },
-  { ScalarKind::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
-  { ScalarKind::Int16, "int16", VTK_SHORT, 2 }, { ScalarKind::Int32, "int32", VTK_INT, 4 },
-  { ScalarKind::Float32, "float32", VTK_FLOAT, 4 },
-  { ScalarKind::Float64, "float64", VTK_DOUBLE, 8 } };
+inline constexpr KindInfo Kinds[] = { { ScalarType::UInt8, "uint8", VTK_UNSIGNED_CHAR, 1 },
+  { ScalarType::Int8, "int8", VTK_SIGNED_CHAR, 1 },
+  { ScalarType::UInt16, "uint16", VTK_UNSIGNED_SHORT, 2 },
+  { ScalarType::Int16, "int16", VTK_SHORT, 2 }, { ScalarType::Int32, "int32", VTK_INT, 4 },
+  { ScalarType::Float32, "float32", VTK_FLOAT, 4 },
+  { ScalarType::Float64, "float64", VTK_DOUBLE, 8 } };
 
 // Deflate codes a 258-byte match in at least 2 bits, so n compressed bytes never inflate to more
 // than n * 1032 bytes: a larger claim is refused before anything is allocated for it.
@@ -39,8 +39,8 @@ inline constexpr std::int64_t MaximumDeflateRatio = 1032;
 inline constexpr std::int64_t MaximumVoxels = std::int64_t(1) << 31;
 inline constexpr std::int64_t MaximumBytes = std::int64_t(16) << 30;
 
-// The Kinds entry of kind; nullptr for ScalarKind::Unknown.
-const KindInfo* FindKind(ScalarKind kind);
+// The Kinds entry of kind; nullptr for std::nullopt.
+const KindInfo* FindKind(OptionalScalarType kind);
 std::string Lower(std::string text);
 std::string Trim(const std::string& text);
 bool EndsWith(const std::string& text, const std::string& suffix);

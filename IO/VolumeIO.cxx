@@ -115,7 +115,7 @@ struct RawLayout
 {
   bool haveDims = false;
   Dimensions dims = { 0, 0, 0 };
-  ScalarKind kind = ScalarKind::Unknown;
+  OptionalScalarType kind = std::nullopt;
   bool haveSpacing = false;
   double spacing[3] = { 1, 1, 1 };
 };
@@ -307,7 +307,7 @@ void ReadDatasetsJson(const fs::path& rawPath, RawLayout& layout)
     // Out-of-range values become 0 or 1e12, which CheckSize refuses with their text.
     layout.dims[axis] = static_cast<std::int64_t>(std::clamp(entry.dims[axis], 0.0, 1e12));
   }
-  layout.kind = ParseScalarKind(entry.type);
+  layout.kind = ParseScalarType(entry.type);
 }
 
 void ParseRawName(const std::string& name, RawLayout& layout)
@@ -325,7 +325,7 @@ void ParseRawName(const std::string& name, RawLayout& layout)
   {
     layout.dims[axis] = std::stoll(match[axis + 1].str());
   }
-  layout.kind = ParseScalarKind(match[4].str());
+  layout.kind = ParseScalarType(match[4].str());
 }
 
 vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string& error)
@@ -340,7 +340,7 @@ vtkSmartPointer<vtkImageData> LoadRaw(const VolumeRequest& request, std::string&
     layout.haveDims = true;
     std::copy(request.dims, request.dims + 3, layout.dims);
   }
-  layout.kind = request.kind != ScalarKind::Unknown ? request.kind : layout.kind;
+  layout.kind = request.kind != std::nullopt ? request.kind : layout.kind;
   const KindInfo* kind = FindKind(layout.kind);
   if (!layout.haveDims || !kind)
   {
@@ -682,7 +682,7 @@ vtkSmartPointer<vtkImageData> LoadFile(const VolumeRequest& request, std::string
 
 } // namespace
 
-ScalarKind ParseScalarKind(const std::string& name)
+OptionalScalarType ParseScalarType(const std::string& name)
 {
   for (const KindInfo& info : Kinds)
   {
@@ -691,16 +691,16 @@ ScalarKind ParseScalarKind(const std::string& name)
       return info.kind;
     }
   }
-  return ScalarKind::Unknown;
+  return std::nullopt;
 }
 
-int ToVTKType(ScalarKind kind)
+int ToVTKType(OptionalScalarType kind)
 {
   const KindInfo* info = FindKind(kind);
   return info ? info->vtkType : VTK_VOID;
 }
 
-const char* ScalarKindName(ScalarKind kind)
+const char* ScalarTypeName(OptionalScalarType kind)
 {
   const KindInfo* info = FindKind(kind);
   return info ? info->name : "unknown";

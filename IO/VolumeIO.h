@@ -2,35 +2,29 @@
 #ifndef accelvolume_cli_VolumeIO_h
 #define accelvolume_cli_VolumeIO_h
 
+#include "common/VolumeView.h"
 #include "reference/Phantoms.h"
 
 #include <vtkImageData.h>
 #include <vtkSmartPointer.h>
 
+#include <optional>
 #include <string>
 
 namespace accelvolume::cli
 {
 
-enum class ScalarKind
-{
-  Unknown,
-  UInt8,
-  Int8,
-  UInt16,
-  Int16,
-  Int32,
-  Float32,
-  Float64
-};
+// Core's one scalar-type enum; "no type" (not given, or a name no type has) is std::nullopt.
+using accelvolume::ScalarType;
+using OptionalScalarType = std::optional<ScalarType>;
 
 // Accepts "uint8", "int8", "uint16", "int16", "int32", "float32", "float64" in any letter case;
-// anything else gives ScalarKind::Unknown.
-ScalarKind ParseScalarKind(const std::string& name);
-// VTK_UNSIGNED_CHAR, VTK_SIGNED_CHAR, ... VTK_DOUBLE; VTK_VOID for Unknown.
-int ToVTKType(ScalarKind kind);
-// The name ParseScalarKind accepts; "unknown" for Unknown.
-const char* ScalarKindName(ScalarKind kind);
+// anything else gives std::nullopt.
+OptionalScalarType ParseScalarType(const std::string& name);
+// VTK_UNSIGNED_CHAR, VTK_SIGNED_CHAR, ... VTK_DOUBLE; VTK_VOID for std::nullopt.
+int ToVTKType(OptionalScalarType kind);
+// The name ParseScalarType accepts; "unknown" for std::nullopt.
+const char* ScalarTypeName(OptionalScalarType kind);
 
 struct VolumeRequest
 {
@@ -40,7 +34,7 @@ struct VolumeRequest
   double phantomTime = 0;
   bool haveDims = false; // raw input only
   int dims[3] = { 0, 0, 0 };
-  ScalarKind kind = ScalarKind::Unknown; // raw input only
+  OptionalScalarType kind = std::nullopt; // raw input only
   bool haveSpacing = false;              // overrides the spacing of every input
   double spacing[3] = { 1, 1, 1 };
 };
@@ -50,7 +44,7 @@ struct VolumeRequest
 // when inputPath is empty. Raw files named NAME_<X>x<Y>x<Z>_<type>.raw[.gz] supply dims and type
 // unless haveDims / kind are set; a datasets.json next to a raw file that lists it by name supplies
 // spacing (and dims / type when neither flags nor name do) unless haveSpacing.
-// The result has one scalar component of a ScalarKind type, active point scalars with one tuple
+// The result has one scalar component of a ScalarType type, active point scalars with one tuple
 // per voxel, and a non-empty extent. On failure returns nullptr and sets error to one line without
 // a trailing newline; VTK and MetaIO messages are captured rather than printed.
 vtkSmartPointer<vtkImageData> LoadVolume(const VolumeRequest& request, std::string& error);

@@ -664,8 +664,8 @@ void AddInputFlags(CLI::App& command, VolumeRequest& volume)
     "raw scalar type: uint8|int8|uint16|int16|int32|float32|float64",
     [&](const FlagValues& values)
     {
-      volume.kind = ParseScalarKind(values[0]);
-      if (volume.kind == ScalarKind::Unknown)
+      volume.kind = ParseScalarType(values[0]);
+      if (volume.kind == std::nullopt)
       {
         throw Usage("invalid value '" + values[0] +
           "' for --type (expected uint8|int8|uint16|int16|int32|float32|float64)");
@@ -688,7 +688,7 @@ void AddInputFlags(CLI::App& command, VolumeRequest& volume)
 
 void CheckInput(const VolumeRequest& volume)
 {
-  if (volume.inputPath.empty() && (volume.haveDims || volume.kind != ScalarKind::Unknown))
+  if (volume.inputPath.empty() && (volume.haveDims || volume.kind != std::nullopt))
   {
     throw Usage("--dims and --type need --input (a raw file)");
   }

@@ -63,7 +63,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     {
       request.dims[axis] = static_cast<int>(std::min<std::int64_t>(dims[axis], 1 << 30));
     }
-    request.kind = cli::ParseScalarKind(type);
+    request.kind = cli::ParseScalarType(type);
     name = "v.raw";
   }
   name += flags & 1 ? ".gz" : "";

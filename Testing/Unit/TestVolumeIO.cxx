@@ -159,16 +159,16 @@ TEST(ScalarKinds, NamesRoundTrip)
     { "int32", VTK_INT }, { "float32", VTK_FLOAT }, { "float64", VTK_DOUBLE } };
   for (const auto& entry : expected)
   {
-    const ScalarKind kind = ParseScalarKind(entry.first);
-    EXPECT_NE(kind, ScalarKind::Unknown);
+    const OptionalScalarType kind = ParseScalarType(entry.first);
+    EXPECT_NE(kind, std::nullopt);
     EXPECT_EQ(ToVTKType(kind), entry.second);
-    EXPECT_EQ(ScalarKindName(kind), entry.first);
+    EXPECT_EQ(ScalarTypeName(kind), entry.first);
   }
-  EXPECT_EQ(ParseScalarKind("UInt16"), ScalarKind::UInt16);
-  EXPECT_EQ(ParseScalarKind("uint64"), ScalarKind::Unknown);
-  EXPECT_EQ(ParseScalarKind(""), ScalarKind::Unknown);
-  EXPECT_EQ(ToVTKType(ScalarKind::Unknown), VTK_VOID);
-  EXPECT_STREQ(ScalarKindName(ScalarKind::Unknown), "unknown");
+  EXPECT_EQ(ParseScalarType("UInt16"), ScalarType::UInt16);
+  EXPECT_EQ(ParseScalarType("uint64"), std::nullopt);
+  EXPECT_EQ(ParseScalarType(""), std::nullopt);
+  EXPECT_EQ(ToVTKType(std::nullopt), VTK_VOID);
+  EXPECT_STREQ(ScalarTypeName(std::nullopt), "unknown");
 }
 
 TEST_F(VolumeIO, PhantomIsTheDefault)
@@ -271,18 +271,18 @@ TEST_F(VolumeIO, ExplicitFlagsWinOverName)
   request.dims[0] = 2;
   request.dims[1] = 4;
   request.dims[2] = 4;
-  request.kind = ScalarKind::UInt16;
+  request.kind = ScalarType::UInt16;
   std::string error;
   ExpectSameVoxels(image, LoadVolume(request, error));
 
   // Name dims with a flag type: 4x4x4 uint16 needs 128 bytes, the file has 64.
   request.haveDims = false;
   ExpectError(request, { "size mismatch", "64", "128" });
-  request.kind = ScalarKind::Unknown;
+  request.kind = std::nullopt;
   std::string plain = this->WriteFile("plain.raw", Bytes(image));
   ExpectError(plain, { "--dims and --type" });
   request.inputPath = plain;
-  request.kind = ScalarKind::UInt16;
+  request.kind = ScalarType::UInt16;
   ExpectError(request, { "--dims", "NAME_256x256x113_uint16.raw" });
 }
 
@@ -356,13 +356,13 @@ TEST_F(VolumeIO, AbsurdSizesAreRefusedWithoutAllocating)
   request.inputPath = this->WriteFile("flags.raw", "x");
   request.haveDims = true;
   request.dims[0] = request.dims[1] = request.dims[2] = 100000;
-  request.kind = ScalarKind::Float64;
+  request.kind = ScalarType::Float64;
   ExpectError(request, { "refusing", "100000x100000x100000" });
   // 2^31 voxels of float64 is exactly 16 GiB; int32 at 2^31 + voxels would also be refused above.
   request.dims[0] = 2048;
   request.dims[1] = 1024;
   request.dims[2] = 1025;
-  request.kind = ScalarKind::UInt8;
+  request.kind = ScalarType::UInt8;
   ExpectError(request, { "2^31" });
   ExpectError(this->WriteFile("huge.mhd",
                 "NDims = 3\nDimSize = 100000 100000 100000\nElementType = MET_UCHAR\n"
