@@ -39,6 +39,123 @@ void SMPFor(std::size_t count, const std::function<void(std::size_t, std::size_t
     [&body](vtkIdType begin, vtkIdType end)
     { body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end)); });
 }
+
+// Update's input checks: dimensions, one-component point scalars of a supported type that
+// match them. False (reported) otherwise.
+bool CheckInput(vtkObject* self, vtkImageData* image, int dims[3], vtkDataArray*& scalars,
+  accelvolume::ScalarType& type)
+{
+  if (!image)
+  {
+    vtkErrorWithObjectMacro(self, "No input: call SetInputData() before Update().");
+    return false;
+  }
+  image->GetDimensions(dims);
+  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Empty input: dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2]);
+    return false;
+  }
+  scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    vtkErrorWithObjectMacro(self, "The input has no point scalars.");
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorWithObjectMacro(self,
+      "The octree needs single-component scalars; the input has "
+        << scalars->GetNumberOfComponents() << " components.");
+    return false;
+  }
+  if (!vtkAccelVolumeScalarType(scalars->GetDataType(), type))
+  {
+    vtkErrorWithObjectMacro(self,
+      "Unsupported scalar type " << scalars->GetDataTypeAsString()
+                                 << " (use char, short, unsigned short, int, "
+                                    "float or double).");
+    return false;
+  }
+  if (scalars->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2])
+  {
+    vtkErrorWithObjectMacro(self, "The scalars do not match the dimensions.");
+    return false;
+  }
+  return true;
+}
+
+// The builder this build uses: without compute shaders the GPU builder falls back to the
+// CPU builder, which gives the identical octree (what a context without compute needs).
+// False (reported) when BUILDER_GPU has no render window.
+bool ChooseBuilder(
+  vtkObject* self, int requested, vtkAccelVolumeMinMaxOctree::vtkInternals& internals, int& builder)
+{
+  builder = requested;
+  if (builder == vtkAccelVolumeMinMaxOctree::BUILDER_GPU)
+  {
+    std::string why;
+    if (!internals.Window)
+    {
+      vtkErrorWithObjectMacro(
+        self, "BUILDER_GPU needs a render window: call SetRenderWindow() first.");
+      return false;
+    }
+    if (!vtkAccelVolumeOctreeGPUBuilder::IsSupported(internals.Window, why))
+    {
+      builder = vtkAccelVolumeMinMaxOctree::BUILDER_CPU;
+      if (why != internals.FallbackReason)
+      {
+        internals.FallbackReason = why; // once per reason: time-varying data rebuild often
+        vtkWarningWithObjectMacro(
+          self, << why << "; falling back to the CPU builder (same octree).");
+      }
+    }
+  }
+  return true;
+}
+
+// Builds the octree's levels from `view` (the GPU builder reads `image` itself).
+bool BuildLevels(int builder, int numberOfThreads,
+  vtkAccelVolumeMinMaxOctree::vtkInternals& internals, vtkImageData* image,
+  const accelvolume::VolumeView& view, std::string& error)
+{
+  bool ok = false;
+  switch (builder)
+  {
+    case vtkAccelVolumeMinMaxOctree::BUILDER_REFERENCE:
+      ok = internals.Octree.BuildReference(view, error);
+      break;
+    case vtkAccelVolumeMinMaxOctree::BUILDER_CPU:
+    {
+      const accelvolume::ParallelFor parallel = SMPFor;
+      if (numberOfThreads > 0)
+      {
+        // A scoped limit: other vtkSMPTools users in the process keep their settings. VTK
+        // 9.1's TBB backend does not restore the thread count when the scope ends, so put
+        // it back by hand.
+        const int previous = vtkSMPTools::GetEstimatedNumberOfThreads();
+        vtkSMPTools::LocalScope(vtkSMPTools::Config{ numberOfThreads },
+          [&]() { ok = internals.Octree.BuildParallel(view, parallel, error); });
+        if (vtkSMPTools::GetEstimatedNumberOfThreads() != previous)
+        {
+          vtkSMPTools::Initialize(previous);
+        }
+      }
+      else
+      {
+        ok = internals.Octree.BuildParallel(view, parallel, error);
+      }
+      break;
+    }
+    default:
+      ok = internals.GPUBuilder.Build(internals.Window, image, internals.Octree, error);
+      internals.LastUploadTime = internals.GPUBuilder.GetLastUploadTime();
+      break;
+  }
+  return ok;
+}
 }
 
 accelvolume::MinMaxOctree* vtkAccelVolumeMinMaxOctree::vtkInternals::GetCPUOctree()
@@ -105,63 +222,14 @@ bool vtkAccelVolumeMinMaxOctree::Update()
 {
   vtkInternals& internals = *this->Internals;
   vtkImageData* image = internals.Input;
-  if (!image)
-  {
-    vtkErrorMacro("No input: call SetInputData() before Update().");
-    return false;
-  }
-  int dims[3];
-  image->GetDimensions(dims);
-  if (dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
-  {
-    vtkErrorMacro("Empty input: dimensions " << dims[0] << "x" << dims[1] << "x" << dims[2]);
-    return false;
-  }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    vtkErrorMacro("The input has no point scalars.");
-    return false;
-  }
-  if (scalars->GetNumberOfComponents() != 1)
-  {
-    vtkErrorMacro("The octree needs single-component scalars; the input has "
-      << scalars->GetNumberOfComponents() << " components.");
-    return false;
-  }
+  int dims[3] = { 0, 0, 0 };
+  vtkDataArray* scalars = nullptr;
   accelvolume::ScalarType type;
-  if (!vtkAccelVolumeScalarType(scalars->GetDataType(), type))
-  {
-    vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
-                                             << " (use char, short, unsigned short, int, "
-                                                "float or double).");
-    return false;
-  }
-  if (scalars->GetNumberOfTuples() != static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2])
-  {
-    vtkErrorMacro("The scalars do not match the dimensions.");
-    return false;
-  }
-  // The builder this build uses: without compute shaders the GPU builder falls back to the
-  // CPU builder, which gives the identical octree (what a context without compute needs).
   int builder = this->Builder;
-  if (builder == BUILDER_GPU)
+  if (!CheckInput(this, image, dims, scalars, type) ||
+    !ChooseBuilder(this, this->Builder, internals, builder))
   {
-    std::string why;
-    if (!internals.Window)
-    {
-      vtkErrorMacro("BUILDER_GPU needs a render window: call SetRenderWindow() first.");
-      return false;
-    }
-    if (!vtkAccelVolumeOctreeGPUBuilder::IsSupported(internals.Window, why))
-    {
-      builder = BUILDER_CPU;
-      if (why != internals.FallbackReason)
-      {
-        internals.FallbackReason = why; // once per reason: time-varying data rebuild often
-        vtkWarningMacro(<< why << "; falling back to the CPU builder (same octree).");
-      }
-    }
+    return false;
   }
 
   const bool current = internals.Built && internals.BuiltImage == image &&
@@ -199,42 +267,8 @@ bool vtkAccelVolumeMinMaxOctree::Update()
   std::copy(dims, dims + 3, view.dims);
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
-  bool ok = internals.Octree.Configure(dims, this->LeafSize, error);
-  if (ok)
-  {
-    switch (builder)
-    {
-      case BUILDER_REFERENCE:
-        ok = internals.Octree.BuildReference(view, error);
-        break;
-      case BUILDER_CPU:
-      {
-        const accelvolume::ParallelFor parallel = SMPFor;
-        if (this->NumberOfThreads > 0)
-        {
-          // A scoped limit: other vtkSMPTools users in the process keep their settings. VTK
-          // 9.1's TBB backend does not restore the thread count when the scope ends, so put
-          // it back by hand.
-          const int previous = vtkSMPTools::GetEstimatedNumberOfThreads();
-          vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->NumberOfThreads },
-            [&]() { ok = internals.Octree.BuildParallel(view, parallel, error); });
-          if (vtkSMPTools::GetEstimatedNumberOfThreads() != previous)
-          {
-            vtkSMPTools::Initialize(previous);
-          }
-        }
-        else
-        {
-          ok = internals.Octree.BuildParallel(view, parallel, error);
-        }
-        break;
-      }
-      default:
-        ok = internals.GPUBuilder.Build(internals.Window, image, internals.Octree, error);
-        internals.LastUploadTime = internals.GPUBuilder.GetLastUploadTime();
-        break;
-    }
-  }
+  const bool ok = internals.Octree.Configure(dims, this->LeafSize, error) &&
+    BuildLevels(builder, this->NumberOfThreads, internals, image, view, error);
   timer->StopTimer();
   if (!ok)
   {

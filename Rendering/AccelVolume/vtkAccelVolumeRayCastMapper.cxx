@@ -59,6 +59,26 @@ accelvolume::Affine ToAffine(vtkMatrix4x4* m)
   }
   return a;
 }
+
+// One frame's inputs to the caster, gathered from the mapper, the renderer and the volume.
+struct RayCastFrameInputs
+{
+  accelvolume::VolumeView View;
+  double Range[2] = { 0, 0 };
+  double High = 0;
+  double VoxelSpacing = 0;
+  vtkNew<vtkMatrix4x4> IndexToWorld;
+  vtkNew<vtkMatrix4x4> WorldToIndex;
+  accelvolume::RayCastTransfer Transfer;
+  int Width = 0;
+  int Height = 0;
+  int LowerLeft[2] = { 0, 0 };
+  int ImageWidth = 0;
+  int ImageHeight = 0;
+  accelvolume::RayCastView Rays;
+  accelvolume::RayCastSettings Settings;
+  accelvolume::RayCastLighting Lighting;
+};
 }
 
 // Per-mapper state kept out of the public header.
@@ -72,6 +92,23 @@ public:
   std::vector<float> RayDepth;
   vtkAccelVolumeCPUInputs Inputs; // tables and the versions the caster's caches were built from
   bool ReportedError = false;
+
+  // Steps of Render, in order.
+  // Checks the blend mode and brings the volume and its tables up to date; false (reported)
+  // when the frame cannot be cast.
+  bool PrepareInputs(vtkAccelVolumeRayCastMapper* self, vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, vtkVolume* volume, RayCastFrameInputs& in);
+  // The rays' image size and camera; false when the viewport is empty.
+  bool SetUpRays(vtkAccelVolumeRayCastMapper* self, vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window, vtkVolume* volume, RayCastFrameInputs& in);
+  void ReadSceneDepth(vtkOpenGLRenderWindow* window, RayCastFrameInputs& in);
+  void FillSettings(vtkAccelVolumeRayCastMapper* self, vtkRenderer* renderer, vtkImageData* input,
+    vtkVolumeProperty* property, RayCastFrameInputs& in);
+  // Casts the rays on the mapper's threads; false with error set on failure.
+  bool Cast(vtkAccelVolumeRayCastMapper* self, vtkAccelVolumeRenderProgress& progress,
+    const RayCastFrameInputs& in, accelvolume::RayCastCounters& counters, std::string& error);
+  void RecordCounters(vtkAccelVolumeRayCastMapper* self,
+    const accelvolume::RayCastCounters& counters, double castSeconds);
 };
 
 vtkStandardNewMacro(vtkAccelVolumeRayCastMapper);
@@ -109,6 +146,210 @@ void vtkAccelVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Internals->Display.ReleaseGraphicsResources(window);
 }
 
+bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayCastMapper* self,
+  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, vtkVolume* volume,
+  RayCastFrameInputs& in)
+{
+  if (self->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
+    self->BlendMode == vtkVolumeMapper::SLICE_BLEND)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Blend mode " << self->BlendMode
+                    << " is not supported by the ray cast mapper (use composite, "
+                       "maximum, minimum, additive or average intensity)");
+    return false;
+  }
+  if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
+    self->BlendMode == COMPOSITE_BLEND && !this->ReportedError)
+  {
+    this->ReportedError = true;
+    vtkWarningWithObjectMacro(self,
+      "2D transfer functions are not supported by the ray cast mapper; the 1D "
+      "scalar opacity and colour are used");
+  }
+
+  vtkAccelVolumeScalarRange(scalars, in.Range);
+
+  // The caster rebuilds its octree / classification only when the versions change.
+  this->Inputs.UpdateVolume(input, scalars);
+  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
+  vtkAccelVolumeView(input, this->Inputs.GetScalars(), in.View); // type checked with the input
+  vtkAccelVolumeIndexToWorld(volume, input, in.IndexToWorld);
+  vtkMatrix4x4::Invert(in.IndexToWorld, in.WorldToIndex);
+  in.VoxelSpacing = vtkAccelVolumeSmallestSpacing(in.IndexToWorld, in.View.dims);
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  this->Inputs.UpdateTransfer(property, in.Range, composite, in.VoxelSpacing, in.Transfer, in.High);
+  return true;
+}
+
+bool vtkAccelVolumeRayCastMapper::vtkInternals::SetUpRays(vtkAccelVolumeRayCastMapper* self,
+  vtkRenderer* renderer, vtkOpenGLRenderWindow* window, vtkVolume* volume, RayCastFrameInputs& in)
+{
+  renderer->GetTiledSizeAndOrigin(&in.Width, &in.Height, in.LowerLeft, in.LowerLeft + 1);
+  const int width = in.Width;
+  const int height = in.Height;
+  if (width < 1 || height < 1)
+  {
+    return false;
+  }
+
+  // Interactive frames trade samples for time like vtkFixedPointVolumeRayCastMapper.
+  const double allotted = volume->GetAllocatedRenderTime();
+  const bool interactive = self->AutoAdjustSampleDistances && allotted > 0 && allotted < 1.0;
+  double sampleDistance = interactive ? self->InteractiveSampleDistance : self->SampleDistance;
+  double imageSampleDistance = self->ImageSampleDistance;
+  if (interactive)
+  {
+    const double previous = std::max(self->LastImageSampleDistance, 1.0);
+    const double ratio =
+      self->LastRenderTime > 0 ? std::sqrt(self->LastRenderTime / allotted) : 1.0;
+    imageSampleDistance = std::min(std::max(previous * ratio, self->MinimumImageSampleDistance),
+      std::max(self->MinimumImageSampleDistance, self->MaximumImageSampleDistance));
+  }
+  self->LastSampleDistance = sampleDistance;
+  self->LastImageSampleDistance = imageSampleDistance;
+  in.Settings.sampleDistance = sampleDistance;
+  in.ImageWidth = std::max(1, static_cast<int>(std::ceil(width / imageSampleDistance)));
+  in.ImageHeight = std::max(1, static_cast<int>(std::ceil(height / imageSampleDistance)));
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = static_cast<double>(width) / height;
+  vtkNew<vtkMatrix4x4> clipToWorld;
+  clipToWorld->DeepCopy(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1));
+  clipToWorld->Invert();
+  accelvolume::RayCastView& rays = in.Rays;
+  rays.width = in.ImageWidth;
+  rays.height = in.ImageHeight;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      rays.clipToWorld[r][c] = clipToWorld->GetElement(r, c);
+    }
+  }
+  rays.worldToIndex = ToAffine(in.WorldToIndex);
+  // Opaque geometry drawn before the volume stops the rays.
+  if (renderer->VisibleActorCount() > 0)
+  {
+    this->ReadSceneDepth(window, in);
+  }
+  return true;
+}
+
+void vtkAccelVolumeRayCastMapper::vtkInternals::ReadSceneDepth(
+  vtkOpenGLRenderWindow* window, RayCastFrameInputs& in)
+{
+  const int width = in.Width;
+  const int height = in.Height;
+  const int imageWidth = in.ImageWidth;
+  const int imageHeight = in.ImageHeight;
+  this->Depth.resize(static_cast<std::size_t>(width) * height);
+  if (vtkAccelVolumeImageDisplay::ReadDepth(
+        window, in.LowerLeft, width, height, this->Depth.data()))
+  {
+    this->RayDepth.resize(static_cast<std::size_t>(imageWidth) * imageHeight);
+    for (int j = 0; j < imageHeight; ++j)
+    {
+      const int y = std::min(height - 1, static_cast<int>((j + 0.5) * height / imageHeight));
+      for (int i = 0; i < imageWidth; ++i)
+      {
+        const int x = std::min(width - 1, static_cast<int>((i + 0.5) * width / imageWidth));
+        this->RayDepth[static_cast<std::size_t>(j) * imageWidth + i] =
+          this->Depth[static_cast<std::size_t>(y) * width + x];
+      }
+    }
+    in.Rays.depth = &this->RayDepth;
+  }
+}
+
+void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCastMapper* self,
+  vtkRenderer* renderer, vtkImageData* input, vtkVolumeProperty* property, RayCastFrameInputs& in)
+{
+  accelvolume::RayCastSettings& settings = in.Settings;
+  settings.blend = ToBlend(self->BlendMode);
+  settings.nearest = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION;
+  settings.leap = self->LeapMode == LEAP_OCTREE
+    ? accelvolume::LeapMode::Octree
+    : (self->LeapMode == LEAP_DISTANCE_MAP ? accelvolume::LeapMode::DistanceMap
+                                           : accelvolume::LeapMode::None);
+  settings.cellLeap = self->CellLeaping != 0;
+  settings.earlyTermination = self->EarlyRayTermination != 0;
+  settings.terminationThreshold = self->EarlyRayTerminationThreshold;
+  settings.additiveUnitDistance =
+    self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : in.VoxelSpacing;
+  settings.averageRange[0] = self->AverageIPScalarRange[0];
+  settings.averageRange[1] = self->AverageIPScalarRange[1];
+  settings.octreeLeafSize = self->OctreeLeafSize;
+  settings.regions = vtkAccelVolumeRegions(self, input, vtkAccelVolumeIndexBox(in.View.dims));
+  settings.clip = vtkAccelVolumeClipHalfSpaces(self->ClippingPlanes, in.IndexToWorld);
+
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  const bool shade = composite && property->GetShade(0) != 0;
+  if (shade || !in.Transfer.gradientOpacity.empty())
+  {
+    // Gradient opacity needs the normal matrix too (gradients in world units).
+    vtkAccelVolumeCPULighting(
+      renderer, property, in.IndexToWorld, renderer->GetActiveCamera(), shade, in.Lighting);
+  }
+}
+
+bool vtkAccelVolumeRayCastMapper::vtkInternals::Cast(vtkAccelVolumeRayCastMapper* self,
+  vtkAccelVolumeRenderProgress& progress, const RayCastFrameInputs& in,
+  accelvolume::RayCastCounters& counters, std::string& error)
+{
+  accelvolume::ParallelFor parallel =
+    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
+  bool ok = false;
+  auto cast = [&]()
+  {
+    // The caster reports up to 0.95 (from this thread only); showing the image is the rest.
+    this->Caster.SetProgressFunction(progress.Range(0.0, 0.95));
+    try
+    {
+      ok = this->Caster.Render(in.View, in.Range[0], in.High, this->Inputs.VolumeVersion,
+        in.Transfer, this->Inputs.TransferVersion, in.Lighting, in.Rays, in.Settings, parallel,
+        this->Image, counters, error);
+    }
+    catch (const std::bad_alloc&)
+    {
+      // The acceleration structures need up to 2 bytes per cell (+6 per voxel for shading).
+      ok = false;
+      error = "out of memory for the acceleration structures or the image (try LEAP_OCTREE, "
+              "shading off or a smaller volume)";
+    }
+    this->Caster.SetProgressFunction(nullptr); // it refers to this render's progress
+  };
+  // More threads than cores only adds contention (and TBB refuses them with a warning).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (self->NumberOfThreads > 0)
+  {
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ std::min(self->NumberOfThreads, cores) }, cast);
+  }
+  else
+  {
+    cast();
+  }
+  return ok;
+}
+
+void vtkAccelVolumeRayCastMapper::vtkInternals::RecordCounters(vtkAccelVolumeRayCastMapper* self,
+  const accelvolume::RayCastCounters& counters, double castSeconds)
+{
+  self->LastPrepareTime = this->Caster.GetLastPrepareSeconds();
+  self->LastCastTime = castSeconds - self->LastPrepareTime;
+  self->LastNumberOfRays = static_cast<vtkTypeInt64>(counters.rays);
+  self->LastNumberOfSamples = static_cast<vtkTypeInt64>(counters.samples);
+  self->LastSamplesLeapedByOctree = static_cast<vtkTypeInt64>(counters.leapedOctree);
+  self->LastSamplesLeapedByDistanceMap = static_cast<vtkTypeInt64>(counters.leapedDistance);
+  self->LastSamplesLeapedByCellTable = static_cast<vtkTypeInt64>(counters.leapedCell);
+  self->LastSamplesInTransparentCells = static_cast<vtkTypeInt64>(counters.leapedEmptyCell);
+  self->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
+  self->LastNumberOfOctreeLeaps = static_cast<vtkTypeInt64>(counters.octreeLeaps);
+  self->LastNumberOfDistanceMapLeaps = static_cast<vtkTypeInt64>(counters.distanceLeaps);
+  self->AccelerationBytes = static_cast<vtkTypeInt64>(this->Caster.GetAccelerationBytes());
+}
+
 void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   vtkNew<vtkTimerLog> timer;
@@ -126,193 +367,31 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   {
     return;
   }
-  std::string error;
-  if (this->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
-    this->BlendMode == vtkVolumeMapper::SLICE_BLEND)
-  {
-    vtkErrorMacro("Blend mode " << this->BlendMode
-                                << " is not supported by the ray cast mapper (use composite, "
-                                   "maximum, minimum, additive or average intensity)");
-    return;
-  }
-  if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
-    this->BlendMode == COMPOSITE_BLEND && !internals.ReportedError)
-  {
-    internals.ReportedError = true;
-    vtkWarningMacro("2D transfer functions are not supported by the ray cast mapper; the 1D "
-                    "scalar opacity and colour are used");
-  }
-
-  double range[2];
-  vtkAccelVolumeScalarRange(scalars, range);
-
-  // The caster rebuilds its octree / classification only when the versions change.
-  internals.Inputs.UpdateVolume(input, scalars);
-  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
-  accelvolume::VolumeView view;
-  vtkAccelVolumeView(input, internals.Inputs.GetScalars(), view); // type checked with the input
-  const int* dims = view.dims;
-  vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
-  vtkNew<vtkMatrix4x4> worldToIndex;
-  vtkMatrix4x4::Invert(indexToWorld, worldToIndex);
-  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
-  const bool composite = this->BlendMode == COMPOSITE_BLEND;
-  accelvolume::RayCastTransfer transfer;
-  double high = 0;
-  internals.Inputs.UpdateTransfer(property, range, composite, voxelSpacing, transfer, high);
-
-  int width = 0;
-  int height = 0;
-  int lowerLeft[2] = { 0, 0 };
-  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
-  if (width < 1 || height < 1)
+  RayCastFrameInputs in;
+  if (!internals.PrepareInputs(this, input, scalars, property, volume, in) ||
+    !internals.SetUpRays(this, renderer, window, volume, in))
   {
     return;
   }
+  internals.FillSettings(this, renderer, input, property, in);
 
-  // Interactive frames trade samples for time like vtkFixedPointVolumeRayCastMapper.
-  const double allotted = volume->GetAllocatedRenderTime();
-  const bool interactive = this->AutoAdjustSampleDistances && allotted > 0 && allotted < 1.0;
-  double sampleDistance = interactive ? this->InteractiveSampleDistance : this->SampleDistance;
-  double imageSampleDistance = this->ImageSampleDistance;
-  if (interactive)
-  {
-    const double previous = std::max(this->LastImageSampleDistance, 1.0);
-    const double ratio =
-      this->LastRenderTime > 0 ? std::sqrt(this->LastRenderTime / allotted) : 1.0;
-    imageSampleDistance = std::min(std::max(previous * ratio, this->MinimumImageSampleDistance),
-      std::max(this->MinimumImageSampleDistance, this->MaximumImageSampleDistance));
-  }
-  this->LastSampleDistance = sampleDistance;
-  this->LastImageSampleDistance = imageSampleDistance;
-  const int imageWidth = std::max(1, static_cast<int>(std::ceil(width / imageSampleDistance)));
-  const int imageHeight = std::max(1, static_cast<int>(std::ceil(height / imageSampleDistance)));
-
-  vtkCamera* camera = renderer->GetActiveCamera();
-  const double aspect = static_cast<double>(width) / height;
-  vtkNew<vtkMatrix4x4> clipToWorld;
-  clipToWorld->DeepCopy(camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1));
-  clipToWorld->Invert();
-  accelvolume::RayCastView rays;
-  rays.width = imageWidth;
-  rays.height = imageHeight;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      rays.clipToWorld[r][c] = clipToWorld->GetElement(r, c);
-    }
-  }
-  rays.worldToIndex = ToAffine(worldToIndex);
-  // Opaque geometry drawn before the volume stops the rays.
-  if (renderer->VisibleActorCount() > 0)
-  {
-    internals.Depth.resize(static_cast<std::size_t>(width) * height);
-    if (vtkAccelVolumeImageDisplay::ReadDepth(
-          window, lowerLeft, width, height, internals.Depth.data()))
-    {
-      internals.RayDepth.resize(static_cast<std::size_t>(imageWidth) * imageHeight);
-      for (int j = 0; j < imageHeight; ++j)
-      {
-        const int y = std::min(height - 1, static_cast<int>((j + 0.5) * height / imageHeight));
-        for (int i = 0; i < imageWidth; ++i)
-        {
-          const int x = std::min(width - 1, static_cast<int>((i + 0.5) * width / imageWidth));
-          internals.RayDepth[static_cast<std::size_t>(j) * imageWidth + i] =
-            internals.Depth[static_cast<std::size_t>(y) * width + x];
-        }
-      }
-      rays.depth = &internals.RayDepth;
-    }
-  }
-
-  accelvolume::RayCastSettings settings;
-  settings.blend = ToBlend(this->BlendMode);
-  settings.sampleDistance = sampleDistance;
-  settings.nearest = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION;
-  settings.leap = this->LeapMode == LEAP_OCTREE
-    ? accelvolume::LeapMode::Octree
-    : (this->LeapMode == LEAP_DISTANCE_MAP ? accelvolume::LeapMode::DistanceMap
-                                           : accelvolume::LeapMode::None);
-  settings.cellLeap = this->CellLeaping != 0;
-  settings.earlyTermination = this->EarlyRayTermination != 0;
-  settings.terminationThreshold = this->EarlyRayTerminationThreshold;
-  settings.additiveUnitDistance =
-    this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
-  settings.averageRange[0] = this->AverageIPScalarRange[0];
-  settings.averageRange[1] = this->AverageIPScalarRange[1];
-  settings.octreeLeafSize = this->OctreeLeafSize;
-  settings.regions = vtkAccelVolumeRegions(this, input, vtkAccelVolumeIndexBox(dims));
-  settings.clip = vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
-
-  accelvolume::RayCastLighting lighting;
-  const bool shade = composite && property->GetShade(0) != 0;
-  if (shade || !transfer.gradientOpacity.empty())
-  {
-    // Gradient opacity needs the normal matrix too (gradients in world units).
-    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, shade, lighting);
-  }
-
-  accelvolume::ParallelFor parallel =
-    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
   accelvolume::RayCastCounters counters;
-  bool ok = false;
+  std::string error;
   vtkNew<vtkTimerLog> castTimer;
   castTimer->StartTimer();
-  auto cast = [&]()
-  {
-    // The caster reports up to 0.95 (from this thread only); showing the image is the rest.
-    internals.Caster.SetProgressFunction(progress.Range(0.0, 0.95));
-    try
-    {
-      ok = internals.Caster.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
-        internals.Inputs.TransferVersion, lighting, rays, settings, parallel, internals.Image, counters,
-        error);
-    }
-    catch (const std::bad_alloc&)
-    {
-      // The acceleration structures need up to 2 bytes per cell (+6 per voxel for shading).
-      ok = false;
-      error = "out of memory for the acceleration structures or the image (try LEAP_OCTREE, "
-              "shading off or a smaller volume)";
-    }
-    internals.Caster.SetProgressFunction(nullptr); // it refers to this render's progress
-  };
-  // More threads than cores only adds contention (and TBB refuses them with a warning).
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (this->NumberOfThreads > 0)
-  {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ std::min(this->NumberOfThreads, cores) }, cast);
-  }
-  else
-  {
-    cast();
-  }
+  const bool ok = internals.Cast(this, progress, in, counters, error);
   castTimer->StopTimer();
   if (!ok)
   {
     vtkErrorMacro("Ray casting failed: " << error);
     return;
   }
-  this->LastPrepareTime = internals.Caster.GetLastPrepareSeconds();
-  this->LastCastTime = castTimer->GetElapsedTime() - this->LastPrepareTime;
-  this->LastNumberOfRays = static_cast<vtkTypeInt64>(counters.rays);
-  this->LastNumberOfSamples = static_cast<vtkTypeInt64>(counters.samples);
-  this->LastSamplesLeapedByOctree = static_cast<vtkTypeInt64>(counters.leapedOctree);
-  this->LastSamplesLeapedByDistanceMap = static_cast<vtkTypeInt64>(counters.leapedDistance);
-  this->LastSamplesLeapedByCellTable = static_cast<vtkTypeInt64>(counters.leapedCell);
-  this->LastSamplesInTransparentCells = static_cast<vtkTypeInt64>(counters.leapedEmptyCell);
-  this->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
-  this->LastNumberOfOctreeLeaps = static_cast<vtkTypeInt64>(counters.octreeLeaps);
-  this->LastNumberOfDistanceMapLeaps = static_cast<vtkTypeInt64>(counters.distanceLeaps);
-  this->AccelerationBytes = static_cast<vtkTypeInt64>(internals.Caster.GetAccelerationBytes());
+  internals.RecordCounters(this, counters, castTimer->GetElapsedTime());
 
   int castRectangle[4];
   internals.Caster.GetLastCastRectangle(castRectangle);
-  if (!internals.Display.Draw(window, lowerLeft, width, height, imageWidth, imageHeight,
-        internals.Image.data(), castRectangle))
+  if (!internals.Display.Draw(window, in.LowerLeft, in.Width, in.Height, in.ImageWidth,
+        in.ImageHeight, internals.Image.data(), castRectangle))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

@@ -83,6 +83,73 @@ std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkRenderer* renderer, vtk
 constexpr int FrameReady = 0;
 constexpr int FrameFailed = 1;
 constexpr int FrameEmpty = -1;
+
+// Everything one frame needs, gathered from the mapper, the renderer and the volume before the
+// engine runs.
+struct ShearWarpFrameInputs
+{
+  accelvolume::ShearWarpSettings settings;
+  accelvolume::VolumeView view;
+  double range[2] = { 0, 0 };
+  double high = 0;
+  accelvolume::RayCastTransfer transfer;
+  accelvolume::ShearWarpView frame;
+  accelvolume::RayCastLighting lighting;
+  int width = 0;
+  int height = 0;
+  int lowerLeft[2] = { 0, 0 };
+  int threads = 1;
+};
+
+// What one frame produced, on this rank.
+struct ShearWarpFrameResult
+{
+  accelvolume::ShearWarpStats stats;
+  int rectangle[4] = { 0, -1, 0, -1 };
+  bool ok = false;
+  bool empty = false; // another rank had nothing to draw: every rank skips the frame
+  double gatherSeconds = 0;
+  std::string error;
+};
+
+accelvolume::ParallelFor SMPParallelFor()
+{
+  return [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
+}
+
+// The view-dependent part of the frame: the image size and the voxel-to-image map.
+void SetUpShearWarpView(vtkCamera* camera, vtkMatrix4x4* indexToWorld, int width, int height,
+  accelvolume::ShearWarpView& frame)
+{
+  frame.width = width;
+  frame.height = height;
+  double indexToWorldRows[3][4];
+  double worldToView[4][4];
+  vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      worldToView[r][c] = viewMatrix->GetElement(r, c);
+      if (r < 3)
+      {
+        indexToWorldRows[r][c] = indexToWorld->GetElement(r, c);
+      }
+      if (r < 3 && c < 3)
+      {
+        frame.indexToWorld[r][c] = indexToWorld->GetElement(r, c);
+      }
+    }
+  }
+  accelvolume::ParallelVoxelToImage(
+    indexToWorldRows, worldToView, camera->GetParallelScale(), width, height, frame.voxelToImage);
+  // VTK's window centre shifts the parallel view in NDC.
+  double centre[2];
+  camera->GetWindowCenter(centre);
+  frame.voxelToImage[0][3] += centre[0] * width / 2.0;
+  frame.voxelToImage[1][3] += centre[1] * height / 2.0;
+}
 }
 
 class vtkAccelVolumeShearWarpMapper::vtkInternals
@@ -95,6 +162,21 @@ public:
   vtkAccelVolumeCPUInputs Inputs; // tables and the versions the encodings were built from
   vtkAccelVolumeMPIExchange Exchange; // bounded exchanges with the other ranks
   bool WarnedUnsupported = false;
+
+  // Checks the mapper's settings and gathers the frame's inputs; FrameReady, or the code and
+  // reason the frame status exchange passes to the other ranks.
+  int PrepareFrame(vtkAccelVolumeShearWarpMapper* self, vtkRenderer* renderer, vtkVolume* volume,
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property,
+    ShearWarpFrameInputs& in, std::string& why);
+  // Renders the frame on this rank alone, or with every rank of the controller.
+  void RenderFrame(const ShearWarpFrameInputs& in, int ranks, int rank,
+    vtkAccelVolumeRenderProgress& progress, ShearWarpFrameResult& out);
+  void RenderFrameOnRanks(const ShearWarpFrameInputs& in, int ranks, int rank,
+    vtkAccelVolumeRenderProgress& progress, ShearWarpFrameResult& out);
+  // Gathers the bands on rank 0 and shares every rank's timings; false when a rank failed.
+  bool GatherBands(const std::vector<int>& rankBounds, const std::vector<double>& bandSeconds,
+    bool composited, int ranks, int threads, ShearWarpFrameResult& out);
+  void RecordCounters(vtkAccelVolumeShearWarpMapper* self, const ShearWarpFrameResult& out);
 };
 
 vtkStandardNewMacro(vtkAccelVolumeShearWarpMapper);
@@ -140,6 +222,252 @@ void vtkAccelVolumeShearWarpMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Internals->Display.ReleaseGraphicsResources(window);
 }
 
+int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShearWarpMapper* self,
+  vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input, vtkDataArray* scalars,
+  vtkVolumeProperty* property, ShearWarpFrameInputs& in, std::string& why)
+{
+  accelvolume::ShearWarpSettings& settings = in.settings;
+  switch (self->BlendMode)
+  {
+    case COMPOSITE_BLEND:
+      settings.blend = accelvolume::Blend::Composite;
+      break;
+    case MAXIMUM_INTENSITY_BLEND:
+      settings.blend = accelvolume::Blend::Maximum;
+      break;
+    case MINIMUM_INTENSITY_BLEND:
+      settings.blend = accelvolume::Blend::Minimum;
+      break;
+    default:
+      vtkErrorWithObjectMacro(self,
+        "Blend mode " << self->BlendMode
+                      << " is not supported by the shear-warp mapper (use composite, "
+                         "maximum or minimum intensity)");
+      why = "blend mode " + std::to_string(self->BlendMode) + " not supported";
+      return FrameFailed;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (!camera->GetParallelProjection())
+  {
+    vtkErrorWithObjectMacro(self,
+      "The shear-warp mapper needs a parallel projection "
+      "(vtkCamera::ParallelProjectionOn)");
+    why = "perspective camera (shear-warp needs a parallel projection)";
+    return FrameFailed;
+  }
+  if (!this->WarnedUnsupported &&
+    (self->Cropping || (self->ClippingPlanes && self->ClippingPlanes->GetNumberOfItems() > 0) ||
+      property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D))
+  {
+    this->WarnedUnsupported = true;
+    vtkWarningWithObjectMacro(self,
+      "The shear-warp mapper ignores cropping, clipping planes and 2D transfer "
+      "functions; the whole volume is rendered with the 1D transfer function");
+  }
+
+  vtkAccelVolumeScalarRange(scalars, in.range);
+
+  this->Inputs.UpdateVolume(input, scalars); // encodings are rebuilt only on change
+  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
+  vtkAccelVolumeView(input, this->Inputs.GetScalars(), in.view); // type checked with the input
+  const int* dims = in.view.dims;
+  vtkNew<vtkMatrix4x4> indexToWorld;
+  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
+
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  this->Inputs.UpdateTransfer(property, in.range, composite, voxelSpacing, in.transfer, in.high);
+
+  renderer->GetTiledSizeAndOrigin(&in.width, &in.height, in.lowerLeft, in.lowerLeft + 1);
+  if (in.width < 1 || in.height < 1)
+  {
+    return FrameEmpty;
+  }
+  SetUpShearWarpView(camera, indexToWorld, in.width, in.height, in.frame);
+
+  if (composite && property->GetShade(0) != 0)
+  {
+    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, true, in.lighting);
+  }
+
+  // The cores this process may use (an MPI launcher may bind each rank to one): more threads
+  // than that only contend, and TBB warns about them.
+  const int cores = UsableCores();
+  in.threads = self->NumberOfThreads > 0 ? std::min(self->NumberOfThreads, cores) : cores;
+  settings.runLengthEncoding = self->RunLengthEncoding != 0;
+  settings.earlyTermination = self->EarlyRayTermination != 0;
+  settings.terminationThreshold = self->EarlyRayTerminationThreshold;
+  settings.shading = self->ShadingMode == SHADING_PHONG
+    ? accelvolume::ShearWarpShading::Phong
+    : accelvolume::ShearWarpShading::LookupTable;
+  settings.bands = in.threads;
+  settings.balance = self->LoadBalancing != 0;
+  return FrameReady;
+}
+
+void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrame(const ShearWarpFrameInputs& in,
+  int ranks, int rank, vtkAccelVolumeRenderProgress& progress, ShearWarpFrameResult& out)
+{
+  try
+  {
+    if (ranks == 1)
+    {
+      // The engine reports up to 0.95; showing the image is the rest.
+      this->Renderer.SetProgressFunction(progress.Range(0.0, 0.95));
+      out.ok = this->Renderer.Render(in.view, in.range[0], in.high, this->Inputs.VolumeVersion,
+        in.transfer, this->Inputs.TransferVersion, in.lighting, in.frame, in.settings,
+        SMPParallelFor(), this->Image, out.rectangle, out.stats, out.error);
+      return;
+    }
+    this->RenderFrameOnRanks(in, ranks, rank, progress, out);
+  }
+  catch (const std::bad_alloc&)
+  {
+    out.ok = false;
+    out.error = "out of memory for the run-length encoded volume or the images";
+  }
+}
+
+void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const ShearWarpFrameInputs& in,
+  int ranks, int rank, vtkAccelVolumeRenderProgress& progress, ShearWarpFrameResult& out)
+{
+  // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
+  // (split among its threads), and rank 0 gathers the bands and warps. The encoding reports
+  // up to 0.6, then each phase once. Every exchange with another rank is bounded in time
+  // (CommunicationTimeout; vtkAccelVolumeMPIExchange).
+  accelvolume::ShearWarpRenderer& engine = this->Renderer;
+  const accelvolume::ParallelFor parallel = SMPParallelFor();
+  const int threads = in.threads;
+  engine.SetProgressFunction(progress.Range(0.0, 0.6));
+  try
+  {
+    out.ok = engine.BeginFrame(in.view, in.range[0], in.high, this->Inputs.VolumeVersion,
+      in.transfer, this->Inputs.TransferVersion, in.lighting, in.frame, in.settings, parallel,
+      out.stats, out.error);
+  }
+  catch (const std::bad_alloc&)
+  {
+    out.ok = false;
+    out.error = "out of memory for the run-length encoded volume or the images";
+  }
+  // A rank that cannot render must not leave the others waiting for its band: every rank
+  // learns the lowest rank that failed, and why.
+  const vtkAccelVolumeMPIExchange::Failure failure =
+    this->Exchange.AgreeOnFailure(out.ok ? FrameReady : FrameFailed, out.error, "frame status");
+  if (failure.Rank >= 0)
+  {
+    out.empty = out.ok && failure.Code == FrameEmpty; // this rank's own failure is still reported
+    out.ok = false;
+    if (failure.Rank != rank)
+    {
+      out.error =
+        "rank " + std::to_string(failure.Rank) + " cannot render the frame: " + failure.Message;
+    }
+    return;
+  }
+  progress.Report(0.6);
+  const double compositeStart = Now();
+  const std::vector<int> rankBounds = engine.Bands(ranks * threads, in.settings.balance);
+  // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
+  const int first = rank * threads;
+  std::vector<double> bandSeconds(static_cast<std::size_t>(ranks * threads), 0.0);
+  // A rank that runs out of memory here still takes part in the exchanges below (its rows
+  // are then meaningless) and fails the frame on every rank through the summed flag.
+  bool composited = true;
+  try
+  {
+    parallel(static_cast<std::size_t>(threads),
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          const double bandStart = Now();
+          engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
+          bandSeconds[first + t] = Now() - bandStart;
+        }
+      });
+  }
+  catch (const std::bad_alloc&)
+  {
+    composited = false;
+  }
+  out.stats.compositeSeconds = Now() - compositeStart;
+  progress.Report(0.75);
+  if (!this->GatherBands(rankBounds, bandSeconds, composited, ranks, threads, out))
+  {
+    return;
+  }
+  progress.Report(0.9);
+  engine.GetCounters(out.stats);
+  if (rank == 0)
+  {
+    const double warpStart = Now();
+    engine.Warp(parallel, this->Image, out.rectangle);
+    out.stats.warpSeconds = Now() - warpStart;
+  }
+  progress.Report(0.95);
+}
+
+bool vtkAccelVolumeShearWarpMapper::vtkInternals::GatherBands(const std::vector<int>& rankBounds,
+  const std::vector<double>& bandSeconds, bool composited, int ranks, int threads,
+  ShearWarpFrameResult& out)
+{
+  accelvolume::ShearWarpRenderer& engine = this->Renderer;
+  const double gatherStart = Now();
+  const accelvolume::ShearWarpFactorization& f = engine.GetFactorization();
+  const vtkIdType rowValues = 4 * static_cast<vtkIdType>(f.intermediateSize[0]);
+  std::vector<vtkIdType> rankOffsets(static_cast<std::size_t>(ranks + 1));
+  for (int r = 0; r <= ranks; ++r)
+  {
+    rankOffsets[r] = rowValues * rankBounds[r * threads];
+  }
+  this->Exchange.GatherToRoot(engine.GetIntermediateImage(), rankOffsets.data(), "band rows");
+  // Everyone balances the next frame with every rank's scanline times (summed in rank order
+  // on rank 0, so every rank holds the same costs and bands), and rank 0 reports every
+  // band's time; the last value counts the ranks that failed to composite.
+  const std::vector<double>& local = engine.GetScanlineSeconds();
+  std::vector<double> mine(local);
+  mine.insert(mine.end(), bandSeconds.begin(), bandSeconds.end());
+  mine.push_back(composited ? 0.0 : 1.0);
+  std::vector<double> summed(mine.size(), 0.0);
+  this->Exchange.Sum(mine.data(), summed.data(), static_cast<vtkIdType>(mine.size()), "timings");
+  if (summed.back() > 0)
+  {
+    out.ok = false;
+    out.error = composited ? "another rank ran out of memory while compositing"
+                           : "out of memory while compositing";
+    return false;
+  }
+  const auto bandsBegin = summed.begin() + static_cast<std::ptrdiff_t>(local.size());
+  engine.SetScanlineCosts(std::vector<double>(summed.begin(), bandsBegin));
+  const std::vector<double> allBands(bandsBegin, summed.end() - 1);
+  out.stats.bandSeconds = allBands;
+  out.stats.bandBounds = rankBounds;
+  out.stats.imbalance = accelvolume::Imbalance(allBands);
+  out.gatherSeconds = Now() - gatherStart;
+  return true;
+}
+
+void vtkAccelVolumeShearWarpMapper::vtkInternals::RecordCounters(
+  vtkAccelVolumeShearWarpMapper* self, const ShearWarpFrameResult& out)
+{
+  const accelvolume::ShearWarpStats& stats = out.stats;
+  self->LastEncodeTime = stats.encodeSeconds;
+  self->LastTableTime = stats.tableSeconds;
+  self->LastCompositeTime = stats.compositeSeconds;
+  self->LastGatherTime = out.gatherSeconds;
+  self->LastWarpTime = stats.warpSeconds;
+  self->LastImbalance = stats.imbalance;
+  self->LastNumberOfBands = static_cast<int>(stats.bandSeconds.size());
+  this->BandTimes = stats.bandSeconds;
+  self->LastNumberOfVoxels = static_cast<vtkTypeInt64>(stats.voxels);
+  self->LastNumberOfSamples = static_cast<vtkTypeInt64>(stats.samples);
+  self->LastNumberOfSkippedPixels = static_cast<vtkTypeInt64>(stats.skippedOpaque);
+  self->LastPrincipalAxis = stats.principalAxis;
+  self->LastNumberOfStoredVoxels = static_cast<vtkTypeInt64>(stats.storedVoxels);
+  self->EncodedBytes = static_cast<vtkTypeInt64>(this->Renderer.GetEncodedBytes());
+}
+
 void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   const double start = Now();
@@ -172,279 +500,40 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, renderer, volume) : "");
     return;
   }
-  std::string error;
-  accelvolume::ShearWarpSettings settings;
-  switch (this->BlendMode)
+  ShearWarpFrameInputs in;
+  std::string why;
+  const int status =
+    internals.PrepareFrame(this, renderer, volume, input, scalars, property, in, why);
+  if (status != FrameReady)
   {
-    case COMPOSITE_BLEND:
-      settings.blend = accelvolume::Blend::Composite;
-      break;
-    case MAXIMUM_INTENSITY_BLEND:
-      settings.blend = accelvolume::Blend::Maximum;
-      break;
-    case MINIMUM_INTENSITY_BLEND:
-      settings.blend = accelvolume::Blend::Minimum;
-      break;
-    default:
-      vtkErrorMacro("Blend mode " << this->BlendMode
-                                  << " is not supported by the shear-warp mapper (use composite, "
-                                     "maximum or minimum intensity)");
-      leaveEarly(FrameFailed, "blend mode " + std::to_string(this->BlendMode) + " not supported");
-      return;
-  }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  if (!camera->GetParallelProjection())
-  {
-    vtkErrorMacro("The shear-warp mapper needs a parallel projection "
-                  "(vtkCamera::ParallelProjectionOn)");
-    leaveEarly(FrameFailed, "perspective camera (shear-warp needs a parallel projection)");
+    leaveEarly(status, why);
     return;
   }
-  if (!internals.WarnedUnsupported &&
-    (this->Cropping || (this->ClippingPlanes && this->ClippingPlanes->GetNumberOfItems() > 0) ||
-      property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D))
-  {
-    internals.WarnedUnsupported = true;
-    vtkWarningMacro("The shear-warp mapper ignores cropping, clipping planes and 2D transfer "
-                    "functions; the whole volume is rendered with the 1D transfer function");
-  }
 
-  double range[2];
-  vtkAccelVolumeScalarRange(scalars, range);
-
-  internals.Inputs.UpdateVolume(input, scalars); // encodings are rebuilt only on change
-  // NaN / infinite float values as the slice mapper's texture holds them (a finite copy).
-  accelvolume::VolumeView view;
-  vtkAccelVolumeView(input, internals.Inputs.GetScalars(), view); // type checked with the input
-  const int* dims = view.dims;
-  vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
-  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
-
-  accelvolume::RayCastTransfer transfer;
-  double high = 0;
-  const bool composite = this->BlendMode == COMPOSITE_BLEND;
-  internals.Inputs.UpdateTransfer(property, range, composite, voxelSpacing, transfer, high);
-
-  int width = 0;
-  int height = 0;
-  int lowerLeft[2] = { 0, 0 };
-  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
-  if (width < 1 || height < 1)
-  {
-    leaveEarly(FrameEmpty, "");
-    return;
-  }
-  accelvolume::ShearWarpView frame;
-  frame.width = width;
-  frame.height = height;
-  double indexToWorldRows[3][4];
-  double worldToView[4][4];
-  vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      worldToView[r][c] = viewMatrix->GetElement(r, c);
-      if (r < 3)
-      {
-        indexToWorldRows[r][c] = indexToWorld->GetElement(r, c);
-      }
-      if (r < 3 && c < 3)
-      {
-        frame.indexToWorld[r][c] = indexToWorld->GetElement(r, c);
-      }
-    }
-  }
-  accelvolume::ParallelVoxelToImage(indexToWorldRows, worldToView, camera->GetParallelScale(),
-    width, height, frame.voxelToImage);
-  // VTK's window centre shifts the parallel view in NDC.
-  double centre[2];
-  camera->GetWindowCenter(centre);
-  frame.voxelToImage[0][3] += centre[0] * width / 2.0;
-  frame.voxelToImage[1][3] += centre[1] * height / 2.0;
-
-  accelvolume::RayCastLighting lighting;
-  if (composite && property->GetShade(0) != 0)
-  {
-    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, true, lighting);
-  }
-
-  // The cores this process may use (an MPI launcher may bind each rank to one): more threads
-  // than that only contend, and TBB warns about them.
-  const int cores = UsableCores();
-  const int threads = this->NumberOfThreads > 0 ? std::min(this->NumberOfThreads, cores) : cores;
-  settings.runLengthEncoding = this->RunLengthEncoding != 0;
-  settings.earlyTermination = this->EarlyRayTermination != 0;
-  settings.terminationThreshold = this->EarlyRayTerminationThreshold;
-  settings.shading = this->ShadingMode == SHADING_PHONG ? accelvolume::ShearWarpShading::Phong
-                                                        : accelvolume::ShearWarpShading::LookupTable;
-  settings.bands = threads;
-  settings.balance = this->LoadBalancing != 0;
-
-  accelvolume::ParallelFor parallel =
-    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
-  accelvolume::ShearWarpStats stats;
-  accelvolume::ShearWarpRenderer& engine = internals.Renderer;
-  int rectangle[4] = { 0, -1, 0, -1 };
-  bool ok = false;
-  bool empty = false; // another rank had nothing to draw: every rank skips the frame
-  double gatherSeconds = 0;
-  auto renderFrame = [&]()
-  {
-    try
-    {
-      if (ranks == 1)
-      {
-        // The engine reports up to 0.95; showing the image is the rest.
-        engine.SetProgressFunction(progress.Range(0.0, 0.95));
-        ok = engine.Render(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
-          internals.Inputs.TransferVersion, lighting, frame, settings, parallel, internals.Image,
-          rectangle, stats, error);
-        return;
-      }
-      // SPMD: every rank factorizes and encodes alike, composites its own band of scanlines
-      // (split among its threads), and rank 0 gathers the bands and warps. The encoding reports
-      // up to 0.6, then each phase once. Every exchange with another rank is bounded in time
-      // (CommunicationTimeout; vtkAccelVolumeMPIExchange).
-      engine.SetProgressFunction(progress.Range(0.0, 0.6));
-      try
-      {
-        ok = engine.BeginFrame(view, range[0], high, internals.Inputs.VolumeVersion, transfer,
-          internals.Inputs.TransferVersion, lighting, frame, settings, parallel, stats, error);
-      }
-      catch (const std::bad_alloc&)
-      {
-        ok = false;
-        error = "out of memory for the run-length encoded volume or the images";
-      }
-      // A rank that cannot render must not leave the others waiting for its band: every rank
-      // learns the lowest rank that failed, and why.
-      const vtkAccelVolumeMPIExchange::Failure failure =
-        exchange.AgreeOnFailure(ok ? FrameReady : FrameFailed, error, "frame status");
-      if (failure.Rank >= 0)
-      {
-        empty = ok && failure.Code == FrameEmpty; // this rank's own failure is still reported
-        ok = false;
-        if (failure.Rank != rank)
-        {
-          error =
-            "rank " + std::to_string(failure.Rank) + " cannot render the frame: " + failure.Message;
-        }
-        return;
-      }
-      progress.Report(0.6);
-      const double compositeStart = Now();
-      const std::vector<int> rankBounds = engine.Bands(ranks * threads, settings.balance);
-      // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
-      const int first = rank * threads;
-      std::vector<double> bandSeconds(static_cast<std::size_t>(ranks * threads), 0.0);
-      // A rank that runs out of memory here still takes part in the exchanges below (its rows
-      // are then meaningless) and fails the frame on every rank through the summed flag.
-      bool composited = true;
-      try
-      {
-        parallel(static_cast<std::size_t>(threads),
-          [&](std::size_t begin, std::size_t end)
-          {
-            for (std::size_t t = begin; t < end; ++t)
-            {
-              const double bandStart = Now();
-              engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
-              bandSeconds[first + t] = Now() - bandStart;
-            }
-          });
-      }
-      catch (const std::bad_alloc&)
-      {
-        composited = false;
-      }
-      stats.compositeSeconds = Now() - compositeStart;
-      progress.Report(0.75);
-      const double gatherStart = Now();
-      const accelvolume::ShearWarpFactorization& f = engine.GetFactorization();
-      const vtkIdType rowValues = 4 * static_cast<vtkIdType>(f.intermediateSize[0]);
-      std::vector<vtkIdType> rankOffsets(static_cast<std::size_t>(ranks + 1));
-      for (int r = 0; r <= ranks; ++r)
-      {
-        rankOffsets[r] = rowValues * rankBounds[r * threads];
-      }
-      exchange.GatherToRoot(engine.GetIntermediateImage(), rankOffsets.data(), "band rows");
-      // Everyone balances the next frame with every rank's scanline times (summed in rank order
-      // on rank 0, so every rank holds the same costs and bands), and rank 0 reports every
-      // band's time; the last value counts the ranks that failed to composite.
-      const std::vector<double>& local = engine.GetScanlineSeconds();
-      std::vector<double> mine(local);
-      mine.insert(mine.end(), bandSeconds.begin(), bandSeconds.end());
-      mine.push_back(composited ? 0.0 : 1.0);
-      std::vector<double> summed(mine.size(), 0.0);
-      exchange.Sum(mine.data(), summed.data(), static_cast<vtkIdType>(mine.size()), "timings");
-      if (summed.back() > 0)
-      {
-        ok = false;
-        error = composited ? "another rank ran out of memory while compositing"
-                           : "out of memory while compositing";
-        return;
-      }
-      const auto bandsBegin = summed.begin() + static_cast<std::ptrdiff_t>(local.size());
-      engine.SetScanlineCosts(std::vector<double>(summed.begin(), bandsBegin));
-      const std::vector<double> allBands(bandsBegin, summed.end() - 1);
-      stats.bandSeconds = allBands;
-      stats.bandBounds = rankBounds;
-      stats.imbalance = accelvolume::Imbalance(allBands);
-      gatherSeconds = Now() - gatherStart;
-      progress.Report(0.9);
-      engine.GetCounters(stats);
-      if (rank == 0)
-      {
-        const double warpStart = Now();
-        engine.Warp(parallel, internals.Image, rectangle);
-        stats.warpSeconds = Now() - warpStart;
-      }
-      progress.Report(0.95);
-    }
-    catch (const std::bad_alloc&)
-    {
-      ok = false;
-      error = "out of memory for the run-length encoded volume or the images";
-    }
-  };
+  ShearWarpFrameResult out;
+  auto renderFrame = [&]() { internals.RenderFrame(in, ranks, rank, progress, out); };
   if (this->NumberOfThreads > 0)
   {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, renderFrame);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, renderFrame);
   }
   else
   {
     renderFrame();
   }
-  engine.SetProgressFunction(nullptr); // it refers to this render's progress
-  if (!ok)
+  internals.Renderer.SetProgressFunction(nullptr); // it refers to this render's progress
+  if (!out.ok)
   {
-    if (!empty)
+    if (!out.empty)
     {
-      vtkErrorMacro("Shear-warp rendering failed: " << error);
+      vtkErrorMacro("Shear-warp rendering failed: " << out.error);
     }
     return;
   }
-  this->LastEncodeTime = stats.encodeSeconds;
-  this->LastTableTime = stats.tableSeconds;
-  this->LastCompositeTime = stats.compositeSeconds;
-  this->LastGatherTime = gatherSeconds;
-  this->LastWarpTime = stats.warpSeconds;
-  this->LastImbalance = stats.imbalance;
-  this->LastNumberOfBands = static_cast<int>(stats.bandSeconds.size());
-  internals.BandTimes = stats.bandSeconds;
-  this->LastNumberOfVoxels = static_cast<vtkTypeInt64>(stats.voxels);
-  this->LastNumberOfSamples = static_cast<vtkTypeInt64>(stats.samples);
-  this->LastNumberOfSkippedPixels = static_cast<vtkTypeInt64>(stats.skippedOpaque);
-  this->LastPrincipalAxis = stats.principalAxis;
-  this->LastNumberOfStoredVoxels = static_cast<vtkTypeInt64>(stats.storedVoxels);
-  this->EncodedBytes = static_cast<vtkTypeInt64>(engine.GetEncodedBytes());
+  internals.RecordCounters(this, out);
 
   if (rank == 0 &&
-    !internals.Display.Draw(
-      window, lowerLeft, width, height, width, height, internals.Image.data(), rectangle))
+    !internals.Display.Draw(window, in.lowerLeft, in.width, in.height, in.width, in.height,
+      internals.Image.data(), out.rectangle))
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }

@@ -79,6 +79,34 @@ accelvolume::Vec3 MakeVec3(double x, double y, double z)
   v.z = z;
   return v;
 }
+
+// Slices start at the reference depth (no per-frame offset).
+constexpr double SlicePhase = 0.0;
+
+// The frame's view: its size, the matrices between index, eye and clip space, the clipped
+// regions and the slices' spacing and depth.
+struct SliceView
+{
+  int Dimensions[3] = { 0, 0, 0 };
+  int Width = 0;
+  int Height = 0;
+  int LowerLeft[2] = { 0, 0 };
+  vtkCamera* Camera = nullptr;
+  vtkMatrix4x4* View = nullptr;
+  vtkNew<vtkMatrix4x4> IndexToWorld;
+  vtkNew<vtkMatrix4x4> Projection;
+  vtkNew<vtkMatrix4x4> IndexToEye;
+  vtkNew<vtkMatrix4x4> IndexToClip;
+  vtkNew<vtkMatrix4x4> EyeToIndex;
+  vtkNew<vtkMatrix4x4> InverseProjection;
+  accelvolume::Box VolumeBox;
+  std::vector<accelvolume::Box> Regions;
+  std::vector<accelvolume::HalfSpace> Clip;
+  accelvolume::ViewRays Rays;
+  double VoxelSpacing = 0;
+  double ReferenceDepth = 0;
+  double Spacing = 0;
+};
 }
 
 // Per-mapper state kept out of the public header.
@@ -100,6 +128,30 @@ public:
   std::string Renderer;
   std::vector<float> Vertices;
   bool ReportedError = false;
+
+  // Uploads the volume and its transfer table; false (reported) when it cannot.
+  bool UploadVolume(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2]);
+  // The frame's matrices, regions and clip planes; false when the viewport is empty.
+  bool SetUpView(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer, vtkVolume* volume,
+    vtkImageData* input, SliceView& view);
+  // The slices' spacing and the rays' depth map.
+  void ChooseSliceSpacing(vtkAccelVolumeSliceMapper* self, vtkVolume* volume, SliceView& view);
+  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
+  void BuildProxyGeometry(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    vtkImageData* input, vtkVolumeProperty* property, const double range[2], const SliceView& view,
+    bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& stats);
+  // The frame's settings for the passes; false (reported) when the 2D table fails.
+  bool FillFrame(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const double range[2], const SliceView& view,
+    bool skipEmptyLeaves);
+  void FillShadingAndGradients(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const double range[2], const SliceView& view);
+  // Issues the slice passes and records the frame's brick counters.
+  bool DrawPasses(
+    vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError);
 };
 
 vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
@@ -242,6 +294,285 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* vo
   return true;
 }
 
+bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMapper* self,
+  vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+  vtkVolumeProperty* property, const double range[2])
+{
+  std::string error;
+  if (!this->Resources.PrepareVolume(window, input, scalars, range,
+        static_cast<std::uint64_t>(self->GPUMemoryBudget), self->MaximumBrickSize, error))
+  {
+    vtkErrorWithObjectMacro(self, "Cannot upload the volume: " << error);
+    return false;
+  }
+  this->Resources.UpdateTransferTable(window, property, range);
+  return true;
+}
+
+bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMapper* self,
+  vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input, SliceView& view)
+{
+  input->GetDimensions(view.Dimensions);
+
+  // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
+  vtkAccelVolumeIndexToWorld(volume, input, view.IndexToWorld);
+  renderer->GetTiledSizeAndOrigin(&view.Width, &view.Height, view.LowerLeft, view.LowerLeft + 1);
+  if (view.Width < 1 || view.Height < 1)
+  {
+    return false;
+  }
+  view.Camera = renderer->GetActiveCamera();
+  const double aspect = static_cast<double>(view.Width) / view.Height;
+  view.View = view.Camera->GetViewTransformMatrix();
+  view.Projection->DeepCopy(view.Camera->GetProjectionTransformMatrix(aspect, -1, 1));
+  vtkMatrix4x4::Multiply4x4(view.View, view.IndexToWorld, view.IndexToEye);
+  vtkMatrix4x4::Multiply4x4(view.Projection, view.IndexToEye, view.IndexToClip);
+  vtkMatrix4x4::Invert(view.IndexToEye, view.EyeToIndex);
+  vtkMatrix4x4::Invert(view.Projection, view.InverseProjection);
+
+  view.VolumeBox = vtkAccelVolumeIndexBox(view.Dimensions);
+  view.Regions = vtkAccelVolumeRegions(self, input, view.VolumeBox);
+  view.Clip = vtkAccelVolumeClipHalfSpaces(self->ClippingPlanes, view.IndexToWorld);
+  return true;
+}
+
+void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
+  vtkAccelVolumeSliceMapper* self, vtkVolume* volume, SliceView& view)
+{
+  const accelvolume::Box& volumeBox = view.VolumeBox;
+  vtkMatrix4x4* indexToEye = view.IndexToEye;
+  // Eye depth (distance in front of the camera plane) as a function of the index point.
+  const accelvolume::Vec3 depthGradient = MakeVec3(
+    -indexToEye->GetElement(2, 0), -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
+  const double depthOffset = -indexToEye->GetElement(2, 3);
+
+  // Slice spacing in world units.
+  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(view.IndexToWorld, view.Dimensions);
+  double depthMinimum = VTK_DOUBLE_MAX;
+  double depthMaximum = -VTK_DOUBLE_MAX;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const accelvolume::Vec3 p = MakeVec3(corner & 1 ? volumeBox.upper.x : volumeBox.lower.x,
+      corner & 2 ? volumeBox.upper.y : volumeBox.lower.y,
+      corner & 4 ? volumeBox.upper.z : volumeBox.lower.z);
+    const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
+    depthMinimum = std::min(depthMinimum, depth);
+    depthMaximum = std::max(depthMaximum, depth);
+  }
+  const double depthExtent = std::max(depthMaximum - depthMinimum, 1.0e-9);
+  // Slice depths reach the shaders relative to the volume centre's (float precision).
+  const double referenceDepth = 0.5 * (depthMinimum + depthMaximum);
+  double spacing = self->SampleDistance;
+  if (self->NumberOfSlices > 0)
+  {
+    spacing = depthExtent / self->NumberOfSlices;
+  }
+  else if (self->AutoAdjustSampleDistances)
+  {
+    spacing = voxelSpacing;
+    const double allotted = volume->GetAllocatedRenderTime();
+    if (allotted > 0 && allotted < 1.0 && self->LastRenderTime > allotted)
+    {
+      spacing *= std::min(self->InteractiveSlowdownLimit, self->LastRenderTime / allotted);
+    }
+  }
+  if (depthExtent / spacing > self->MaximumNumberOfSlices)
+  {
+    spacing = depthExtent / self->MaximumNumberOfSlices;
+  }
+  vtkMatrix4x4* eyeToIndex = view.EyeToIndex;
+  accelvolume::ViewRays& rays = view.Rays;
+  rays.depthGradient = depthGradient;
+  rays.depthOffset = depthOffset;
+  rays.perspective = view.Camera->GetParallelProjection() == 0;
+  rays.eye = MakeVec3(
+    eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
+  rays.direction = MakeVec3(
+    -eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
+  view.VoxelSpacing = voxelSpacing;
+  view.ReferenceDepth = referenceDepth;
+  view.Spacing = spacing;
+}
+
+void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeSliceMapper* self,
+  vtkOpenGLRenderWindow* window, vtkImageData* input, vtkVolumeProperty* property,
+  const double range[2], const SliceView& view, bool& skipEmptyLeaves,
+  vtkAccelVolumeSliceGeometryStats& geometryStats)
+{
+  const bool extremum =
+    self->BlendMode == MAXIMUM_INTENSITY_BLEND || self->BlendMode == MINIMUM_INTENSITY_BLEND;
+  const int slabSamples = extremum ? self->SlabSamples : 1;
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  const bool transferFunction2D =
+    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
+  skipEmptyLeaves = composite && !transferFunction2D && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
+    self->UpdateEmptyLeaves(window, input, property, range);
+  const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
+  vtkAccelVolumeSliceGeometryInput geometry;
+  geometry.Regions = &view.Regions;
+  geometry.Clip = &view.Clip;
+  geometry.VolumeBox = view.VolumeBox;
+  geometry.Rays = view.Rays;
+  geometry.ReferenceDepth = view.ReferenceDepth;
+  geometry.Spacing = view.Spacing;
+  geometry.Phase = SlicePhase;
+  geometry.Composite = composite;
+  geometry.FrontToBack = self->FrontToBack != 0;
+  // A slab's samples run along the ray, across brick faces: bricks take plain slices.
+  geometry.SlabSamples = layout.Single() ? slabSamples : 1;
+  geometry.BoundaryFaces = self->BoundaryRerendering != 0;
+  geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
+  geometry.Layout = &layout;
+  vtkAccelVolumeBuildSliceGeometry(geometry, this->Frame, this->Vertices, geometryStats);
+  if (composite)
+  {
+    self->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
+  }
+  this->Frame.SlabSamples = geometry.SlabSamples;
+}
+
+bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,
+  vtkRenderer* renderer, vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+  vtkVolumeProperty* property, const double range[2], const SliceView& view, bool skipEmptyLeaves)
+{
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  vtkAccelVolumeSliceFrame& frame = this->Frame;
+  frame.BlendMode = self->BlendMode;
+  frame.Linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
+  frame.Width = view.Width;
+  frame.Height = view.Height;
+  frame.LowerLeft[0] = view.LowerLeft[0];
+  frame.LowerLeft[1] = view.LowerLeft[1];
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.Dimensions[c] = static_cast<float>(view.Dimensions[c]);
+  }
+  frame.IndexToClip = view.IndexToClip;
+  frame.IndexToEye = view.IndexToEye;
+  frame.EyeToIndex = view.EyeToIndex;
+  frame.Projection = view.Projection;
+  frame.InverseProjection = view.InverseProjection;
+  frame.ReferenceDepth = view.ReferenceDepth;
+  frame.ClipPlaneCount = static_cast<int>(view.Clip.size());
+  float clipUniforms[MaximumClipPlanes][4] = {};
+  for (size_t i = 0; i < view.Clip.size(); ++i)
+  {
+    clipUniforms[i][0] = static_cast<float>(view.Clip[i].normal.x);
+    clipUniforms[i][1] = static_cast<float>(view.Clip[i].normal.y);
+    clipUniforms[i][2] = static_cast<float>(view.Clip[i].normal.z);
+    clipUniforms[i][3] = static_cast<float>(view.Clip[i].offset);
+  }
+  std::copy(
+    &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
+  frame.SliceSpacing = static_cast<float>(view.Spacing);
+  frame.SlicePhase = static_cast<float>(SlicePhase);
+  frame.BoundaryRerendering = self->BoundaryRerendering != 0 && !composite;
+  frame.OpacityUnitDistance =
+    static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
+  frame.Parallel = view.Camera->GetParallelProjection() != 0;
+  frame.FrontToBack = self->FrontToBack != 0;
+  frame.Jitter = self->Jittering != 0;
+  frame.EarlyTermination = composite && self->EarlyRayTermination && frame.FrontToBack;
+  frame.TerminationInterval = self->EarlyRayTerminationInterval;
+  frame.TerminationThreshold = static_cast<float>(self->EarlyRayTerminationThreshold);
+  frame.TerminationPasses = 0;
+  frame.TransferFunction2D =
+    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  if (frame.TransferFunction2D)
+  {
+    std::string tableError;
+    if (!this->Resources.UpdateTransferFunction2D(
+          window, property->GetTransferFunction2D(0), tableError))
+    {
+      vtkErrorWithObjectMacro(self, "Cannot use the 2D transfer function: " << tableError);
+      return false;
+    }
+    // The table's y axis spans [0, the steepest central difference the data allow].
+    frame.Gradient2DMaximum =
+      static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / view.VoxelSpacing);
+  }
+  frame.SkipTransparentSamples = composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT);
+  frame.SkipEmptyLeaves = skipEmptyLeaves;
+  self->LastTransparentLeafFraction =
+    frame.SkipEmptyLeaves ? self->LastTransparentLeafFraction : -1.0;
+  frame.LeafSize = static_cast<float>(self->OctreeLeafSize);
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, this->LeafGrid[c] - 1));
+  }
+  this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
+  const double unit =
+    self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : view.VoxelSpacing;
+  frame.AdditiveScale = static_cast<float>(1.0 / unit);
+  const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
+  frame.AverageRange[0] =
+    static_cast<float>((self->AverageIPScalarRange[0] - range[0]) / rangeWidth);
+  frame.AverageRange[1] =
+    static_cast<float>((self->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  frame.Vertices = &this->Vertices;
+  return true;
+}
+
+void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
+  vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2],
+  const SliceView& view)
+{
+  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  vtkAccelVolumeSliceFrame& frame = this->Frame;
+  frame.Shade = composite && property->GetShade(0) != 0;
+  frame.GradientOpacity =
+    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
+  if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
+  {
+    FillShading(frame, renderer, property, view.IndexToEye, view.View);
+    constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
+    const int* dims = view.Dimensions;
+    const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
+    // Bricks take central differences: their texels reach one voxel past what they own.
+    frame.GradientTexture = self->PrecomputeGradients &&
+      this->Resources.GetBrickLayout().Single() && gradientBytes <= GradientTextureBudget &&
+      this->Resources.UpdateGradients(window, input, scalars, range);
+    frame.GradientTextureScale = this->Resources.GradientScale;
+  }
+  else
+  {
+    frame.GradientTexture = false;
+  }
+  if (frame.GradientOpacity)
+  {
+    // The table spans the function's own domain, or the steepest plausible gradient.
+    double domain[2];
+    property->GetGradientOpacity(0)->GetRange(domain);
+    const double maximum = domain[1] > 0 ? domain[1] : frame.ScalarRangeWidth / view.VoxelSpacing;
+    frame.GradientTableMaximum = static_cast<float>(maximum);
+    this->Resources.UpdateGradientOpacityTable(window, property, maximum);
+  }
+}
+
+bool vtkAccelVolumeSliceMapper::vtkInternals::DrawPasses(
+  vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError)
+{
+  if (this->Renderer.empty())
+  {
+    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    this->Renderer = name ? name : "unknown";
+  }
+  vtkAccelVolumeSliceFrame& frame = this->Frame;
+  this->Resources.Bricks.BeginFrame();
+  const bool rendered = vtkAccelVolumeRenderSlicePasses(window, this->Resources, frame, passError);
+  self->LastNumberOfTerminationPasses = frame.TerminationPasses;
+  self->LastNumberOfBricks = static_cast<int>(this->Resources.GetBrickLayout().bricks.size());
+  self->LastNumberOfBricksDrawn = static_cast<int>(frame.Bricks.size());
+  self->LastNumberOfBrickUploads = this->Resources.Bricks.GetFrameUploads();
+  self->LastUploadedBytes = static_cast<vtkIdType>(this->Resources.Bricks.GetFrameUploadedBytes());
+  self->LastResidentBytes = static_cast<vtkIdType>(this->Resources.Bricks.GetResidentBytes());
+  this->Resources.ReleaseEncodedScalarsIfResident();
+  return rendered;
+}
+
 void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   vtkNew<vtkTimerLog> timer;
@@ -273,258 +604,35 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   vtkAccelVolumeScalarRange(scalars, range);
 
   vtkVolumeProperty* property = volume->GetProperty();
-  const bool linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
-  std::string error;
-  if (!internals.Resources.PrepareVolume(window, input, scalars, range,
-        static_cast<std::uint64_t>(this->GPUMemoryBudget), this->MaximumBrickSize, error))
+  if (!internals.UploadVolume(this, window, input, scalars, property, range))
   {
-    vtkErrorMacro("Cannot upload the volume: " << error);
     return;
   }
-  const accelvolume::BrickLayout& layout = internals.Resources.GetBrickLayout();
-  internals.Resources.UpdateTransferTable(window, property, range);
   progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
 
-  int dims[3];
-  input->GetDimensions(dims);
-
-  // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
-  vtkNew<vtkMatrix4x4> indexToWorld;
-  vtkAccelVolumeIndexToWorld(volume, input, indexToWorld);
-  int width = 0;
-  int height = 0;
-  int lowerLeft[2] = { 0, 0 };
-  renderer->GetTiledSizeAndOrigin(&width, &height, lowerLeft, lowerLeft + 1);
-  if (width < 1 || height < 1)
+  SliceView view;
+  if (!internals.SetUpView(this, renderer, volume, input, view))
   {
     return;
   }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  const double aspect = static_cast<double>(width) / height;
-  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
-  vtkNew<vtkMatrix4x4> projection;
-  projection->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
-  vtkNew<vtkMatrix4x4> indexToEye;
-  vtkMatrix4x4::Multiply4x4(view, indexToWorld, indexToEye);
-  vtkNew<vtkMatrix4x4> indexToClip;
-  vtkMatrix4x4::Multiply4x4(projection, indexToEye, indexToClip);
-  vtkNew<vtkMatrix4x4> eyeToIndex;
-  vtkMatrix4x4::Invert(indexToEye, eyeToIndex);
-  vtkNew<vtkMatrix4x4> inverseProjection;
-  vtkMatrix4x4::Invert(projection, inverseProjection);
-
-  const accelvolume::Box volumeBox = vtkAccelVolumeIndexBox(dims);
-  const std::vector<accelvolume::Box> regions = vtkAccelVolumeRegions(this, input, volumeBox);
-
-  const std::vector<accelvolume::HalfSpace> clip =
-    vtkAccelVolumeClipHalfSpaces(this->ClippingPlanes, indexToWorld);
-  float clipUniforms[MaximumClipPlanes][4] = {};
-  for (size_t i = 0; i < clip.size(); ++i)
-  {
-    clipUniforms[i][0] = static_cast<float>(clip[i].normal.x);
-    clipUniforms[i][1] = static_cast<float>(clip[i].normal.y);
-    clipUniforms[i][2] = static_cast<float>(clip[i].normal.z);
-    clipUniforms[i][3] = static_cast<float>(clip[i].offset);
-  }
-
-  // Eye depth (distance in front of the camera plane) as a function of the index point.
-  const accelvolume::Vec3 depthGradient = MakeVec3(
-    -indexToEye->GetElement(2, 0), -indexToEye->GetElement(2, 1), -indexToEye->GetElement(2, 2));
-  const double depthOffset = -indexToEye->GetElement(2, 3);
-
-  // Slice spacing in world units.
-  const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
-  double depthMinimum = VTK_DOUBLE_MAX;
-  double depthMaximum = -VTK_DOUBLE_MAX;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const accelvolume::Vec3 p = MakeVec3(corner & 1 ? volumeBox.upper.x : volumeBox.lower.x,
-      corner & 2 ? volumeBox.upper.y : volumeBox.lower.y,
-      corner & 4 ? volumeBox.upper.z : volumeBox.lower.z);
-    const double depth = accelvolume::Dot(depthGradient, p) + depthOffset;
-    depthMinimum = std::min(depthMinimum, depth);
-    depthMaximum = std::max(depthMaximum, depth);
-  }
-  const double depthExtent = std::max(depthMaximum - depthMinimum, 1.0e-9);
-  // Slice depths reach the shaders relative to the volume centre's (float precision).
-  const double referenceDepth = 0.5 * (depthMinimum + depthMaximum);
-  double spacing = this->SampleDistance;
-  if (this->NumberOfSlices > 0)
-  {
-    spacing = depthExtent / this->NumberOfSlices;
-  }
-  else if (this->AutoAdjustSampleDistances)
-  {
-    spacing = voxelSpacing;
-    const double allotted = volume->GetAllocatedRenderTime();
-    if (allotted > 0 && allotted < 1.0 && this->LastRenderTime > allotted)
-    {
-      spacing *= std::min(this->InteractiveSlowdownLimit, this->LastRenderTime / allotted);
-    }
-  }
-  if (depthExtent / spacing > this->MaximumNumberOfSlices)
-  {
-    spacing = depthExtent / this->MaximumNumberOfSlices;
-  }
-  const double phase = 0.0;
-  const bool extremum =
-    this->BlendMode == MAXIMUM_INTENSITY_BLEND || this->BlendMode == MINIMUM_INTENSITY_BLEND;
-  const int slabSamples = extremum ? this->SlabSamples : 1;
-  accelvolume::ViewRays rays;
-  rays.depthGradient = depthGradient;
-  rays.depthOffset = depthOffset;
-  rays.perspective = camera->GetParallelProjection() == 0;
-  rays.eye = MakeVec3(
-    eyeToIndex->GetElement(0, 3), eyeToIndex->GetElement(1, 3), eyeToIndex->GetElement(2, 3));
-  rays.direction = MakeVec3(
-    -eyeToIndex->GetElement(0, 2), -eyeToIndex->GetElement(1, 2), -eyeToIndex->GetElement(2, 2));
-
-  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
-  const bool composite = this->BlendMode == COMPOSITE_BLEND;
-  const bool transferFunction2D =
-    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
-  // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
-  const bool skipEmptyLeaves = composite && !transferFunction2D &&
-    (this->EmptySpaceSkipping & SKIP_OCTREE) &&
-    this->UpdateEmptyLeaves(window, input, property, range);
-  vtkAccelVolumeSliceGeometryInput geometry;
-  geometry.Regions = &regions;
-  geometry.Clip = &clip;
-  geometry.VolumeBox = volumeBox;
-  geometry.Rays = rays;
-  geometry.ReferenceDepth = referenceDepth;
-  geometry.Spacing = spacing;
-  geometry.Phase = phase;
-  geometry.Composite = composite;
-  geometry.FrontToBack = this->FrontToBack != 0;
-  // A slab's samples run along the ray, across brick faces: bricks take plain slices.
-  geometry.SlabSamples = layout.Single() ? slabSamples : 1;
-  geometry.BoundaryFaces = this->BoundaryRerendering != 0;
-  geometry.NonEmpty =
-    skipEmptyLeaves && internals.HaveNonEmptyBoxes ? &internals.NonEmptyBoxes : nullptr;
-  geometry.Layout = &layout;
+  internals.ChooseSliceSpacing(this, volume, view);
+  bool skipEmptyLeaves = false;
   vtkAccelVolumeSliceGeometryStats geometryStats;
-  vtkAccelVolumeBuildSliceGeometry(geometry, internals.Frame, internals.Vertices, geometryStats);
-  if (composite)
-  {
-    this->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
-  }
-  std::vector<float>& vertices = internals.Vertices;
+  internals.BuildProxyGeometry(
+    this, window, input, property, range, view, skipEmptyLeaves, geometryStats);
   progress.Report(0.45); // octree classification and proxy geometry
-  this->LastSliceSpacing = spacing;
+  this->LastSliceSpacing = view.Spacing;
   this->LastNumberOfSlices = geometryStats.Slices;
   this->LastNumberOfProxyPolygons = geometryStats.ProxyPolygons;
   this->LastNumberOfBoundaryFaces = geometryStats.BoundaryFaces;
 
-  vtkAccelVolumeSliceFrame& frame = internals.Frame;
-  frame.BlendMode = this->BlendMode;
-  frame.SlabSamples = geometry.SlabSamples;
-  frame.Linear = linear;
-  frame.Width = width;
-  frame.Height = height;
-  frame.LowerLeft[0] = lowerLeft[0];
-  frame.LowerLeft[1] = lowerLeft[1];
-  for (int c = 0; c < 3; ++c)
+  if (!internals.FillFrame(
+        this, renderer, window, input, scalars, property, range, view, skipEmptyLeaves))
   {
-    frame.Dimensions[c] = static_cast<float>(dims[c]);
+    return;
   }
-  frame.IndexToClip = indexToClip;
-  frame.IndexToEye = indexToEye;
-  frame.EyeToIndex = eyeToIndex;
-  frame.Projection = projection;
-  frame.InverseProjection = inverseProjection;
-  frame.ReferenceDepth = referenceDepth;
-  frame.ClipPlaneCount = static_cast<int>(clip.size());
-  std::copy(
-    &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
-  frame.SliceSpacing = static_cast<float>(spacing);
-  frame.SlicePhase = static_cast<float>(phase);
-  frame.BoundaryRerendering = this->BoundaryRerendering != 0 && !composite;
-  frame.OpacityUnitDistance =
-    static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
-  frame.Parallel = camera->GetParallelProjection() != 0;
-  frame.FrontToBack = this->FrontToBack != 0;
-  frame.Jitter = this->Jittering != 0;
-  frame.EarlyTermination = composite && this->EarlyRayTermination && frame.FrontToBack;
-  frame.TerminationInterval = this->EarlyRayTerminationInterval;
-  frame.TerminationThreshold = static_cast<float>(this->EarlyRayTerminationThreshold);
-  frame.TerminationPasses = 0;
-  frame.TransferFunction2D = transferFunction2D;
-  if (frame.TransferFunction2D)
-  {
-    std::string tableError;
-    if (!internals.Resources.UpdateTransferFunction2D(
-          window, property->GetTransferFunction2D(0), tableError))
-    {
-      vtkErrorMacro("Cannot use the 2D transfer function: " << tableError);
-      return;
-    }
-    // The table's y axis spans [0, the steepest central difference the data allow].
-    frame.Gradient2DMaximum =
-      static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / voxelSpacing);
-  }
-  frame.SkipTransparentSamples = composite && (this->EmptySpaceSkipping & SKIP_FRAGMENT);
-  frame.SkipEmptyLeaves = skipEmptyLeaves;
-  this->LastTransparentLeafFraction =
-    frame.SkipEmptyLeaves ? this->LastTransparentLeafFraction : -1.0;
-  frame.LeafSize = static_cast<float>(this->OctreeLeafSize);
-  for (int c = 0; c < 3; ++c)
-  {
-    frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, internals.LeafGrid[c] - 1));
-  }
-  frame.Shade = composite && property->GetShade(0) != 0;
-  frame.GradientOpacity =
-    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
-  frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
-  if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
-  {
-    FillShading(frame, renderer, property, indexToEye, view);
-    constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
-    const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
-    // Bricks take central differences: their texels reach one voxel past what they own.
-    frame.GradientTexture = this->PrecomputeGradients && layout.Single() &&
-      gradientBytes <= GradientTextureBudget &&
-      internals.Resources.UpdateGradients(window, input, scalars, range);
-    frame.GradientTextureScale = internals.Resources.GradientScale;
-  }
-  else
-  {
-    frame.GradientTexture = false;
-  }
-  if (frame.GradientOpacity)
-  {
-    // The table spans the function's own domain, or the steepest plausible gradient.
-    double domain[2];
-    property->GetGradientOpacity(0)->GetRange(domain);
-    const double maximum = domain[1] > 0 ? domain[1] : frame.ScalarRangeWidth / voxelSpacing;
-    frame.GradientTableMaximum = static_cast<float>(maximum);
-    internals.Resources.UpdateGradientOpacityTable(window, property, maximum);
-  }
-  const double unit = this->AdditiveUnitDistance > 0 ? this->AdditiveUnitDistance : voxelSpacing;
-  frame.AdditiveScale = static_cast<float>(1.0 / unit);
-  const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
-  frame.AverageRange[0] =
-    static_cast<float>((this->AverageIPScalarRange[0] - range[0]) / rangeWidth);
-  frame.AverageRange[1] =
-    static_cast<float>((this->AverageIPScalarRange[1] - range[0]) / rangeWidth);
-  frame.Vertices = &vertices;
-  if (internals.Renderer.empty())
-  {
-    const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    internals.Renderer = name ? name : "unknown";
-  }
-  internals.Resources.Bricks.BeginFrame();
   std::string passError;
-  const bool rendered =
-    vtkAccelVolumeRenderSlicePasses(window, internals.Resources, frame, passError);
-  this->LastNumberOfTerminationPasses = frame.TerminationPasses;
-  this->LastNumberOfBricks = static_cast<int>(layout.bricks.size());
-  this->LastNumberOfBricksDrawn = static_cast<int>(frame.Bricks.size());
-  this->LastNumberOfBrickUploads = internals.Resources.Bricks.GetFrameUploads();
-  this->LastUploadedBytes =
-    static_cast<vtkIdType>(internals.Resources.Bricks.GetFrameUploadedBytes());
-  this->LastResidentBytes = static_cast<vtkIdType>(internals.Resources.Bricks.GetResidentBytes());
-  internals.Resources.ReleaseEncodedScalarsIfResident();
+  const bool rendered = internals.DrawPasses(this, window, passError);
   progress.Report(0.6); // passes issued; the GPU may still be working on them
 
   // Wait for the GPU so the reported time is the frame's real cost.

@@ -19,6 +19,40 @@
 namespace accelvolume
 {
 
+namespace
+{
+// Which accelerations are exact for a frame's blend mode (see the header), and the threshold
+// the cells are classified with.
+struct LeapPlan
+{
+  bool zeroOpacityAddsNothing = false;
+  bool extremum = false;
+  bool useOctree = false;
+  bool useDistance = false;
+  bool useCellLeap = false;
+  double leapThreshold = 0;
+};
+
+// Rebuilds take [0, PrepareShare] of the frame; each one done halves what is left of it (which
+// rebuilds a frame needs is known only as they run).
+constexpr double PrepareShare = 0.25;
+
+struct PrepareProgress
+{
+  const ProgressFunction& report;
+  double prepared = 0;
+
+  void Rebuilt()
+  {
+    this->prepared += (PrepareShare - this->prepared) / 2;
+    if (this->report)
+    {
+      this->report(this->prepared);
+    }
+  }
+};
+}
+
 struct RayCaster::Internals
 {
   MinMaxOctree Octree;
@@ -55,6 +89,24 @@ struct RayCaster::Internals
   double PrepareSeconds = 0;
 
   ProgressFunction Progress;
+
+  // Frame preparation steps of RayCaster::Render (each rebuilds only what changed).
+  bool UpdateOctree(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const std::vector<float>& alphas, double rangeMin,
+    double rangeMax, const RayCastSettings& settings, const LeapPlan& plan,
+    const ParallelFor& parallel, PrepareProgress& progress, std::string& error);
+  void UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const OpacityRange& opacityRange, const LeapPlan& plan,
+    const ParallelFor& parallel, PrepareProgress& progress);
+  void PackCellInfo(const CellClassification& cells, const std::vector<std::uint8_t>& distance,
+    const ParallelFor& parallel);
+  bool UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion, double width,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting,
+    const RayCastSettings& settings, const ParallelFor& parallel, PrepareProgress& progress);
+  void FillKernelFrame(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
+    const RayCastSettings& settings, const LeapPlan& plan, bool useGradients, double exponent,
+    detail::KernelFrame& frame);
 };
 
 RayCaster::RayCaster()
@@ -432,239 +484,33 @@ bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
   return true;
 }
 
-}
-
-bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMax,
-  std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
-  const RayCastLighting& lighting, const RayCastView& view, const RayCastSettings& settings,
-  const ParallelFor& parallel, std::vector<float>& rgba, RayCastCounters& counters,
-  std::string& error)
+// Which accelerations are exact for this blend mode (see the header).
+LeapPlan PlanLeaping(const RayCastSettings& settings, const OpacityRange& opacityRange,
+  double rangeMin, double rangeMax)
 {
-  counters = RayCastCounters();
-  if (!CheckArguments(volume, transfer, view, settings, error))
-  {
-    return false;
-  }
-  Internals& impl = *this->Impl;
-  const auto prepareStart = std::chrono::steady_clock::now();
-  // Rebuilds take [0, PrepareShare] of the frame; each one done halves what is left of it (which
-  // rebuilds a frame needs is known only as they run).
-  constexpr double PrepareShare = 0.25;
-  double prepared = 0;
-  const auto rebuilt = [&]()
-  {
-    prepared += (PrepareShare - prepared) / 2;
-    if (impl.Progress)
-    {
-      impl.Progress(prepared);
-    }
-  };
-  const int tableSize = static_cast<int>(transfer.rgba.size() / 4);
-  std::vector<float> alphas(tableSize);
-  for (int i = 0; i < tableSize; ++i)
-  {
-    alphas[i] = transfer.rgba[4 * i + 3];
-  }
-  const double width = rangeMax > rangeMin ? rangeMax - rangeMin : 1.0;
-
-  // Which accelerations are exact for this blend mode (see the header).
-  const bool zeroOpacityAddsNothing =
+  LeapPlan plan;
+  plan.zeroOpacityAddsNothing =
     settings.blend == Blend::Composite || settings.blend == Blend::Additive;
-  const bool extremum =
-    settings.blend == Blend::Maximum || settings.blend == Blend::Minimum;
-  const bool useOctree = settings.leap == LeapMode::Octree && (zeroOpacityAddsNothing || extremum);
-  const bool useDistance = settings.leap == LeapMode::DistanceMap && zeroOpacityAddsNothing;
-  const OpacityRange opacityRange(alphas, rangeMin, rangeMax);
+  plan.extremum = settings.blend == Blend::Maximum || settings.blend == Blend::Minimum;
+  plan.useOctree =
+    settings.leap == LeapMode::Octree && (plan.zeroOpacityAddsNothing || plan.extremum);
+  plan.useDistance = settings.leap == LeapMode::DistanceMap && plan.zeroOpacityAddsNothing;
   const double transparentBelow = opacityRange.TransparentBelow();
   // Corners are classified a little below the true threshold so float rounding in the
   // interpolation can never turn a leaped sample opaque (integer data interpolate exactly
   // within their corners; the margin covers the rest).
   const double magnitude = std::max({ std::abs(rangeMin), std::abs(rangeMax),
     std::isfinite(transparentBelow) ? std::abs(transparentBelow) : 0.0, 1.0e-30 });
-  const double leapThreshold = transparentBelow - 1.0e-5 * magnitude;
-  const bool useCellLeap = settings.cellLeap && zeroOpacityAddsNothing && !settings.nearest &&
+  plan.leapThreshold = transparentBelow - 1.0e-5 * magnitude;
+  plan.useCellLeap = settings.cellLeap && plan.zeroOpacityAddsNothing && !settings.nearest &&
     transparentBelow > -std::numeric_limits<double>::infinity();
+  return plan;
+}
 
-  if (useOctree)
-  {
-    if (!impl.OctreeBuilt || impl.OctreeVolume != volumeVersion ||
-      impl.OctreeLeafSize != settings.octreeLeafSize)
-    {
-      impl.OctreeBuilt = impl.OctreeClassified = false;
-      if (!impl.Octree.Configure(volume.dims, settings.octreeLeafSize, error) ||
-        !impl.Octree.BuildParallel(volume, parallel, error))
-      {
-        return false;
-      }
-      impl.OctreeBuilt = true;
-      impl.OctreeVolume = volumeVersion;
-      impl.OctreeLeafSize = settings.octreeLeafSize;
-      rebuilt();
-    }
-    if (zeroOpacityAddsNothing &&
-      (!impl.OctreeClassified || impl.OctreeTransfer != transferVersion))
-    {
-      impl.Octree.Classify(alphas, rangeMin, rangeMax);
-      impl.OctreeOpaqueBox = NonTransparentLeafBox(impl.Octree, volume.dims);
-      impl.OctreeClassified = true;
-      impl.OctreeTransfer = transferVersion;
-      rebuilt();
-    }
-  }
-  if (useCellLeap || useDistance)
-  {
-    const bool stale = !impl.CellsBuilt || impl.CellsVolume != volumeVersion ||
-      impl.CellsTransfer != transferVersion || impl.Packed != useCellLeap ||
-      (useDistance && useCellLeap && !impl.CellInfoHasDistance);
-    if (stale)
-    {
-      // Cell-sized arrays (one byte per cell: half a 16-bit volume) are reused or freed as soon
-      // as they are dead, so that a rebuild of the distance map needs 2 bytes per cell, the map
-      // included, and one with cell leaping 4 (5 when the packed table is reused).
-      CellClassification cells;
-      if (!useCellLeap)
-      {
-        // The configurations are not needed here: the map's own buffer holds them until the
-        // map overwrites them, so a rebuild allocates only the flags.
-        std::vector<std::uint16_t>().swap(impl.CellInfo);
-        std::size_t cellCount = 1;
-        for (int a = 0; a < 3; ++a)
-        {
-          cellCount *= static_cast<std::size_t>(std::max(volume.dims[a] - 1, 1));
-        }
-        ResizeWithHugePages(impl.DistanceOnly, cellCount);
-        cells.configuration.swap(impl.DistanceOnly);
-        ClassifyCells(volume, opacityRange, leapThreshold, parallel, cells);
-        impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
-        ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
-        impl.DistanceOnly.swap(cells.configuration);
-      }
-      else
-      {
-        std::vector<std::uint8_t>().swap(impl.DistanceOnly);
-        ClassifyCells(volume, opacityRange, leapThreshold, parallel, cells);
-        impl.CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
-        std::vector<std::uint8_t> distance;
-        if (useDistance)
-        {
-          distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
-        }
-        std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
-        ResizeWithHugePages(impl.CellInfo, cells.configuration.size());
-        const std::uint8_t* configuration = cells.configuration.data();
-        const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
-        std::uint16_t* info = impl.CellInfo.data();
-        parallel(cells.configuration.size(),
-          [&](std::size_t begin, std::size_t end)
-          {
-            for (std::size_t i = begin; i < end; ++i)
-            {
-              info[i] = static_cast<std::uint16_t>(
-                (configuration[i] << 8) | (distances ? distances[i] : 0));
-            }
-          });
-      }
-      impl.Packed = useCellLeap;
-      std::copy(cells.cellDims, cells.cellDims + 3, impl.CellDims);
-      impl.CellInfoHasDistance = useDistance;
-      impl.CellsBuilt = true;
-      impl.CellsVolume = volumeVersion;
-      impl.CellsTransfer = transferVersion;
-      rebuilt();
-    }
-  }
-
-  const bool needGradients = settings.blend == Blend::Composite &&
-    (lighting.shade || transfer.gradientOpacity.size() >= 2);
-  const std::size_t voxels =
-    static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
-  constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
-  const bool useGradients =
-    needGradients && settings.precomputeGradients && 6 * voxels <= GradientBudget;
-  if (useGradients && (!impl.GradientsBuilt || impl.GradientsVolume != volumeVersion))
-  {
-    // |central difference| <= the range width, so this step keeps every value in int16.
-    impl.GradientScale = static_cast<float>(width / 32767.0);
-    ResizeWithHugePages(impl.Gradients, 3 * voxels);
-    DispatchScalarType(volume,
-      [&](const auto* data) {
-        ComputeGradients(data, volume.dims, impl.GradientScale, impl.Gradients.data(), parallel);
-      });
-    impl.GradientsBuilt = true;
-    impl.GradientsVolume = volumeVersion;
-    rebuilt();
-  }
-
-  // The table opacities hold for the unit distance; samples stand for sampleDistance.
-  const double exponent = settings.sampleDistance / transfer.opacityUnitDistance;
-  impl.CorrectedAlpha.resize(tableSize);
-  for (int i = 0; i < tableSize; ++i)
-  {
-    const double a = std::min(std::max(static_cast<double>(alphas[i]), 0.0), 1.0);
-    impl.CorrectedAlpha[i] = static_cast<float>(1.0 - std::pow(1.0 - a, exponent));
-  }
-  impl.PrepareSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
-
-  detail::KernelFrame frame;
-  frame.volume = volume;
-  frame.tableSize = tableSize;
-  frame.tableScale = static_cast<float>((tableSize - 1) / (rangeMax - rangeMin));
-  if (!(rangeMax > rangeMin))
-  {
-    frame.tableScale = 0; // a constant volume reads the first entry
-  }
-  frame.tableBias = static_cast<float>(-rangeMin * frame.tableScale);
-  frame.rgba = transfer.rgba.data();
-  frame.correctedAlpha = impl.CorrectedAlpha.data();
-  frame.normalScale = static_cast<float>(1.0 / width);
-  frame.normalBias = static_cast<float>(-rangeMin / width);
-  frame.rangeWidth = static_cast<float>(width);
-  if (settings.blend == Blend::Composite && transfer.gradientOpacity.size() >= 2)
-  {
-    frame.gradientOpacity = transfer.gradientOpacity.data();
-    frame.gradientOpacitySize = static_cast<int>(transfer.gradientOpacity.size());
-    frame.gradientOpacityMaximum = static_cast<float>(
-      transfer.gradientOpacityMaximum > 0 ? transfer.gradientOpacityMaximum : 1.0);
-  }
-  frame.opacityExponent = static_cast<float>(exponent);
-  frame.lighting = &lighting;
-  frame.gradients = useGradients ? impl.Gradients.data() : nullptr;
-  frame.gradientScale = impl.GradientScale;
-  // Normal matrix with the gradient's units folded in: per-voxel differences are stored in
-  // steps of GradientScale raw units, on-the-fly ones are raw; both become normalised units.
-  const double gradientUnits = (useGradients ? impl.GradientScale : 1.0) / width;
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      frame.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c] * gradientUnits);
-    }
-  }
-  // pow(x, power) over x in [0, 1], linearly interpolated (errors ~1e-5 for power 10).
-  constexpr int SpecularTableSize = 2048;
-  impl.SpecularTable.resize(SpecularTableSize);
-  for (int i = 0; i < SpecularTableSize; ++i)
-  {
-    impl.SpecularTable[i] = static_cast<float>(
-      std::pow(static_cast<double>(i) / (SpecularTableSize - 1), lighting.specularPower));
-  }
-  frame.specularTable = impl.SpecularTable.data();
-  frame.specularTableSize = SpecularTableSize;
-  frame.view = &view;
-  frame.settings = &settings;
-  frame.octree = useOctree ? &impl.Octree : nullptr;
-  frame.cellInfo = useCellLeap ? impl.CellInfo.data() : nullptr;
-  frame.distanceOnly = useDistance && !useCellLeap ? impl.DistanceOnly.data() : nullptr;
-  frame.leapThreshold = static_cast<float>(leapThreshold);
-  frame.useOctree = useOctree;
-  frame.useDistance = useDistance;
-  frame.useCellLeap = useCellLeap;
-  // Composite / additive only: there transparent samples add nothing.
-  frame.useOpaqueBox = zeroOpacityAddsNothing && (useOctree || useDistance);
-  frame.opaqueBox = useDistance ? impl.CellsOpaqueBox : impl.OctreeOpaqueBox;
-  // Rays outside the projection of what can show (the opaque box, or the regions' bounds) are
-  // not cast at all.
+// Rays outside the projection of what can show (the opaque box, or the regions' bounds) are
+// not cast at all.
+Box ShownBox(const RayCastSettings& settings, const detail::KernelFrame& frame)
+{
   Box shown;
   shown.lower = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
     std::numeric_limits<double>::infinity() };
@@ -689,19 +535,19 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     shown.upper = { std::min(shown.upper.x, o.upper.x), std::min(shown.upper.y, o.upper.y),
       std::min(shown.upper.z, o.upper.z) };
   }
-  VisiblePixels(shown, view, frame.visible);
-  std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
+  return shown;
+}
 
-  const int tile = settings.tileSize;
+// Casts the frame's tiles (in parallel) into rgba and sums their counters.
+void CastTiles(const detail::KernelFrame& frame, const RayCastView& view, int tile,
+  const ParallelFor& tiles, std::vector<float>& rgba, RayCastCounters& counters)
+{
   const int tilesX = (view.width + tile - 1) / tile;
   const int tilesY = (view.height + tile - 1) / tile;
   const std::size_t tileCount = static_cast<std::size_t>(tilesX) * tilesY;
   rgba.assign(4 * static_cast<std::size_t>(view.width) * view.height, 0.0f);
   std::vector<RayCastCounters> tileCounters(tileCount);
   float* image = rgba.data();
-  // With progress: the tiles as they finish, reported by this thread.
-  const ParallelFor tiles = ReportingParallelFor(
-    parallel, ProgressRange(impl.Progress, prepared > 0 ? PrepareShare : 0.0, 1.0));
   tiles(tileCount,
     [&](std::size_t begin, std::size_t end)
     {
@@ -725,7 +571,266 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     counters.octreeLeaps += c.octreeLeaps;
     counters.distanceLeaps += c.distanceLeaps;
   }
+}
+
+}
+
+bool RayCaster::Internals::UpdateOctree(const VolumeView& volume, std::uint64_t volumeVersion,
+  std::uint64_t transferVersion, const std::vector<float>& alphas, double rangeMin, double rangeMax,
+  const RayCastSettings& settings, const LeapPlan& plan, const ParallelFor& parallel,
+  PrepareProgress& progress, std::string& error)
+{
+  if (!this->OctreeBuilt || this->OctreeVolume != volumeVersion ||
+    this->OctreeLeafSize != settings.octreeLeafSize)
+  {
+    this->OctreeBuilt = this->OctreeClassified = false;
+    if (!this->Octree.Configure(volume.dims, settings.octreeLeafSize, error) ||
+      !this->Octree.BuildParallel(volume, parallel, error))
+    {
+      return false;
+    }
+    this->OctreeBuilt = true;
+    this->OctreeVolume = volumeVersion;
+    this->OctreeLeafSize = settings.octreeLeafSize;
+    progress.Rebuilt();
+  }
+  if (plan.zeroOpacityAddsNothing &&
+    (!this->OctreeClassified || this->OctreeTransfer != transferVersion))
+  {
+    this->Octree.Classify(alphas, rangeMin, rangeMax);
+    this->OctreeOpaqueBox = NonTransparentLeafBox(this->Octree, volume.dims);
+    this->OctreeClassified = true;
+    this->OctreeTransfer = transferVersion;
+    progress.Rebuilt();
+  }
   return true;
 }
 
+void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
+  std::uint64_t transferVersion, const OpacityRange& opacityRange, const LeapPlan& plan,
+  const ParallelFor& parallel, PrepareProgress& progress)
+{
+  const bool useCellLeap = plan.useCellLeap;
+  const bool useDistance = plan.useDistance;
+  const bool stale = !this->CellsBuilt || this->CellsVolume != volumeVersion ||
+    this->CellsTransfer != transferVersion || this->Packed != useCellLeap ||
+    (useDistance && useCellLeap && !this->CellInfoHasDistance);
+  if (!stale)
+  {
+    return;
+  }
+  // Cell-sized arrays (one byte per cell: half a 16-bit volume) are reused or freed as soon
+  // as they are dead, so that a rebuild of the distance map needs 2 bytes per cell, the map
+  // included, and one with cell leaping 4 (5 when the packed table is reused).
+  CellClassification cells;
+  if (!useCellLeap)
+  {
+    // The configurations are not needed here: the map's own buffer holds them until the
+    // map overwrites them, so a rebuild allocates only the flags.
+    std::vector<std::uint16_t>().swap(this->CellInfo);
+    std::size_t cellCount = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      cellCount *= static_cast<std::size_t>(std::max(volume.dims[a] - 1, 1));
+    }
+    ResizeWithHugePages(this->DistanceOnly, cellCount);
+    cells.configuration.swap(this->DistanceOnly);
+    ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+    ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
+    this->DistanceOnly.swap(cells.configuration);
+  }
+  else
+  {
+    std::vector<std::uint8_t>().swap(this->DistanceOnly);
+    ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+    std::vector<std::uint8_t> distance;
+    if (useDistance)
+    {
+      distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
+    }
+    std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
+    this->PackCellInfo(cells, distance, parallel);
+  }
+  this->Packed = useCellLeap;
+  std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
+  this->CellInfoHasDistance = useDistance;
+  this->CellsBuilt = true;
+  this->CellsVolume = volumeVersion;
+  this->CellsTransfer = transferVersion;
+  progress.Rebuilt();
+}
+
+void RayCaster::Internals::PackCellInfo(const CellClassification& cells,
+  const std::vector<std::uint8_t>& distance, const ParallelFor& parallel)
+{
+  ResizeWithHugePages(this->CellInfo, cells.configuration.size());
+  const std::uint8_t* configuration = cells.configuration.data();
+  const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
+  std::uint16_t* info = this->CellInfo.data();
+  parallel(cells.configuration.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        info[i] =
+          static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
+      }
+    });
+}
+
+bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion,
+  double width, const RayCastTransfer& transfer, const RayCastLighting& lighting,
+  const RayCastSettings& settings, const ParallelFor& parallel, PrepareProgress& progress)
+{
+  const bool needGradients = settings.blend == Blend::Composite &&
+    (lighting.shade || transfer.gradientOpacity.size() >= 2);
+  const std::size_t voxels =
+    static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
+  constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
+  const bool useGradients =
+    needGradients && settings.precomputeGradients && 6 * voxels <= GradientBudget;
+  if (useGradients && (!this->GradientsBuilt || this->GradientsVolume != volumeVersion))
+  {
+    // |central difference| <= the range width, so this step keeps every value in int16.
+    this->GradientScale = static_cast<float>(width / 32767.0);
+    ResizeWithHugePages(this->Gradients, 3 * voxels);
+    DispatchScalarType(volume,
+      [&](const auto* data) {
+        ComputeGradients(data, volume.dims, this->GradientScale, this->Gradients.data(), parallel);
+      });
+    this->GradientsBuilt = true;
+    this->GradientsVolume = volumeVersion;
+    progress.Rebuilt();
+  }
+  return useGradients;
+}
+
+void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rangeMin,
+  double rangeMax, const RayCastTransfer& transfer, const RayCastLighting& lighting,
+  const RayCastView& view, const RayCastSettings& settings, const LeapPlan& plan, bool useGradients,
+  double exponent, detail::KernelFrame& frame)
+{
+  const int tableSize = static_cast<int>(transfer.rgba.size() / 4);
+  const double width = rangeMax > rangeMin ? rangeMax - rangeMin : 1.0;
+  frame.volume = volume;
+  frame.tableSize = tableSize;
+  frame.tableScale = static_cast<float>((tableSize - 1) / (rangeMax - rangeMin));
+  if (!(rangeMax > rangeMin))
+  {
+    frame.tableScale = 0; // a constant volume reads the first entry
+  }
+  frame.tableBias = static_cast<float>(-rangeMin * frame.tableScale);
+  frame.rgba = transfer.rgba.data();
+  frame.correctedAlpha = this->CorrectedAlpha.data();
+  frame.normalScale = static_cast<float>(1.0 / width);
+  frame.normalBias = static_cast<float>(-rangeMin / width);
+  frame.rangeWidth = static_cast<float>(width);
+  if (settings.blend == Blend::Composite && transfer.gradientOpacity.size() >= 2)
+  {
+    frame.gradientOpacity = transfer.gradientOpacity.data();
+    frame.gradientOpacitySize = static_cast<int>(transfer.gradientOpacity.size());
+    frame.gradientOpacityMaximum = static_cast<float>(
+      transfer.gradientOpacityMaximum > 0 ? transfer.gradientOpacityMaximum : 1.0);
+  }
+  frame.opacityExponent = static_cast<float>(exponent);
+  frame.lighting = &lighting;
+  frame.gradients = useGradients ? this->Gradients.data() : nullptr;
+  frame.gradientScale = this->GradientScale;
+  // Normal matrix with the gradient's units folded in: per-voxel differences are stored in
+  // steps of GradientScale raw units, on-the-fly ones are raw; both become normalised units.
+  const double gradientUnits = (useGradients ? this->GradientScale : 1.0) / width;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      frame.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c] * gradientUnits);
+    }
+  }
+  // pow(x, power) over x in [0, 1], linearly interpolated (errors ~1e-5 for power 10).
+  constexpr int SpecularTableSize = 2048;
+  this->SpecularTable.resize(SpecularTableSize);
+  for (int i = 0; i < SpecularTableSize; ++i)
+  {
+    this->SpecularTable[i] = static_cast<float>(
+      std::pow(static_cast<double>(i) / (SpecularTableSize - 1), lighting.specularPower));
+  }
+  frame.specularTable = this->SpecularTable.data();
+  frame.specularTableSize = SpecularTableSize;
+  frame.view = &view;
+  frame.settings = &settings;
+  frame.octree = plan.useOctree ? &this->Octree : nullptr;
+  frame.cellInfo = plan.useCellLeap ? this->CellInfo.data() : nullptr;
+  frame.distanceOnly = plan.useDistance && !plan.useCellLeap ? this->DistanceOnly.data() : nullptr;
+  frame.leapThreshold = static_cast<float>(plan.leapThreshold);
+  frame.useOctree = plan.useOctree;
+  frame.useDistance = plan.useDistance;
+  frame.useCellLeap = plan.useCellLeap;
+  // Composite / additive only: there transparent samples add nothing.
+  frame.useOpaqueBox = plan.zeroOpacityAddsNothing && (plan.useOctree || plan.useDistance);
+  frame.opaqueBox = plan.useDistance ? this->CellsOpaqueBox : this->OctreeOpaqueBox;
+}
+
+bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMax,
+  std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
+  const RayCastLighting& lighting, const RayCastView& view, const RayCastSettings& settings,
+  const ParallelFor& parallel, std::vector<float>& rgba, RayCastCounters& counters,
+  std::string& error)
+{
+  counters = RayCastCounters();
+  if (!CheckArguments(volume, transfer, view, settings, error))
+  {
+    return false;
+  }
+  Internals& impl = *this->Impl;
+  const auto prepareStart = std::chrono::steady_clock::now();
+  PrepareProgress progress{ impl.Progress };
+  const int tableSize = static_cast<int>(transfer.rgba.size() / 4);
+  std::vector<float> alphas(tableSize);
+  for (int i = 0; i < tableSize; ++i)
+  {
+    alphas[i] = transfer.rgba[4 * i + 3];
+  }
+  const double width = rangeMax > rangeMin ? rangeMax - rangeMin : 1.0;
+
+  const OpacityRange opacityRange(alphas, rangeMin, rangeMax);
+  const LeapPlan plan = PlanLeaping(settings, opacityRange, rangeMin, rangeMax);
+  if (plan.useOctree &&
+    !impl.UpdateOctree(volume, volumeVersion, transferVersion, alphas, rangeMin, rangeMax, settings,
+      plan, parallel, progress, error))
+  {
+    return false;
+  }
+  if (plan.useCellLeap || plan.useDistance)
+  {
+    impl.UpdateCells(
+      volume, volumeVersion, transferVersion, opacityRange, plan, parallel, progress);
+  }
+  const bool useGradients = impl.UpdateGradients(
+    volume, volumeVersion, width, transfer, lighting, settings, parallel, progress);
+
+  // The table opacities hold for the unit distance; samples stand for sampleDistance.
+  const double exponent = settings.sampleDistance / transfer.opacityUnitDistance;
+  impl.CorrectedAlpha.resize(tableSize);
+  for (int i = 0; i < tableSize; ++i)
+  {
+    const double a = std::min(std::max(static_cast<double>(alphas[i]), 0.0), 1.0);
+    impl.CorrectedAlpha[i] = static_cast<float>(1.0 - std::pow(1.0 - a, exponent));
+  }
+  impl.PrepareSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
+
+  detail::KernelFrame frame;
+  impl.FillKernelFrame(volume, rangeMin, rangeMax, transfer, lighting, view, settings, plan,
+    useGradients, exponent, frame);
+  VisiblePixels(ShownBox(settings, frame), view, frame.visible);
+  std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
+
+  // With progress: the tiles as they finish, reported by this thread.
+  const ParallelFor tiles = ReportingParallelFor(
+    parallel, ProgressRange(impl.Progress, progress.prepared > 0 ? PrepareShare : 0.0, 1.0));
+  CastTiles(frame, view, settings.tileSize, tiles, rgba, counters);
+  return true;
+}
 }

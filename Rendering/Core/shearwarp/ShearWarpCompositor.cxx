@@ -173,26 +173,64 @@ struct ExtremePolicy
 // The band loop shared by every blend: slices front to back (the encoding streams in order);
 // in each, the scanlines of the band, each resampling two voxel scanlines shaded once into
 // dense buffers (padded by one cell on each side), walking the pixels their runs cover with
-// skip links over saturated pixels.
+// skip links over saturated pixels. Its steps below are inline templates over the policy, so
+// that each blend's loop compiles as one; each copies what it reads of the band into locals.
 // Marks a row buffer that holds no voxel scanline of the current slice (-1 is a real row: the
 // empty one above the slice).
 constexpr int NoRow = std::numeric_limits<int>::min();
 
+// One band's inputs and the scratch space it works in.
 template <typename Policy>
-void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWarpFactorization& f,
-  const Policy& policy, bool skip, int v0, int v1, float* pixels, ScanlineWorkspace& ws,
-  ScanlineCounters& counters, double* work)
+struct BandContext
+{
+  const RunLengthVolume<typename Policy::Voxel>& encoded;
+  const ShearWarpFactorization& f;
+  const Policy& policy;
+  bool skip;
+  int v0;
+  int v1;
+  ScanlineWorkspace& ws;
+  ScanlineCounters& counters;
+};
+
+// Where slice k lands in the intermediate image, and its four resampling weights.
+struct SlicePlacement
+{
+  int k;
+  int shiftI;
+  int shiftJ;
+  float w[4];
+};
+
+inline SlicePlacement PlaceSlice(const ShearWarpFactorization& f, int s)
+{
+  SlicePlacement p;
+  p.k = f.firstSlice + s * f.sliceStep;
+  double offset[2];
+  f.SliceOffset(p.k, offset);
+  const double floorI = std::floor(offset[0]);
+  const double floorJ = std::floor(offset[1]);
+  p.shiftI = static_cast<int>(floorI);
+  p.shiftJ = static_cast<int>(floorJ);
+  const float aI = static_cast<float>(offset[0] - floorI);
+  const float aJ = static_cast<float>(offset[1] - floorJ);
+  // Corners (j0, i0), (j0, i0 + 1), (j0 + 1, i0), (j0 + 1, i0 + 1) of pixel u: i0 = u - shiftI - 1.
+  p.w[0] = aJ * aI;
+  p.w[1] = aJ * (1.0f - aI);
+  p.w[2] = (1.0f - aJ) * aI;
+  p.w[3] = (1.0f - aJ) * (1.0f - aI);
+  return p;
+}
+
+// Every pixel of the band open, the row buffers empty, the work times zero.
+template <typename Policy>
+inline void ResetBandWorkspace(const BandContext<Policy>& c, double* work)
 {
   constexpr int C = Policy::Channels;
-  const int width = f.intermediateSize[0];
-  const int ni = f.sliceDims[0];
-  const int nj = f.sliceDims[1];
-  const int nk = f.sliceDims[2];
-  const int rows = v1 - v0;
-  if (rows <= 0)
-  {
-    return;
-  }
+  const int width = c.f.intermediateSize[0];
+  const int ni = c.f.sliceDims[0];
+  const int rows = c.v1 - c.v0;
+  ScanlineWorkspace& ws = c.ws;
   const std::size_t stride = static_cast<std::size_t>(width) + 1;
   ws.next.resize(stride * rows);
   for (int r = 0; r < rows; ++r)
@@ -204,7 +242,7 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
     }
   }
   ws.open.assign(static_cast<std::size_t>(rows), width);
-  const float empty = policy.Empty();
+  const float empty = c.policy.Empty();
   for (int b = 0; b < 2; ++b)
   {
     ws.rows[b].assign(static_cast<std::size_t>(C) * (ni + 2), empty);
@@ -215,299 +253,364 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
   {
     std::fill(work, work + rows, 0.0);
   }
-  int openRows = rows;
+}
+
+// Buffer holding voxel scanline j of slice k, loaded on demand (never evicting `keep`). The
+// slice's placement comes by value: a reference would escape here, and the compiler would then
+// reload the sample weights after every pixel written by CompositeRuns.
+template <typename Policy>
+inline int LoadScanline(const BandContext<Policy>& c, int k, int shiftI, int shiftJ, int j,
+  int keep, std::uint64_t& loaded)
+{
+  constexpr int C = Policy::Channels;
+  const RunLengthVolume<typename Policy::Voxel>& encoded = c.encoded;
+  const Policy& policy = c.policy;
+  ScanlineWorkspace& ws = c.ws;
+  const bool skip = c.skip;
+  const int width = c.f.intermediateSize[0];
+  const int nj = c.f.sliceDims[1];
+  const int rows = c.v1 - c.v0;
+  const int v0 = c.v0;
+  const std::size_t stride = static_cast<std::size_t>(width) + 1;
+  const float empty = policy.Empty();
   const typename Policy::Voxel* voxels = encoded.voxels.data();
-
-  for (int s = 0; s < nk && openRows > 0; ++s)
+  for (int b = 0; b < 2; ++b)
   {
-    const int k = f.firstSlice + s * f.sliceStep;
-    double offset[2];
-    f.SliceOffset(k, offset);
-    const double floorI = std::floor(offset[0]);
-    const double floorJ = std::floor(offset[1]);
-    const int shiftI = static_cast<int>(floorI);
-    const int shiftJ = static_cast<int>(floorJ);
-    const float aI = static_cast<float>(offset[0] - floorI);
-    const float aJ = static_cast<float>(offset[1] - floorJ);
-    // Corners (j0, i0), (j0, i0 + 1), (j0 + 1, i0), (j0 + 1, i0 + 1) of pixel u: i0 = u - shiftI - 1.
-    const float w[4] = { aJ * aI, aJ * (1.0f - aI), (1.0f - aJ) * aI, (1.0f - aJ) * (1.0f - aI) };
-    ws.rowIndex[0] = ws.rowIndex[1] = NoRow; // last slice's scanlines
-
-    // Buffer holding voxel scanline j of this slice, loaded on demand (never evicting `keep`).
-    auto ensure = [&](int j, int keep, std::uint64_t& loaded) -> int
+    if (ws.rowIndex[b] == j)
     {
-      for (int b = 0; b < 2; ++b)
-      {
-        if (ws.rowIndex[b] == j)
-        {
-          return b;
-        }
-      }
-      const int b = keep == 0 ? 1 : 0;
-      float* cells = ws.rows[b].data();
-      std::vector<std::int32_t>& written = ws.written[b];
-      for (std::size_t q = 0; q < written.size(); q += 2)
-      {
-        std::fill(cells + C * written[q], cells + C * written[q + 1], empty);
-      }
-      written.clear();
-      ws.rowIndex[b] = j;
-      if (j < 0 || j >= nj)
-      {
-        return b;
-      }
-      // Row j serves scanline j + shiftJ (as its second row) and j + shiftJ + 1 (as its first);
-      // voxel i is read by pixels i + shiftI and i + shiftI + 1 of those. Only voxels one of
-      // them still needs open are shaded (Lacroute's walk of voxel runs and pixel runs
-      // together): voxels behind saturated pixels are never touched.
-      std::int32_t* userLinks[2] = { nullptr, nullptr };
-      int users = 0;
-      for (int q = 0; q < 2; ++q)
-      {
-        const int user = j + shiftJ + q - v0;
-        if (user >= 0 && user < rows && ws.open[user] > 0)
-        {
-          userLinks[users++] = ws.next.data() + stride * user;
-        }
-      }
-      // First voxel >= i that an open pixel reads (i + shiftI or i + shiftI + 1 open), or a
-      // large value when none.
-      auto nextNeeded = [&](int i) -> int
-      {
-        if (!skip)
-        {
-          return i;
-        }
-        int best = std::numeric_limits<int>::max();
-        const int u = std::max(i + shiftI, 0);
-        for (int q = 0; q < users; ++q)
-        {
-          const int open = FindOpen(userLinks[q], std::min(u, width));
-          if (open < width)
-          {
-            best = std::min(best, std::max(i, open - shiftI - 1));
-          }
-        }
-        return best;
-      };
-      auto isOpen = [&](int u) -> bool
-      {
-        if (u < 0 || u >= width)
-        {
-          return false;
-        }
-        for (int q = 0; q < users; ++q)
-        {
-          if (userLinks[q][u] == u)
-          {
-            return true;
-          }
-        }
-        return false;
-      };
-      if (skip && users == 0)
-      {
-        return b;
-      }
-      // First open pixel at or after the runs walked so far: runs whose pixels all lie before
-      // it are passed over with one comparison.
-      int frontier = skip ? std::numeric_limits<int>::min() : std::numeric_limits<int>::max();
-      for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
-      {
-        const int runEnd = static_cast<int>(run->end);
-        if (skip)
-        {
-          const int runPixels = runEnd + shiftI + 1; // pixels [begin + shiftI, runPixels)
-          if (frontier < static_cast<int>(run->begin) + shiftI)
-          {
-            frontier = width;
-            const int from = std::min(std::max(static_cast<int>(run->begin) + shiftI, 0), width);
-            for (int q = 0; q < users; ++q)
-            {
-              frontier = std::min(frontier, FindOpen(userLinks[q], from));
-            }
-          }
-          if (frontier >= std::min(runPixels, width))
-          {
-            continue;
-          }
-        }
-        int i = nextNeeded(static_cast<int>(run->begin));
-        while (i < runEnd)
-        {
-          int end = i + 1;
-          if (skip)
-          {
-            while (end < runEnd && (isOpen(end + shiftI) || isOpen(end + shiftI + 1)))
-            {
-              ++end;
-            }
-          }
-          else
-          {
-            end = runEnd;
-          }
-          const typename Policy::Voxel* voxel = voxels + run->offset + (i - static_cast<int>(run->begin));
-          for (int x = i; x < end; ++x, ++voxel)
-          {
-            policy.Load(*voxel, cells + C * (x + 1));
-          }
-          loaded += static_cast<std::uint64_t>(end - i);
-          written.push_back(i + 1);
-          written.push_back(end + 1);
-          i = end < runEnd ? nextNeeded(end) : runEnd;
-        }
-      }
       return b;
-    };
-
-    const int vBegin = std::max(v0, shiftJ);
-    const int vEnd = std::min(v1, shiftJ + nj + 1);
-    std::uint64_t previousTicks = work ? Ticks() : 0;
-    int previousRow = -1;
-    for (int v = vBegin; v < vEnd; ++v)
+    }
+  }
+  const int b = keep == 0 ? 1 : 0;
+  float* cells = ws.rows[b].data();
+  std::vector<std::int32_t>& written = ws.written[b];
+  for (std::size_t q = 0; q < written.size(); q += 2)
+  {
+    std::fill(cells + C * written[q], cells + C * written[q + 1], empty);
+  }
+  written.clear();
+  ws.rowIndex[b] = j;
+  if (j < 0 || j >= nj)
+  {
+    return b;
+  }
+  // Row j serves scanline j + shiftJ (as its second row) and j + shiftJ + 1 (as its first);
+  // voxel i is read by pixels i + shiftI and i + shiftI + 1 of those. Only voxels one of
+  // them still needs open are shaded (Lacroute's walk of voxel runs and pixel runs
+  // together): voxels behind saturated pixels are never touched.
+  std::int32_t* userLinks[2] = { nullptr, nullptr };
+  int users = 0;
+  for (int q = 0; q < 2; ++q)
+  {
+    const int user = j + shiftJ + q - v0;
+    if (user >= 0 && user < rows && ws.open[user] > 0)
     {
-      const int r = v - v0;
-      if (work)
+      userLinks[users++] = ws.next.data() + stride * user;
+    }
+  }
+  // First voxel >= i that an open pixel reads (i + shiftI or i + shiftI + 1 open), or a
+  // large value when none.
+  auto nextNeeded = [&](int i) -> int
+  {
+    if (!skip)
+    {
+      return i;
+    }
+    int best = std::numeric_limits<int>::max();
+    const int u = std::max(i + shiftI, 0);
+    for (int q = 0; q < users; ++q)
+    {
+      const int open = FindOpen(userLinks[q], std::min(u, width));
+      if (open < width)
       {
-        // The time since the last mark belongs to the scanline worked on before it.
-        const std::uint64_t now = Ticks();
-        if (previousRow >= 0)
-        {
-          work[previousRow] += static_cast<double>(now - previousTicks);
-        }
-        previousTicks = now;
-        previousRow = r;
+        best = std::min(best, std::max(i, open - shiftI - 1));
       }
-      if (ws.open[r] == 0)
+    }
+    return best;
+  };
+  auto isOpen = [&](int u) -> bool
+  {
+    if (u < 0 || u >= width)
+    {
+      return false;
+    }
+    for (int q = 0; q < users; ++q)
+    {
+      if (userLinks[q][u] == u)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (skip && users == 0)
+  {
+    return b;
+  }
+  // First open pixel at or after the runs walked so far: runs whose pixels all lie before
+  // it are passed over with one comparison.
+  int frontier = skip ? std::numeric_limits<int>::min() : std::numeric_limits<int>::max();
+  for (const VoxelRun* run = encoded.RunsBegin(j, k); run != encoded.RunsEnd(j, k); ++run)
+  {
+    const int runEnd = static_cast<int>(run->end);
+    if (skip)
+    {
+      const int runPixels = runEnd + shiftI + 1; // pixels [begin + shiftI, runPixels)
+      if (frontier < static_cast<int>(run->begin) + shiftI)
+      {
+        frontier = width;
+        const int from = std::min(std::max(static_cast<int>(run->begin) + shiftI, 0), width);
+        for (int q = 0; q < users; ++q)
+        {
+          frontier = std::min(frontier, FindOpen(userLinks[q], from));
+        }
+      }
+      if (frontier >= std::min(runPixels, width))
       {
         continue;
       }
-      const int j0 = v - shiftJ - 1;
-      if (j0 + 3 < nj)
-      {
-        // The scanline after next: its runs and first voxels arrive while this pair works.
-        const VoxelRun* ahead = encoded.RunsBegin(j0 + 3, k);
-        __builtin_prefetch(ahead);
-        if (ahead != encoded.RunsEnd(j0 + 3, k))
-        {
-          __builtin_prefetch(voxels + ahead->offset);
-        }
-      }
-      // The pixels the two voxel scanlines can reach at all; when every one of them is already
-      // saturated (the common case behind an opaque surface), nothing of this pair is touched.
-      int reachBegin = std::numeric_limits<int>::max();
-      int reachEnd = std::numeric_limits<int>::min();
-      for (int q = 0; q < 2; ++q)
-      {
-        const int j = j0 + q;
-        if (j >= 0 && j < nj && encoded.RunsBegin(j, k) != encoded.RunsEnd(j, k))
-        {
-          reachBegin = std::min(reachBegin, static_cast<int>(encoded.RunsBegin(j, k)->begin) + shiftI);
-          reachEnd = std::max(reachEnd, static_cast<int>((encoded.RunsEnd(j, k) - 1)->end) + shiftI + 1);
-        }
-      }
-      if (reachEnd <= reachBegin)
-      {
-        continue;
-      }
-      std::int32_t* links = ws.next.data() + stride * r;
+    }
+    int i = nextNeeded(static_cast<int>(run->begin));
+    while (i < runEnd)
+    {
+      int end = i + 1;
       if (skip)
       {
-        const int first = std::max(reachBegin, 0);
-        const int last = std::min(reachEnd, width);
-        const int found = first < last ? FindOpen(links, first) : last;
-        if (found >= last)
+        while (end < runEnd && (isOpen(end + shiftI) || isOpen(end + shiftI + 1)))
         {
-          counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, last - first));
-          continue;
+          ++end;
         }
       }
-      std::uint64_t loaded = 0;
-      const int bufferA = ensure(j0, -1, loaded);
-      const int bufferB = ensure(j0 + 1, bufferA, loaded);
-      counters.voxels += loaded;
-      // The pixels the two scanlines' runs cover, in order: voxel run [b, e) reaches pixels u
-      // whose i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1). `done` keeps overlapping
-      // runs of the two scanlines from compositing a pixel twice; `frontier`, the first open
-      // pixel at or after the runs walked, passes over runs behind saturated pixels with one
-      // comparison.
-      const VoxelRun* runs[2] = { nullptr, nullptr };
-      const VoxelRun* ends[2] = { nullptr, nullptr };
-      for (int q = 0; q < 2; ++q)
+      else
       {
-        const int j = j0 + q;
-        if (j >= 0 && j < nj)
-        {
-          runs[q] = encoded.RunsBegin(j, k);
-          ends[q] = encoded.RunsEnd(j, k);
-        }
+        end = runEnd;
       }
-      const float* cellsA = ws.rows[bufferA].data();
-      const float* cellsB = ws.rows[bufferB].data();
-      float* row = pixels + static_cast<std::size_t>(C) * width * r;
-      std::uint64_t samples = 0;
-      int done = 0;
-      int frontier = skip ? std::numeric_limits<int>::min() : 0;
-      while (runs[0] != ends[0] || runs[1] != ends[1])
+      const typename Policy::Voxel* voxel =
+        voxels + run->offset + (i - static_cast<int>(run->begin));
+      for (int x = i; x < end; ++x, ++voxel)
       {
-        const int q =
-          (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
-        const VoxelRun* run = runs[q]++;
-        const int spanBegin = std::max({ static_cast<int>(run->begin) + shiftI, done, 0 });
-        const int spanEnd = std::min(static_cast<int>(run->end) + shiftI + 1, width);
-        if (spanBegin >= spanEnd)
-        {
-          continue;
-        }
-        done = spanEnd;
-        int u = spanBegin;
-        if (skip)
-        {
-          if (frontier < spanBegin)
-          {
-            frontier = FindOpen(links, spanBegin);
-          }
-          counters.skippedOpaque +=
-            static_cast<std::uint64_t>(std::max(0, std::min(frontier, spanEnd) - spanBegin));
-          u = frontier;
-        }
-        while (u < spanEnd)
-        {
-          // Cell i sits at i + 1: pixel u's corner i0 = u - shiftI - 1 is cell u - shiftI.
-          const int cell = u - shiftI;
-          ++samples;
-          if (policy.Sample(cellsA + C * cell, cellsB + C * cell, w, row + C * u) && skip)
-          {
-            links[u] = u + 1;
-            if (--ws.open[r] == 0)
-            {
-              --openRows;
-            }
-          }
-          ++u;
-          if (skip)
-          {
-            const int found = FindOpen(links, u);
-            counters.skippedOpaque +=
-              static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
-            u = found;
-          }
-        }
-        if (skip)
-        {
-          frontier = u; // the first open pixel at or after spanEnd
-        }
+        policy.Load(*voxel, cells + C * (x + 1));
       }
-      counters.samples += samples;
+      loaded += static_cast<std::uint64_t>(end - i);
+      written.push_back(i + 1);
+      written.push_back(end + 1);
+      i = end < runEnd ? nextNeeded(end) : runEnd;
     }
-    if (work && previousRow >= 0)
+  }
+  return b;
+}
+
+// Composites the pixels the two scanlines' runs cover into scanline r, in order: voxel run
+// [b, e) reaches pixels u whose i0 or i0 + 1 lies in it, [b + shiftI, e + shiftI + 1). `done`
+// keeps overlapping runs of the two scanlines from compositing a pixel twice; `frontier`, the
+// first open pixel at or after the runs walked, passes over runs behind saturated pixels with
+// one comparison. Kept out of line (GCC, like __builtin_prefetch below): inlined into the
+// slice loop, its pixel loop lost registers to the loop's state and ran ~10% more instructions
+// (callgrind, dense composite); out of line it runs fewer than the single function did.
+template <typename Policy>
+__attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
+  const SlicePlacement& slice, int r, int j0, const float* cellsA, const float* cellsB, float* row,
+  int& openRows)
+{
+  constexpr int C = Policy::Channels;
+  const RunLengthVolume<typename Policy::Voxel>& encoded = c.encoded;
+  const Policy& policy = c.policy;
+  ScanlineWorkspace& ws = c.ws;
+  ScanlineCounters& counters = c.counters;
+  const bool skip = c.skip;
+  const int width = c.f.intermediateSize[0];
+  const int nj = c.f.sliceDims[1];
+  const std::size_t stride = static_cast<std::size_t>(width) + 1;
+  const int k = slice.k;
+  const int shiftI = slice.shiftI;
+  // A local copy: the pixel stores below cannot alias it, so it stays in registers.
+  const float w[4] = { slice.w[0], slice.w[1], slice.w[2], slice.w[3] };
+  std::int32_t* links = ws.next.data() + stride * r;
+  const VoxelRun* runs[2] = { nullptr, nullptr };
+  const VoxelRun* ends[2] = { nullptr, nullptr };
+  for (int q = 0; q < 2; ++q)
+  {
+    const int j = j0 + q;
+    if (j >= 0 && j < nj)
     {
-      work[previousRow] += static_cast<double>(Ticks() - previousTicks);
+      runs[q] = encoded.RunsBegin(j, k);
+      ends[q] = encoded.RunsEnd(j, k);
     }
+  }
+  std::uint64_t samples = 0;
+  int done = 0;
+  int frontier = skip ? std::numeric_limits<int>::min() : 0;
+  while (runs[0] != ends[0] || runs[1] != ends[1])
+  {
+    const int q =
+      (runs[1] == ends[1] || (runs[0] != ends[0] && runs[0]->begin <= runs[1]->begin)) ? 0 : 1;
+    const VoxelRun* run = runs[q]++;
+    const int spanBegin = std::max({ static_cast<int>(run->begin) + shiftI, done, 0 });
+    const int spanEnd = std::min(static_cast<int>(run->end) + shiftI + 1, width);
+    if (spanBegin >= spanEnd)
+    {
+      continue;
+    }
+    done = spanEnd;
+    int u = spanBegin;
+    if (skip)
+    {
+      if (frontier < spanBegin)
+      {
+        frontier = FindOpen(links, spanBegin);
+      }
+      counters.skippedOpaque +=
+        static_cast<std::uint64_t>(std::max(0, std::min(frontier, spanEnd) - spanBegin));
+      u = frontier;
+    }
+    while (u < spanEnd)
+    {
+      // Cell i sits at i + 1: pixel u's corner i0 = u - shiftI - 1 is cell u - shiftI.
+      const int cell = u - shiftI;
+      ++samples;
+      if (policy.Sample(cellsA + C * cell, cellsB + C * cell, w, row + C * u) && skip)
+      {
+        links[u] = u + 1;
+        if (--ws.open[r] == 0)
+        {
+          --openRows;
+        }
+      }
+      ++u;
+      if (skip)
+      {
+        const int found = FindOpen(links, u);
+        counters.skippedOpaque +=
+          static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
+        u = found;
+      }
+    }
+    if (skip)
+    {
+      frontier = u; // the first open pixel at or after spanEnd
+    }
+  }
+  counters.samples += samples;
+}
+
+// Intermediate scanline v of this slice: from voxel scanlines j0 = v - shiftJ - 1 and j0 + 1.
+template <typename Policy>
+inline void CompositeScanlinePair(
+  const BandContext<Policy>& c, const SlicePlacement& slice, int v, float* pixels, int& openRows)
+{
+  constexpr int C = Policy::Channels;
+  const RunLengthVolume<typename Policy::Voxel>& encoded = c.encoded;
+  ScanlineWorkspace& ws = c.ws;
+  const bool skip = c.skip;
+  const int width = c.f.intermediateSize[0];
+  const int nj = c.f.sliceDims[1];
+  const std::size_t stride = static_cast<std::size_t>(width) + 1;
+  const int k = slice.k;
+  const int shiftI = slice.shiftI;
+  const int r = v - c.v0;
+  if (ws.open[r] == 0)
+  {
+    return;
+  }
+  const int j0 = v - slice.shiftJ - 1;
+  if (j0 + 3 < nj)
+  {
+    // The scanline after next: its runs and first voxels arrive while this pair works.
+    const VoxelRun* ahead = encoded.RunsBegin(j0 + 3, k);
+    __builtin_prefetch(ahead);
+    if (ahead != encoded.RunsEnd(j0 + 3, k))
+    {
+      __builtin_prefetch(encoded.voxels.data() + ahead->offset);
+    }
+  }
+  // The pixels the two voxel scanlines can reach at all; when every one of them is already
+  // saturated (the common case behind an opaque surface), nothing of this pair is touched.
+  int reachBegin = std::numeric_limits<int>::max();
+  int reachEnd = std::numeric_limits<int>::min();
+  for (int q = 0; q < 2; ++q)
+  {
+    const int j = j0 + q;
+    if (j >= 0 && j < nj && encoded.RunsBegin(j, k) != encoded.RunsEnd(j, k))
+    {
+      reachBegin = std::min(reachBegin, static_cast<int>(encoded.RunsBegin(j, k)->begin) + shiftI);
+      reachEnd =
+        std::max(reachEnd, static_cast<int>((encoded.RunsEnd(j, k) - 1)->end) + shiftI + 1);
+    }
+  }
+  if (reachEnd <= reachBegin)
+  {
+    return;
+  }
+  if (skip)
+  {
+    std::int32_t* links = ws.next.data() + stride * r;
+    const int first = std::max(reachBegin, 0);
+    const int last = std::min(reachEnd, width);
+    const int found = first < last ? FindOpen(links, first) : last;
+    if (found >= last)
+    {
+      c.counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, last - first));
+      return;
+    }
+  }
+  std::uint64_t loaded = 0;
+  const int bufferA = LoadScanline(c, k, shiftI, slice.shiftJ, j0, -1, loaded);
+  const int bufferB = LoadScanline(c, k, shiftI, slice.shiftJ, j0 + 1, bufferA, loaded);
+  c.counters.voxels += loaded;
+  CompositeRuns(c, slice, r, j0, ws.rows[bufferA].data(), ws.rows[bufferB].data(),
+    pixels + static_cast<std::size_t>(C) * width * r, openRows);
+}
+
+// The band's scanlines of slice s, each timed into work when it is given.
+template <typename Policy>
+inline void CompositeSlice(
+  const BandContext<Policy>& c, int s, float* pixels, int& openRows, double* work)
+{
+  const SlicePlacement slice = PlaceSlice(c.f, s);
+  c.ws.rowIndex[0] = c.ws.rowIndex[1] = NoRow; // last slice's scanlines
+  const int vBegin = std::max(c.v0, slice.shiftJ);
+  const int vEnd = std::min(c.v1, slice.shiftJ + c.f.sliceDims[1] + 1);
+  std::uint64_t previousTicks = work ? Ticks() : 0;
+  int previousRow = -1;
+  for (int v = vBegin; v < vEnd; ++v)
+  {
+    if (work)
+    {
+      // The time since the last mark belongs to the scanline worked on before it.
+      const std::uint64_t now = Ticks();
+      if (previousRow >= 0)
+      {
+        work[previousRow] += static_cast<double>(now - previousTicks);
+      }
+      previousTicks = now;
+      previousRow = v - c.v0;
+    }
+    CompositeScanlinePair(c, slice, v, pixels, openRows);
+  }
+  if (work && previousRow >= 0)
+  {
+    work[previousRow] += static_cast<double>(Ticks() - previousTicks);
   }
 }
 
+template <typename Policy>
+void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWarpFactorization& f,
+  const Policy& policy, bool skip, int v0, int v1, float* pixels, ScanlineWorkspace& ws,
+  ScanlineCounters& counters, double* work)
+{
+  const int rows = v1 - v0;
+  if (rows <= 0)
+  {
+    return;
+  }
+  const BandContext<Policy> context{ encoded, f, policy, skip, v0, v1, ws, counters };
+  ResetBandWorkspace(context, work);
+  int openRows = rows;
+  for (int s = 0; s < f.sliceDims[2] && openRows > 0; ++s)
+  {
+    CompositeSlice(context, s, pixels, openRows, work);
+  }
+}
 }
 
 void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], float specular[3])

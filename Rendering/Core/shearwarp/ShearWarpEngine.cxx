@@ -98,6 +98,105 @@ std::uint16_t VisibleThreshold(const std::vector<float>& rgba, bool maximum)
   }
   return 0;
 }
+
+// The arguments BeginFrameReporting refuses before it factorizes the view.
+bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double rangeMax,
+  const RayCastTransfer& transfer, const ShearWarpView& view, const ShearWarpSettings& settings,
+  std::string& error)
+{
+  if (!volume.data || volume.dims[0] < 1 || volume.dims[1] < 1 || volume.dims[2] < 1)
+  {
+    error = "shear-warp: the volume is empty";
+    return false;
+  }
+  if (view.width < 1 || view.height < 1)
+  {
+    error = "shear-warp: the image has no pixels";
+    return false;
+  }
+  if (transfer.rgba.size() < 8 || transfer.rgba.size() % 4 != 0)
+  {
+    error = "shear-warp: the transfer function table needs at least 2 RGBA entries";
+    return false;
+  }
+  if (!std::isfinite(rangeMin) || !std::isfinite(rangeMax) || settings.bands < 1 ||
+    !(transfer.opacityUnitDistance > 0))
+  {
+    error = "shear-warp: bad scalar range, band count or opacity unit distance";
+    return false;
+  }
+  if (settings.blend == Blend::Additive || settings.blend == Blend::Average)
+  {
+    error = "shear-warp: additive and average blending are not supported";
+    return false;
+  }
+  return true;
+}
+
+// What the composite encoding classifies with; false when the index-to-world map is singular.
+bool MakeCompositeClassification(double rangeMin, double rangeMax, const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const ShearWarpView& view,
+  CompositeClassification& classification, std::string& error)
+{
+  classification.rangeMin = rangeMin;
+  classification.rangeMax = rangeMax;
+  classification.rgba = transfer.rgba;
+  classification.gradientOpacity = transfer.gradientOpacity;
+  classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
+  classification.normals = lighting.shade;
+  // World gradient = inverse transpose of the index -> world linear map times the index one.
+  Affine indexToWorld = Affine::Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
+  }
+  Affine worldToIndex;
+  try
+  {
+    worldToIndex = indexToWorld.Inverse();
+  }
+  catch (const std::domain_error&)
+  {
+    error = "shear-warp: the index-to-world map is singular";
+    return false;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
+    }
+  }
+  return true;
+}
+
+// The shading part of the per-frame tables: lighting coefficients, lights and normal matrix.
+void SetShading(
+  const RayCastLighting& lighting, const ShearWarpSettings& settings, CompositeTables& t)
+{
+  t.shade = lighting.shade;
+  t.phong = settings.shading == ShearWarpShading::Phong;
+  t.ambient = lighting.ambient;
+  t.diffuse = lighting.diffuse;
+  t.specular = lighting.specular;
+  t.specularPower = lighting.specularPower;
+  t.lightCount = std::min(lighting.lightCount, 4);
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      t.lightDirections[i][c] = lighting.directions[i][c];
+      t.lightColours[i][c] = lighting.colours[i][c];
+    }
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      t.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c]);
+    }
+  }
+}
 }
 
 struct ShearWarpRenderer::Internals
@@ -126,6 +225,24 @@ struct ShearWarpRenderer::Internals
 
   std::vector<double> EstimateCosts();
   void ClassifyExtremeRow(const float* values, float* rgba) const;
+
+  // Steps of BeginFrameReporting, in order.
+  // Encodings built from other scalars or another transfer function are dropped right away.
+  void DropStaleEncodings(std::uint64_t volumeVersion, std::uint64_t transferVersion);
+  // The (cached) encoding of this frame's axis and layout: composite or MIP / MinIP.
+  bool UpdateCompositeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting, const ShearWarpView& view,
+    EncodingKey key, int axis, int dense, const ParallelFor& encodeParallel,
+    Clock::time_point encodeStart, ShearWarpStats& stats, std::string& error);
+  bool UpdateExtremeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, bool maximum, EncodingKey key, int axis, int dense,
+    const ParallelFor& encodeParallel, Clock::time_point encodeStart, ShearWarpStats& stats,
+    std::string& error);
+  // Per-frame tables: opacity for this view's ray length between slices, and shading.
+  void UpdateTables(const RayCastTransfer& transfer, const RayCastLighting& lighting,
+    const ShearWarpView& view, const ShearWarpSettings& settings);
+  // Sizes the intermediate image and clears the counters; fills the frame's stats.
+  void StartFrame(int axis, ShearWarpStats& stats);
 };
 
 std::vector<double> ShearWarpRenderer::Internals::EstimateCosts()
@@ -203,6 +320,151 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     transferVersion, lighting, view, settings, parallel, this->Impl->progress, stats, error);
 }
 
+void ShearWarpRenderer::Internals::DropStaleEncodings(
+  std::uint64_t volumeVersion, std::uint64_t transferVersion)
+{
+  auto stale = [&](const EncodingKey& key)
+  {
+    return key.valid &&
+      (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
+  };
+  for (int d = 0; d < 2; ++d)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (stale(this->composite[d][a].key))
+      {
+        this->composite[d][a] = EncodingSlot<ShadedVoxel>();
+      }
+      if (stale(this->extreme[d][a].key))
+      {
+        this->extreme[d][a] = EncodingSlot<ScalarVoxel>();
+      }
+    }
+  }
+}
+
+bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& volume,
+  double rangeMin, double rangeMax, const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const ShearWarpView& view, EncodingKey key, int axis, int dense,
+  const ParallelFor& encodeParallel, Clock::time_point encodeStart, ShearWarpStats& stats,
+  std::string& error)
+{
+  key.normals = lighting.shade;
+  EncodingSlot<ShadedVoxel>& slot = this->composite[dense][axis];
+  if (!(slot.key == key))
+  {
+    CompositeClassification classification;
+    if (!MakeCompositeClassification(
+          rangeMin, rangeMax, transfer, lighting, view, classification, error))
+    {
+      return false;
+    }
+    slot = EncodingSlot<ShadedVoxel>();
+    if (!EncodeComposite(
+          volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
+    {
+      return false;
+    }
+    slot.key = key;
+    stats.encodeSeconds = Seconds(encodeStart);
+  }
+  this->compositeSlot = &slot;
+  return true;
+}
+
+bool ShearWarpRenderer::Internals::UpdateExtremeEncoding(const VolumeView& volume, double rangeMin,
+  double rangeMax, const RayCastTransfer& transfer, bool maximum, EncodingKey key, int axis,
+  int dense, const ParallelFor& encodeParallel, Clock::time_point encodeStart,
+  ShearWarpStats& stats, std::string& error)
+{
+  key.maximum = maximum;
+  key.threshold = VisibleThreshold(transfer.rgba, maximum);
+  EncodingSlot<ScalarVoxel>& slot = this->extreme[dense][axis];
+  if (!(slot.key == key))
+  {
+    slot = EncodingSlot<ScalarVoxel>();
+    if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
+          encodeParallel, slot.encoded, error))
+    {
+      return false;
+    }
+    slot.key = key;
+    float extreme = maximum ? 0.0f : 65535.0f;
+    for (ScalarVoxel value : slot.encoded.voxels)
+    {
+      extreme = maximum ? std::max(extreme, float(value)) : std::min(extreme, float(value));
+    }
+    slot.saturation = extreme;
+    stats.encodeSeconds = Seconds(encodeStart);
+  }
+  this->extremeSlot = &slot;
+  this->transfer = transfer.rgba;
+  return true;
+}
+
+void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings)
+{
+  const ShearWarpFactorization& f = this->factorization;
+  CompositeTables& t = this->tables;
+  t.earlyTermination = settings.earlyTermination;
+  t.skipLinks = settings.earlyTermination;
+  t.terminationThreshold = static_cast<float>(settings.terminationThreshold);
+  if (settings.blend != Blend::Composite)
+  {
+    return;
+  }
+  double world[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    world[r] = view.indexToWorld[r][0] * f.rayStep[0] + view.indexToWorld[r][1] * f.rayStep[1] +
+      view.indexToWorld[r][2] * f.rayStep[2];
+  }
+  const double ratio = std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]) /
+    transfer.opacityUnitDistance;
+  if (ratio != this->opacityRatio || t.opacity.size() != OpacityLevels + 1)
+  {
+    t.opacity.resize(OpacityLevels + 1);
+    for (int q = 0; q <= OpacityLevels; ++q)
+    {
+      t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
+    }
+    this->opacityRatio = ratio;
+  }
+  SetShading(lighting, settings, t);
+  if (t.shade && !t.phong)
+  {
+    BuildShadingTable(t);
+  }
+}
+
+void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
+{
+  const ShearWarpFactorization& f = this->factorization;
+  const std::size_t pixels =
+    static_cast<std::size_t>(f.intermediateSize[0]) * static_cast<std::size_t>(f.intermediateSize[1]);
+  // Resized only: each band clears its own rows (in parallel) before compositing them.
+  this->intermediate.resize(4 * pixels);
+  this->scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
+  this->voxels = 0;
+  this->samples = 0;
+  this->skippedOpaque = 0;
+  stats.principalAxis = axis;
+  stats.intermediateSize[0] = f.intermediateSize[0];
+  stats.intermediateSize[1] = f.intermediateSize[1];
+  if (this->compositeSlot)
+  {
+    stats.storedVoxels = this->compositeSlot->encoded.voxels.size();
+    stats.runs = this->compositeSlot->encoded.runs.size();
+  }
+  else
+  {
+    stats.storedVoxels = this->extremeSlot->encoded.voxels.size();
+    stats.runs = this->extremeSlot->encoded.runs.size();
+  }
+}
+
 bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double rangeMin,
   double rangeMax, std::uint64_t volumeVersion, const RayCastTransfer& transfer,
   std::uint64_t transferVersion, const RayCastLighting& lighting, const ShearWarpView& view,
@@ -213,33 +475,8 @@ bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double ran
   stats = ShearWarpStats();
   impl.compositeSlot = nullptr;
   impl.extremeSlot = nullptr;
-  if (!volume.data || volume.dims[0] < 1 || volume.dims[1] < 1 || volume.dims[2] < 1)
-  {
-    error = "shear-warp: the volume is empty";
-    return false;
-  }
-  if (view.width < 1 || view.height < 1)
-  {
-    error = "shear-warp: the image has no pixels";
-    return false;
-  }
-  if (transfer.rgba.size() < 8 || transfer.rgba.size() % 4 != 0)
-  {
-    error = "shear-warp: the transfer function table needs at least 2 RGBA entries";
-    return false;
-  }
-  if (!std::isfinite(rangeMin) || !std::isfinite(rangeMax) || settings.bands < 1 ||
-    !(transfer.opacityUnitDistance > 0))
-  {
-    error = "shear-warp: bad scalar range, band count or opacity unit distance";
-    return false;
-  }
-  if (settings.blend == Blend::Additive || settings.blend == Blend::Average)
-  {
-    error = "shear-warp: additive and average blending are not supported";
-    return false;
-  }
-  if (!FactorizeShearWarp(view.voxelToImage, volume.dims, impl.factorization, error))
+  if (!CheckFrameArguments(volume, rangeMin, rangeMax, transfer, view, settings, error) ||
+    !FactorizeShearWarp(view.voxelToImage, volume.dims, impl.factorization, error))
   {
     return false;
   }
@@ -252,26 +489,7 @@ bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double ran
   const bool composite = settings.blend == Blend::Composite;
   const bool maximum = settings.blend == Blend::Maximum;
 
-  // Encodings built from other scalars or another transfer function are dropped right away.
-  auto stale = [&](const EncodingKey& key)
-  {
-    return key.valid &&
-      (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
-  };
-  for (int d = 0; d < 2; ++d)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      if (stale(impl.composite[d][a].key))
-      {
-        impl.composite[d][a] = EncodingSlot<ShadedVoxel>();
-      }
-      if (stale(impl.extreme[d][a].key))
-      {
-        impl.extreme[d][a] = EncodingSlot<ScalarVoxel>();
-      }
-    }
-  }
+  impl.DropStaleEncodings(volumeVersion, transferVersion);
 
   EncodingKey key;
   key.valid = true;
@@ -280,156 +498,22 @@ bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double ran
   const Clock::time_point encodeStart = Clock::now();
   // With progress: the slices as they are encoded, reported by this thread.
   const ParallelFor encodeParallel = ReportingParallelFor(parallel, encodeProgress);
-  if (composite)
+  const bool encoded = composite
+    ? impl.UpdateCompositeEncoding(volume, rangeMin, rangeMax, transfer, lighting, view, key, axis,
+        dense, encodeParallel, encodeStart, stats, error)
+    : impl.UpdateExtremeEncoding(volume, rangeMin, rangeMax, transfer, maximum, key, axis, dense,
+        encodeParallel, encodeStart, stats, error);
+  if (!encoded)
   {
-    key.normals = lighting.shade;
-    EncodingSlot<ShadedVoxel>& slot = impl.composite[dense][axis];
-    if (!(slot.key == key))
-    {
-      CompositeClassification classification;
-      classification.rangeMin = rangeMin;
-      classification.rangeMax = rangeMax;
-      classification.rgba = transfer.rgba;
-      classification.gradientOpacity = transfer.gradientOpacity;
-      classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
-      classification.normals = lighting.shade;
-      // World gradient = inverse transpose of the index -> world linear map times the index one.
-      Affine indexToWorld = Affine::Identity();
-      for (int r = 0; r < 3; ++r)
-      {
-        std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
-      }
-      Affine worldToIndex;
-      try
-      {
-        worldToIndex = indexToWorld.Inverse();
-      }
-      catch (const std::domain_error&)
-      {
-        error = "shear-warp: the index-to-world map is singular";
-        return false;
-      }
-      for (int r = 0; r < 3; ++r)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
-        }
-      }
-      slot = EncodingSlot<ShadedVoxel>();
-      if (!EncodeComposite(
-            volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
-      {
-        return false;
-      }
-      slot.key = key;
-      stats.encodeSeconds = Seconds(encodeStart);
-    }
-    impl.compositeSlot = &slot;
-  }
-  else
-  {
-    key.maximum = maximum;
-    key.threshold = VisibleThreshold(transfer.rgba, maximum);
-    EncodingSlot<ScalarVoxel>& slot = impl.extreme[dense][axis];
-    if (!(slot.key == key))
-    {
-      slot = EncodingSlot<ScalarVoxel>();
-      if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
-            encodeParallel, slot.encoded, error))
-      {
-        return false;
-      }
-      slot.key = key;
-      float extreme = maximum ? 0.0f : 65535.0f;
-      for (ScalarVoxel value : slot.encoded.voxels)
-      {
-        extreme = maximum ? std::max(extreme, float(value)) : std::min(extreme, float(value));
-      }
-      slot.saturation = extreme;
-      stats.encodeSeconds = Seconds(encodeStart);
-    }
-    impl.extremeSlot = &slot;
-    impl.transfer = transfer.rgba;
+    return false;
   }
 
-  // Per-frame tables: opacity for this view's ray length between slices, and shading.
   const Clock::time_point tableStart = Clock::now();
-  CompositeTables& t = impl.tables;
-  t.earlyTermination = settings.earlyTermination;
-  t.skipLinks = settings.earlyTermination;
-  t.terminationThreshold = static_cast<float>(settings.terminationThreshold);
-  if (composite)
-  {
-    double world[3];
-    for (int r = 0; r < 3; ++r)
-    {
-      world[r] = view.indexToWorld[r][0] * f.rayStep[0] + view.indexToWorld[r][1] * f.rayStep[1] +
-        view.indexToWorld[r][2] * f.rayStep[2];
-    }
-    const double ratio =
-      std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]) /
-      transfer.opacityUnitDistance;
-    if (ratio != impl.opacityRatio || t.opacity.size() != OpacityLevels + 1)
-    {
-      t.opacity.resize(OpacityLevels + 1);
-      for (int q = 0; q <= OpacityLevels; ++q)
-      {
-        t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
-      }
-      impl.opacityRatio = ratio;
-    }
-    t.shade = lighting.shade;
-    t.phong = settings.shading == ShearWarpShading::Phong;
-    t.ambient = lighting.ambient;
-    t.diffuse = lighting.diffuse;
-    t.specular = lighting.specular;
-    t.specularPower = lighting.specularPower;
-    t.lightCount = std::min(lighting.lightCount, 4);
-    for (int i = 0; i < 4; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        t.lightDirections[i][c] = lighting.directions[i][c];
-        t.lightColours[i][c] = lighting.colours[i][c];
-      }
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        t.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c]);
-      }
-    }
-    if (t.shade && !t.phong)
-    {
-      BuildShadingTable(t);
-    }
-  }
+  impl.UpdateTables(transfer, lighting, view, settings);
   stats.tableSeconds = Seconds(tableStart);
 
-  const std::size_t pixels =
-    static_cast<std::size_t>(f.intermediateSize[0]) * static_cast<std::size_t>(f.intermediateSize[1]);
-  // Resized only: each band clears its own rows (in parallel) before compositing them.
-  impl.intermediate.resize(4 * pixels);
-  impl.scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
-  impl.voxels = 0;
-  impl.samples = 0;
-  impl.skippedOpaque = 0;
-  stats.principalAxis = axis;
-  stats.intermediateSize[0] = f.intermediateSize[0];
-  stats.intermediateSize[1] = f.intermediateSize[1];
+  impl.StartFrame(axis, stats);
   stats.encodedBytes = this->GetEncodedBytes();
-  if (impl.compositeSlot)
-  {
-    stats.storedVoxels = impl.compositeSlot->encoded.voxels.size();
-    stats.runs = impl.compositeSlot->encoded.runs.size();
-  }
-  else
-  {
-    stats.storedVoxels = impl.extremeSlot->encoded.voxels.size();
-    stats.runs = impl.extremeSlot->encoded.runs.size();
-  }
   return true;
 }
 
