@@ -4,50 +4,32 @@
 // median of the next ones) as ratios to the unbricked frame, and the image difference to it.
 // Bricked volumes take gradients by central differences; the unbricked mapper precomputes them
 // by default, so a second unbricked row ("none/cd", PrecomputeGradients off) separates that
-// cost from the bricks' own.
-//   accelvolume_benchmark_bricking [--data DIR] [--dataset NAME] [--size N] [--frames N]
-//     [--budgets MIB,...] [--blends composite,mip] [--tf tf1|tf2] [--gl egl|osmesa|auto]
-//     [--json FILE]
-#include "BenchmarkCommon.h"
-
+// cost from the bricks' own. Exit code 125 (skipped) when the volume is not in the data folder.
+// JSON (only with --json): bricking.json of the report (scripts/bench_report/bricking.py).
+#include "BenchmarkHarness.h"
 #include "Options.h"
 #include "TransferFunctions.h"
 #include "VolumeIO.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeSliceMapper.h"
-#include "vtkCamera.h"
-#include "vtkDataArray.h"
-#include "vtkImageData.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkRenderer.h"
-#include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
+
+#include <vtkCamera.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
 
-using namespace accelvolume::benchmark;
-
+namespace accelvolume::benchmark
+{
 namespace
 {
-struct Settings
-{
-  std::string DataDir = ACCELVOLUME_BENCHMARK_DATA_DIR;
-  std::string Dataset = "ct_chest_lidc0314";
-  int Size = 512;
-  int Frames = 5;
-  std::string Budgets = "0,64,32,16,8";
-  std::string Blends = "composite,mip";
-  std::string Tf = "tf1";
-  std::string GL = "auto";
-  std::string Json;
-};
 
 struct Row
 {
@@ -61,41 +43,76 @@ struct Row
   double ResidentMiB = 0;
   double FirstMs = 0;
   double FrameMs = 0;
-  double MaxDiff = 0;  // grey levels against the unbricked image
+  double MaxDiff = 0; // grey levels against the unbricked image
   double MeanDiff = 0;
-  std::string Error;
 };
 
-bool Parse(int argc, char* argv[], Settings& s)
-{
-  for (int i = 1; i < argc; ++i)
-  {
-    if (!(TakeOption(argc, argv, i, "--data", s.DataDir) ||
-          TakeOption(argc, argv, i, "--dataset", s.Dataset) ||
-          TakeOption(argc, argv, i, "--size", s.Size) ||
-          TakeOption(argc, argv, i, "--frames", s.Frames) ||
-          TakeOption(argc, argv, i, "--budgets", s.Budgets) ||
-          TakeOption(argc, argv, i, "--blends", s.Blends) ||
-          TakeOption(argc, argv, i, "--tf", s.Tf) || TakeOption(argc, argv, i, "--gl", s.GL) ||
-          TakeOption(argc, argv, i, "--json", s.Json)))
-    {
-      std::cerr << "accelvolume_benchmark_bricking: unknown or incomplete option " << argv[i]
-                << " (see the header of Benchmarks/BenchmarkBricking.cxx)\n";
-      return false;
-    }
-  }
-  return s.Size > 0 && s.Frames > 0;
-}
-
-double Median(std::vector<double> values)
+// The upper median (this benchmark's rule since it was written): values[n / 2] after sorting.
+double UpperMedian(std::vector<double> values)
 {
   std::sort(values.begin(), values.end());
   return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
-Row Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper, const Settings& s,
+Json RowJson(const Row& r)
+{
+  return { { "blend", r.Blend }, { "case", r.Label }, { "budget_mib", Round(r.BudgetMiB, 1) },
+    { "bricks", r.Bricks }, { "drawn", r.Drawn }, { "uploads_per_frame", r.Uploads },
+    { "uploaded_mib_per_frame", Round(r.UploadedMiB, 2) },
+    { "resident_mib", Round(r.ResidentMiB, 2) }, { "first_ms", Round(r.FirstMs, 2) },
+    { "frame_ms", Round(r.FrameMs, 2) }, { "max_diff", Round(r.MaxDiff, 0) },
+    { "mean_diff", Round(r.MeanDiff, 5) } };
+}
+
+class BrickingBenchmark : public Benchmark
+{
+public:
+  const char* Name() const override { return "accelvolume_benchmark_bricking"; }
+  const char* Description() const override
+  {
+    return "The slice mapper under GPU memory budgets: bricks, uploads per frame, frame times "
+           "and image difference against the unbricked frame";
+  }
+  const char* DefaultJson() const override { return ""; } // no JSON unless asked for
+  const char* DefaultGL() const override { return "auto"; }
+  int InitialSize() const override { return this->Size; }
+
+  void AddOptions(CLI::App& app) override
+  {
+    app.add_option("--dataset", this->Dataset,
+      "volume: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the "
+      "data folder");
+    app.add_option("--size", this->Size, "square image size")->check(CLI::PositiveNumber);
+    app.add_option("--frames", this->Frames, "timed frames after the first")
+      ->check(CLI::PositiveNumber);
+    AddList(app, "--budgets", this->Budgets, "GPU memory budgets in MiB (0 = none)");
+    AddList(app, "--blends", this->Blends, "blend modes: composite, mip");
+    app.add_option("--tf", this->Tf, "transfer-function preset of `accelvolume render --tf`");
+  }
+
+  // The volume is loaded before the window opens, so that a missing one is a skip (125).
+  bool NeedsWindow() const override { return false; }
+
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  std::string Dataset = "ct_chest_lidc0314";
+  int Size = 512;
+  int Frames = 5;
+  std::vector<std::string> Budgets = { "0", "64", "32", "16", "8" };
+  std::vector<std::string> Blends = { "composite", "mip" };
+  std::string Tf = "tf1";
+
+  Row Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper, double budgetMiB,
+    const std::string& blend, const std::vector<std::uint8_t>* reference,
+    std::vector<std::uint8_t>& image) const;
+  void RunBlend(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper,
+    const std::string& blend, Json& rows) const;
+};
+
+Row BrickingBenchmark::Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper,
   double budgetMiB, const std::string& blend, const std::vector<std::uint8_t>* reference,
-  std::vector<std::uint8_t>& image)
+  std::vector<std::uint8_t>& image) const
 {
   Row row;
   row.Blend = blend;
@@ -105,7 +122,7 @@ Row Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper, const Se
   std::vector<double> times;
   int uploads = 0;
   double uploaded = 0;
-  for (int frame = 0; frame <= s.Frames; ++frame)
+  for (int frame = 0; frame <= this->Frames; ++frame)
   {
     const auto start = Clock::now();
     window->Render();
@@ -121,13 +138,13 @@ Row Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper, const Se
       uploaded += mapper->GetLastUploadedBytes() / 1048576.0;
     }
   }
-  row.FrameMs = Median(times);
-  row.Uploads = static_cast<int>(std::lround(static_cast<double>(uploads) / s.Frames));
-  row.UploadedMiB = uploaded / s.Frames;
+  row.FrameMs = UpperMedian(times);
+  row.Uploads = static_cast<int>(std::lround(static_cast<double>(uploads) / this->Frames));
+  row.UploadedMiB = uploaded / this->Frames;
   row.Bricks = mapper->GetLastNumberOfBricks();
   row.Drawn = mapper->GetLastNumberOfBricksDrawn();
   row.ResidentMiB = mapper->GetLastResidentBytes() / 1048576.0;
-  image = Capture(window, s.Size, s.Size);
+  image = Capture(window, this->Size, this->Size);
   if (reference && reference->size() == image.size())
   {
     double sum = 0;
@@ -141,20 +158,42 @@ Row Measure(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper, const Se
   }
   return row;
 }
+
+// The unbricked row first (the reference image), then "none/cd" for composite, then the budgets.
+void BrickingBenchmark::RunBlend(vtkRenderWindow* window, vtkAccelVolumeSliceMapper* mapper,
+  const std::string& blend, Json& rows) const
+{
+  mapper->SetBlendMode(
+    blend == "mip" ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND : vtkVolumeMapper::COMPOSITE_BLEND);
+  std::vector<std::uint8_t> reference, pixels;
+  std::vector<std::string> cases = this->Budgets;
+  if (blend == "composite")
+  {
+    cases.insert(cases.begin() + std::min<std::size_t>(1, cases.size()), "none/cd");
+  }
+  for (const std::string& budget : cases)
+  {
+    const bool central = budget == "none/cd";
+    const double mib = central ? 0.0 : std::atof(budget.c_str());
+    mapper->SetPrecomputeGradients(!central);
+    Row row =
+      this->Measure(window, mapper, mib, blend, mib > 0 || central ? &reference : nullptr, pixels);
+    row.Label = central ? budget : (mib > 0 ? std::to_string(std::lround(mib)) : "none");
+    if (mib <= 0 && !central)
+    {
+      reference = pixels;
+    }
+    rows.push_back(RowJson(row));
+  }
 }
 
-int main(int argc, char* argv[])
+int BrickingBenchmark::Run(Harness& harness, Json& result)
 {
-  Settings s;
-  if (!Parse(argc, argv, s))
-  {
-    return 2;
-  }
-  const std::string file = FindDatasetFile(s.DataDir, s.Dataset);
+  const std::string file = FindDatasetFile(harness.Options.DataDir, this->Dataset);
   if (file.empty())
   {
-    std::cerr << "accelvolume_benchmark_bricking: no " << s.Dataset << " volume in " << s.DataDir
-              << ": skipped\n";
+    std::cerr << this->Name() << ": no " << this->Dataset << " volume in "
+              << harness.Options.DataDir << ": skipped\n";
     return 125;
   }
   accelvolume::cli::VolumeRequest request;
@@ -163,20 +202,21 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
   if (!image)
   {
-    std::cerr << "accelvolume_benchmark_bricking: " << error << "\n";
+    std::cerr << this->Name() << ": " << error << "\n";
     return 1;
   }
   int backend = 0;
-  if (const int code = ResolveHeadlessBackend(s.GL, backend))
+  if (const int code = Harness::ResolveBackend(harness.Options.GL, backend))
   {
     return code;
   }
   vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, s.Size, s.Size);
+  Harness::StartWindow(window, backend, this->Size, this->Size);
+  Harness::DescribeGL(window, harness.Machine);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
   double range[2];
-  image->GetPointData()->GetScalars()->GetRange(range);
-  const double volumeMiB = image->GetPointData()->GetScalars()->GetDataSize() *
-    image->GetPointData()->GetScalars()->GetDataTypeSize() / 1048576.0;
+  scalars->GetRange(range);
+  const double volumeMiB = scalars->GetDataSize() * scalars->GetDataTypeSize() / 1048576.0;
 
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
@@ -185,7 +225,7 @@ int main(int argc, char* argv[])
   cli.blend = accelvolume::cli::BlendKind::Composite;
   cli.haveShade = true;
   cli.shade = true;
-  cli.transferFunction = s.Tf;
+  cli.transferFunction = this->Tf;
   accelvolume::cli::ApplyTransferFunction(
     accelvolume::cli::LoadTransferFunction(cli), cli, range, property);
   vtkNew<vtkVolume> volume;
@@ -200,72 +240,28 @@ int main(int argc, char* argv[])
   renderer->GetActiveCamera()->OrthogonalizeViewUp();
   renderer->ResetCameraClippingRange();
 
-  std::cout << "accelvolume_benchmark_bricking: slice mapper under GPU memory budgets\n"
-            << "volume " << s.Dataset << " " << accelvolume::cli::DescribeVolume(image) << " ("
-            << std::fixed << std::setprecision(1) << volumeMiB << " MiB), " << s.Size << "^2, "
-            << s.Tf << " shaded, GL " << window->GetOpenGLRendererString() << ", median of "
-            << s.Frames << " frames after the first\n";
-  std::vector<Row> rows;
-  const std::vector<std::string> budgets = SplitList(s.Budgets);
-  for (const std::string& blend : SplitList(s.Blends))
+  Json rows = Json::array();
+  CaseProgress progress(this->Name(), static_cast<int>(this->Blends.size()));
+  for (const std::string& blend : this->Blends)
   {
-    mapper->SetBlendMode(blend == "mip" ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND
-                                        : vtkVolumeMapper::COMPOSITE_BLEND);
-    std::vector<std::uint8_t> reference;
-    std::vector<std::uint8_t> pixels;
-    std::cout << "\n" << blend << "\n"
-              << "  budget MiB  bricks  drawn  uploads/frame  MiB up/frame  resident MiB  "
-                 "first ms  frame ms  unbricked/this  max diff  mean diff\n";
-    double wholeMs = 0;
-    std::vector<std::string> cases = budgets;
-    if (blend == "composite")
-    {
-      cases.insert(cases.begin() + 1, "none/cd");
-    }
-    for (const std::string& budget : cases)
-    {
-      const bool central = budget == "none/cd";
-      const double mib = central ? 0.0 : std::atof(budget.c_str());
-      mapper->SetPrecomputeGradients(!central);
-      Row row = Measure(
-        window, mapper, s, mib, blend, mib > 0 || central ? &reference : nullptr, pixels);
-      row.Label = central ? budget : (mib > 0 ? Num(mib, 0) : "none");
-      if (mib <= 0 && !central)
-      {
-        reference = pixels;
-        wholeMs = row.FrameMs;
-      }
-      std::cout << "  " << std::setw(10) << row.Label << std::setw(8)
-                << row.Bricks << std::setw(7) << row.Drawn << std::setw(15) << row.Uploads
-                << std::setw(14) << Num(row.UploadedMiB, 1) << std::setw(14)
-                << Num(row.ResidentMiB, 1) << std::setw(10) << Num(row.FirstMs, 1)
-                << std::setw(10) << Num(row.FrameMs, 1) << std::setw(16)
-                << Num(SafeRatio(wholeMs, row.FrameMs), 2) << "x" << std::setw(9)
-                << Num(row.MaxDiff, 0) << std::setw(11) << Num(row.MeanDiff, 4) << "\n";
-      rows.push_back(row);
-    }
+    progress.Begin(blend);
+    this->RunBlend(window, mapper, blend, rows);
   }
-  if (!s.Json.empty())
+  window->RemoveRenderer(renderer);
+  if (!harness.Options.Json.empty())
   {
-    std::ofstream out(s.Json);
-    out << "{\n  \"benchmark\": \"bricking\",\n  \"dataset\": \"" << JsonEscape(s.Dataset)
-        << "\",\n  \"volume_mib\": " << Num(volumeMiB, 1) << ",\n  \"size\": " << s.Size
-        << ",\n  \"renderer\": \"" << JsonEscape(window->GetOpenGLRendererString())
-        << "\",\n  \"rows\": [\n";
-    for (size_t i = 0; i < rows.size(); ++i)
-    {
-      const Row& r = rows[i];
-      out << "    {\"blend\": \"" << r.Blend << "\", \"case\": \"" << r.Label
-          << "\", \"budget_mib\": " << Num(r.BudgetMiB, 1)
-          << ", \"bricks\": " << r.Bricks << ", \"drawn\": " << r.Drawn
-          << ", \"uploads_per_frame\": " << r.Uploads
-          << ", \"uploaded_mib_per_frame\": " << Num(r.UploadedMiB, 2)
-          << ", \"resident_mib\": " << Num(r.ResidentMiB, 2) << ", \"first_ms\": "
-          << Num(r.FirstMs, 2) << ", \"frame_ms\": " << Num(r.FrameMs, 2)
-          << ", \"max_diff\": " << Num(r.MaxDiff, 0) << ", \"mean_diff\": "
-          << Num(r.MeanDiff, 5) << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
-    }
-    out << "  ]\n}\n";
+    result = { { "benchmark", "bricking" }, { "dataset", this->Dataset },
+      { "volume_mib", Round(volumeMiB, 1) }, { "size", this->Size },
+      { "renderer", harness.Machine.GLRenderer }, { "rows", rows } };
   }
   return 0;
 }
+
+} // namespace
+
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<BrickingBenchmark>();
+}
+
+} // namespace accelvolume::benchmark

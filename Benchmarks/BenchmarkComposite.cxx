@@ -12,310 +12,413 @@
 // a frame is Render() plus a 1x1 read-back so the GPU work is included. Image check: grey-level
 // RMS of ERT+both against base (should be ~0: both are exact up to the 0.99 threshold) and
 // against VTK's image, at the fixed oblique view.
-// Options: BenchmarkCompositeOptions.{h,cxx}; table and JSON: BenchmarkCompositeReport.{h,cxx}.
-#include "BenchmarkCommon.h"
-#include "BenchmarkCompositeOptions.h"
-#include "BenchmarkCompositeReport.h"
+// JSON: composite.json of the report (scripts/bench_report/composite.py renders it).
+#include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
 #include "Options.h"
 #include "TransferFunctions.h"
-#include "VolumeIO.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
 #include <vtkCamera.h>
-#include <vtkDataArray.h>
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
-#include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
-#include <algorithm>
-#include <chrono>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
-#include <regex>
-#include <string>
-#include <vector>
 
 namespace fs = std::filesystem;
-using namespace accelvolume::benchmark;
-using namespace accelvolume::benchmark::composite;
 
+namespace accelvolume::benchmark
+{
 namespace
 {
-// Grey-level differences over the pixels that are non-black in either image (the black
-// background would dilute the RMS by the empty share of the window).
-ErrorStats Compare(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int size)
+
+// One rendering configuration: a column of Table V-3.
+struct Config
 {
-  const auto mask = MaskOr(NonBackgroundMask(a, size, size), NonBackgroundMask(b, size, size));
-  return CompareImages(a, b, mask, 2.0);
+  std::string Id;
+  std::string Label;
+  bool Vtk = false; // vtkGPUVolumeRayCastMapper instead of the slice mapper
+  bool Ert = false;
+  int Ess = 0; // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
+};
+
+const std::vector<Config>& Configs()
+{
+  static const std::vector<Config> configs = {
+    { "base", "ERT off, ESS none", false, false, 0 },
+    { "ert", "ERT on, ESS none", false, true, 0 },
+    { "ess_fragment", "ERT off, ESS fragment", false, false, 1 },
+    { "ess_octree", "ERT off, ESS octree", false, false, 2 },
+    { "ert_both", "ERT on, ESS both (default)", false, true, 3 },
+    { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
+  };
+  return configs;
 }
 
-bool LoadDataset(const Options& options, const std::string& name, DatasetInfo& info,
-  vtkSmartPointer<vtkImageData>& image)
+struct ConfigResult
 {
-  info.Name = name;
-  info.File = FindDatasetFile(options.DataDir, name);
-  if (info.File.empty())
+  Config Cfg;
+  std::vector<double> FrameMs;  // Render() + 1x1 read-back
+  std::vector<double> MapperMs; // slice mapper's GetLastRenderTime (it waits for the GPU)
+  int TerminationPasses = 0;
+  double TransparentLeafFraction = -1;
+  int Slices = 0;
+  double Fps() const { return this->FrameMs.empty() ? std::nan("") : 1000.0 / Median(FrameMs); }
+  // Median over the interleaved rounds of (other's frame / this frame of the same round): the
+  // speed-up over `other`, robust to load from other processes on a shared machine.
+  double PairedSpeedUp(const ConfigResult& other) const
   {
-    std::cerr << "dataset " << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "
-              << options.DataDir << "\n";
-    return false;
+    std::vector<double> ratios;
+    for (size_t f = 0; f < this->FrameMs.size() && f < other.FrameMs.size(); ++f)
+    {
+      ratios.push_back(other.FrameMs[f] / this->FrameMs[f]);
+    }
+    return Median(ratios);
   }
-  accelvolume::cli::VolumeRequest request;
-  request.inputPath = info.File; // spacing comes from datasets.json next to the file
-  std::string error;
-  const auto start = Clock::now();
-  image = accelvolume::cli::LoadVolume(request, error);
-  info.LoadSeconds = SecondsSince(start);
-  if (!image)
+};
+
+// One volume x transfer function x image size.
+struct CaseResult
+{
+  std::string Dataset, Tf;
+  int Size = 0;
+  int Frames = 0;
+  double Seconds = 0;
+  std::vector<ConfigResult> Results; // in Configs() order
+  // Grey-level (0..255) differences at the fixed view over pixels non-black in either image.
+  ErrorStats ErtBothVsBase, OursVsVtk;
+  const ConfigResult& Find(const std::string& id) const
   {
-    std::cerr << "dataset " << name << ": " << error << "\n";
-    return false;
+    for (const ConfigResult& r : this->Results)
+    {
+      if (r.Cfg.Id == id)
+      {
+        return r;
+      }
+    }
+    return this->Results.front();
   }
-  info.Description = accelvolume::cli::DescribeVolume(image);
-  image->GetSpacing(info.Spacing);
-  info.MinSpacing = std::min({ info.Spacing[0], info.Spacing[1], info.Spacing[2] });
-  image->GetPointData()->GetScalars()->GetRange(info.Range);
-  return true;
+  // The fastest slice-mapper configuration.
+  const ConfigResult& Best() const
+  {
+    const ConfigResult* best = &this->Results.front();
+    for (const ConfigResult& r : this->Results)
+    {
+      if (!r.Cfg.Vtk && Median(r.FrameMs) < Median(best->FrameMs))
+      {
+        best = &r;
+      }
+    }
+    return *best;
+  }
+};
+
+Json CaseJson(const CaseResult& c)
+{
+  const ConfigResult& base = c.Find("base");
+  Json out = { { "dataset", c.Dataset }, { "tf", c.Tf }, { "size", c.Size }, { "frames", c.Frames },
+    { "seconds", Round(c.Seconds, 2) },
+    { "best_over_vtk", Round(c.Best().Fps() / c.Find("vtk").Fps(), 3) },
+    { "rms_ert_both_vs_base", Round(c.ErtBothVsBase.Rms(), 3) },
+    { "max_ert_both_vs_base", Round(c.ErtBothVsBase.Max, 1) },
+    { "rms_ours_vs_vtk", Round(c.OursVsVtk.Rms(), 3) },
+    { "max_ours_vs_vtk", Round(c.OursVsVtk.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
+    { "configs", Json::array() } };
+  for (const ConfigResult& r : c.Results)
+  {
+    Json config = { { "id", r.Cfg.Id }, { "label", r.Cfg.Label },
+      { "median_ms", Round(Median(r.FrameMs), 2) }, { "fps", Round(r.Fps(), 3) },
+      { "speedup_over_base", Round(r.PairedSpeedUp(base), 3) } };
+    if (!r.Cfg.Vtk)
+    {
+      config["mapper_median_ms"] = Round(Median(r.MapperMs), 2);
+      config["slices"] = r.Slices;
+      config["termination_passes"] = r.TerminationPasses;
+      config["transparent_leaf_fraction"] = Round(r.TransparentLeafFraction, 4);
+    }
+    config["frame_ms"] = RoundAll(r.FrameMs, 2);
+    out["configs"].push_back(config);
+  }
+  return out;
 }
 
-// All cases (transfer functions x sizes) of one volume; one renderer holds both mappers.
-void RunDataset(const Options& options, const DatasetInfo& info, vtkImageData* image,
-  vtkAccelVolumeHeadlessRenderWindow* window, std::vector<CaseResult>& cases)
+// The two mappers of one volume in one renderer, and the timed rounds over them.
+class Scene
 {
-  vtkNew<vtkVolumeProperty> property;
-  vtkNew<vtkAccelVolumeSliceMapper> slice;
-  slice->SetInputData(image);
-  slice->SetBlendModeToComposite();
-  slice->SetAutoAdjustSampleDistances(0);
-  slice->SetSampleDistance(info.MinSpacing);
-  vtkNew<vtkVolume> sliceVolume;
-  sliceVolume->SetMapper(slice);
-  sliceVolume->SetProperty(property);
-
-  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
-  gpu->SetInputData(image);
-  gpu->SetBlendModeToComposite();
-  gpu->SetAutoAdjustSampleDistances(0);
-  gpu->SetSampleDistance(static_cast<float>(info.MinSpacing));
-  gpu->SetImageSampleDistance(1.0f);
-  gpu->SetUseJittering(0);
-  vtkNew<vtkVolume> gpuVolume;
-  gpuVolume->SetMapper(gpu);
-  gpuVolume->SetProperty(property);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  renderer->AddVolume(sliceVolume);
-  renderer->AddVolume(gpuVolume);
-  window->AddRenderer(renderer);
+public:
+  Scene(vtkImageData* image, const DatasetInfo& info, vtkAccelVolumeHeadlessRenderWindow* window)
+    : Window(window)
+  {
+    this->Slice->SetInputData(image);
+    this->Slice->SetBlendModeToComposite();
+    this->Slice->SetAutoAdjustSampleDistances(0);
+    this->Slice->SetSampleDistance(info.MinSpacing);
+    this->SliceVolume->SetMapper(this->Slice);
+    this->SliceVolume->SetProperty(this->Property);
+    this->Gpu->SetInputData(image);
+    this->Gpu->SetBlendModeToComposite();
+    this->Gpu->SetAutoAdjustSampleDistances(0);
+    this->Gpu->SetSampleDistance(static_cast<float>(info.MinSpacing));
+    this->Gpu->SetImageSampleDistance(1.0f);
+    this->Gpu->SetUseJittering(0);
+    this->GpuVolume->SetMapper(this->Gpu);
+    this->GpuVolume->SetProperty(this->Property);
+    this->Renderer->SetBackground(0, 0, 0);
+    this->Renderer->AddVolume(this->SliceVolume);
+    this->Renderer->AddVolume(this->GpuVolume);
+    this->Window->AddRenderer(this->Renderer);
+    image->GetBounds(this->Bounds);
+  }
+  ~Scene() { this->Window->RemoveRenderer(this->Renderer); }
 
   // The CLI's camera: front view along +z at the centre, then azimuth / elevation.
-  double bounds[6];
-  image->GetBounds(bounds);
-  auto setView = [&]()
+  void SetView(double azimuth, double elevation)
   {
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetFocalPoint(
-      (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2);
-    camera->SetPosition(
-      (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 - 1);
+    const double* b = this->Bounds;
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetFocalPoint((b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2);
+    camera->SetPosition((b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2 - 1);
     camera->SetViewUp(0, 1, 0);
-    renderer->ResetCamera();
-    camera->Azimuth(options.Azimuth);
-    camera->Elevation(options.Elevation);
+    this->Renderer->ResetCamera();
+    camera->Azimuth(azimuth);
+    camera->Elevation(elevation);
     camera->OrthogonalizeViewUp();
-    renderer->ResetCameraClippingRange();
-  };
+    this->Renderer->ResetCameraClippingRange();
+  }
 
-  // The CLI's settings for `render --blend composite --tf tfN --shade on` (window = data range).
-  accelvolume::cli::Options cli;
-  cli.blend = accelvolume::cli::BlendKind::Composite;
-  cli.haveShade = true;
-  cli.shade = true;
-  const double tfWindow[2] = { info.Range[0],
-    info.Range[1] > info.Range[0] ? info.Range[1] : info.Range[0] + 1 };
-
-  const std::vector<Config> configs = MakeConfigs();
-  vtkNew<vtkUnsignedCharArray> onePixel;
-  auto apply = [&](const Config& cfg)
+  void Turn(double degrees)
   {
-    sliceVolume->SetVisibility(!cfg.Vtk);
-    gpuVolume->SetVisibility(cfg.Vtk);
+    this->Renderer->GetActiveCamera()->Azimuth(degrees);
+    this->Renderer->ResetCameraClippingRange();
+  }
+
+  void Apply(const Config& cfg)
+  {
+    this->SliceVolume->SetVisibility(!cfg.Vtk);
+    this->GpuVolume->SetVisibility(cfg.Vtk);
     if (!cfg.Vtk)
     {
-      slice->SetEarlyRayTermination(cfg.Ert);
-      slice->SetEmptySpaceSkipping(cfg.Ess);
-    }
-  };
-  for (const std::string& tf : options.TransferFunctions)
-  {
-    cli.transferFunction = tf;
-    accelvolume::cli::ApplyTransferFunction(
-      accelvolume::cli::LoadTransferFunction(cli), cli, tfWindow, property);
-    for (int size : options.Sizes)
-    {
-      const auto caseStart = Clock::now();
-      window->SetSize(size, size);
-      CaseResult c;
-      c.Dataset = info.Name;
-      c.Tf = tf;
-      c.Size = size;
-      c.Frames = options.FramesFor(size);
-      for (const Config& cfg : configs)
-      {
-        c.Results.push_back({ cfg });
-      }
-      auto renderAndWait = [&]()
-      {
-        window->Render();
-        static_cast<vtkRenderWindow*>(window)->GetPixelData(
-          size / 2, size / 2, size / 2, size / 2, 0, onePixel.Get());
-      };
-
-      // Warm-up (texture upload, octree build / classification, shader compilation) and the
-      // quality-check images, both at the fixed view.
-      setView();
-      std::vector<std::uint8_t> baseImage, bothImage, vtkImage;
-      for (ConfigResult& r : c.Results)
-      {
-        apply(r.Cfg);
-        renderAndWait();
-        if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk)
-        {
-          window->Render(); // a second frame: the first may include one-time work
-          auto& target = r.Cfg.Id == "base" ? baseImage : r.Cfg.Vtk ? vtkImage : bothImage;
-          target = Capture(window, size, size);
-        }
-      }
-      c.ErtBothVsBase = Compare(baseImage, bothImage, size);
-      c.OursVsVtk = Compare(vtkImage, bothImage, size);
-      if (!options.Images.empty())
-      {
-        std::error_code ec;
-        fs::create_directories(options.Images, ec);
-        const std::string stem =
-          options.Images + "/" + info.Name + "_" + tf + "_" + std::to_string(size) + "_";
-        WritePng(stem + "base.png", baseImage, size, size);
-        WritePng(stem + "ert_both.png", bothImage, size, size);
-        WritePng(stem + "vtk.png", vtkImage, size, size);
-      }
-
-      for (int f = 0; f < c.Frames; ++f)
-      {
-        renderer->GetActiveCamera()->Azimuth(1.0);
-        renderer->ResetCameraClippingRange();
-        for (ConfigResult& r : c.Results)
-        {
-          apply(r.Cfg);
-          const auto start = Clock::now();
-          renderAndWait();
-          r.FrameMs.push_back(
-            std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-          if (!r.Cfg.Vtk)
-          {
-            r.MapperMs.push_back(1000.0 * slice->GetLastRenderTime());
-            r.TerminationPasses = slice->GetLastNumberOfTerminationPasses();
-            r.TransparentLeafFraction = slice->GetLastTransparentLeafFraction();
-            r.Slices = slice->GetLastNumberOfSlices();
-          }
-        }
-      }
-      c.Seconds = SecondsSince(caseStart);
-      const ConfigResult* base = c.Find("base");
-      std::cout << "  " << std::left << std::setw(20) << info.Name << std::setw(4) << tf
-                << std::right << std::setw(5) << size << "  " << c.Frames << " frames, ms:";
-      for (const ConfigResult& r : c.Results)
-      {
-        std::cout << " " << r.Cfg.Id << " " << Num(r.MedianMs(), 0);
-      }
-      std::cout << "  (ERT passes " << c.Find("ert_both")->TerminationPasses << ", slices "
-                << base->Slices << ", " << Num(c.Seconds, 1) << " s)\n"
-                << std::flush;
-      cases.push_back(std::move(c));
+      this->Slice->SetEarlyRayTermination(cfg.Ert);
+      this->Slice->SetEmptySpaceSkipping(cfg.Ess);
     }
   }
-  window->RemoveRenderer(renderer);
+
+  void RenderAndWait(int size)
+  {
+    this->Window->Render();
+    static_cast<vtkRenderWindow*>(this->Window)
+      ->GetPixelData(size / 2, size / 2, size / 2, size / 2, 0, this->OnePixel.Get());
+  }
+
+  // One timed frame of `r`'s configuration.
+  void TimeFrame(ConfigResult& r, int size)
+  {
+    this->Apply(r.Cfg);
+    const auto start = Clock::now();
+    this->RenderAndWait(size);
+    r.FrameMs.push_back(MsSince(start));
+    if (!r.Cfg.Vtk)
+    {
+      r.MapperMs.push_back(1000.0 * this->Slice->GetLastRenderTime());
+      r.TerminationPasses = this->Slice->GetLastNumberOfTerminationPasses();
+      r.TransparentLeafFraction = this->Slice->GetLastTransparentLeafFraction();
+      r.Slices = this->Slice->GetLastNumberOfSlices();
+    }
+  }
+
+  vtkNew<vtkVolumeProperty> Property;
+
+private:
+  vtkAccelVolumeHeadlessRenderWindow* Window;
+  vtkNew<vtkAccelVolumeSliceMapper> Slice;
+  vtkNew<vtkVolume> SliceVolume;
+  vtkNew<vtkGPUVolumeRayCastMapper> Gpu;
+  vtkNew<vtkVolume> GpuVolume;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkUnsignedCharArray> OnePixel;
+  double Bounds[6] = { 0, 1, 0, 1, 0, 1 };
+};
+
+class CompositeBenchmark : public Benchmark
+{
+public:
+  const char* Name() const override { return "accelvolume_benchmark_composite"; }
+  const char* Description() const override
+  {
+    return "Lee 2005 Table V-3: slice-based composite rendering with early ray termination and "
+           "empty-space skipping, against vtkGPUVolumeRayCastMapper";
+  }
+  const char* DefaultJson() const override { return "benchmark_composite.json"; }
+  int InitialSize() const override { return this->Sizes.front(); }
+
+  void AddOptions(CLI::App& app) override
+  {
+    AddList(app, "--datasets", this->Datasets,
+      "dataset names: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder");
+    AddList(app, "--tfs", this->Tfs, "transfer-function presets of `accelvolume render --tf`");
+    AddList(app, "--sizes", this->Sizes, "square image sizes (16..4096)");
+    app.add_option("--frames", this->Frames, "timed frames per configuration")
+      ->check(CLI::PositiveNumber);
+    app
+      .add_option(
+        "--large-frames", this->LargeFrames, "timed frames at sizes above 256 (0 = --frames)")
+      ->check(CLI::NonNegativeNumber);
+    app.add_option("--view", this->View, "camera azimuth / elevation in degrees")
+      ->expected(2)
+      ->type_name("AZ EL");
+    app
+      .add_option("--images", this->Images,
+        "save PNGs of the quality-check view (base, "
+        "ERT+both, VTK)")
+      ->type_name("DIR");
+  }
+
+  void Resolve(const CLI::App&, const MachineInfo&) override
+  {
+    CheckTransferFunctions(this->Tfs, "--tfs");
+    bool sizes = !this->Sizes.empty();
+    for (int size : this->Sizes)
+    {
+      sizes = sizes && size >= 16 && size <= 4096;
+    }
+    if (!sizes || this->Datasets.empty())
+    {
+      throw CLI::ValidationError("--sizes/--datasets", "sizes 16..4096, at least one dataset");
+    }
+  }
+
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  std::vector<std::string> Datasets = { "engine", "cthead", "bonsai_hazeremoved" };
+  std::vector<std::string> Tfs = { "tf1", "tf2" };
+  std::vector<int> Sizes = { 256, 512 };
+  int Frames = 5;
+  // Timed frames at sizes above 256: a shaded 512^2 frame takes 0.5-1 s on llvmpipe.
+  int LargeFrames = 3;
+  std::vector<double> View = { 30.0, 20.0 };
+  std::string Images;
+
+  int FramesFor(int size) const
+  {
+    return size > 256 && this->LargeFrames > 0 ? this->LargeFrames : this->Frames;
+  }
+  CaseResult RunCase(Scene& scene, vtkAccelVolumeHeadlessRenderWindow* window,
+    const DatasetInfo& info, const std::string& tf, int size) const;
+};
+
+CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRenderWindow* window,
+  const DatasetInfo& info, const std::string& tf, int size) const
+{
+  const auto caseStart = Clock::now();
+  window->SetSize(size, size);
+  CaseResult c;
+  c.Dataset = info.Name;
+  c.Tf = tf;
+  c.Size = size;
+  c.Frames = this->FramesFor(size);
+  for (const Config& cfg : Configs())
+  {
+    c.Results.emplace_back();
+    c.Results.back().Cfg = cfg;
+  }
+  // Warm-up (texture upload, octree build / classification, shader compilation) and the
+  // quality-check images, both at the fixed view.
+  scene.SetView(this->View[0], this->View[1]);
+  std::vector<std::uint8_t> baseImage, bothImage, vtkImage;
+  for (ConfigResult& r : c.Results)
+  {
+    scene.Apply(r.Cfg);
+    scene.RenderAndWait(size);
+    if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk)
+    {
+      window->Render(); // a second frame: the first may include one-time work
+      auto& target = r.Cfg.Id == "base" ? baseImage : r.Cfg.Vtk ? vtkImage : bothImage;
+      target = Capture(window, size, size);
+    }
+  }
+  c.ErtBothVsBase = CompareVisible(baseImage, bothImage, size, size);
+  c.OursVsVtk = CompareVisible(vtkImage, bothImage, size, size);
+  if (!this->Images.empty())
+  {
+    std::error_code ec;
+    fs::create_directories(this->Images, ec);
+    const std::string stem =
+      this->Images + "/" + info.Name + "_" + tf + "_" + std::to_string(size) + "_";
+    WritePng(stem + "base.png", baseImage, size, size);
+    WritePng(stem + "ert_both.png", bothImage, size, size);
+    WritePng(stem + "vtk.png", vtkImage, size, size);
+  }
+  for (int f = 0; f < c.Frames; ++f)
+  {
+    scene.Turn(1.0);
+    for (ConfigResult& r : c.Results)
+    {
+      scene.TimeFrame(r, size);
+    }
+  }
+  c.Seconds = SecondsSince(caseStart);
+  return c;
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+int CompositeBenchmark::Run(Harness& harness, Json& result)
 {
-  Options options;
-  if (!ParseArguments(argc, argv, options))
-  {
-    return 2;
-  }
-  int backend = 0;
-  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
-  {
-    return exitCode;
-  }
-
-  vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, options.Sizes.front(), options.Sizes.front());
-  const std::string rendererName = window->GetOpenGLRendererString();
-  const std::string backendName =
-    vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
-
-  std::cout << "accelvolume_benchmark_composite: Lee 2005 Table V-3 (slice-based composite "
-               "rendering: early ray termination, empty-space skipping)\n"
-            << "settings: GL " << backendName << " (" << rendererName
-            << "), MultiSamples 0, shading on (tf presets of `accelvolume render --tf` over the "
-               "data range), sample distance = smallest voxel spacing, AutoAdjust off;\n"
-            << "  view azimuth " << options.Azimuth << " elevation " << options.Elevation
-            << ", camera turned 1 deg per round; " << options.Frames << " timed frames per config";
-  if (options.LargeFrames > 0 && options.LargeFrames != options.Frames)
-  {
-    std::cout << " (" << options.LargeFrames
-              << " at sizes above 256, to keep the run short: --large-frames)";
-  }
-  std::cout << " after one warm-up frame; frames interleaved across configs; time = Render() + "
-               "1x1 read-back, median\n"
-            << "data: " << options.DataDir << "\n"
-            << std::flush;
-
-  const auto start = Clock::now();
-  std::vector<DatasetInfo> datasets;
-  std::vector<CaseResult> cases;
+  result = { { "benchmark", "composite (Lee 2005 Table V-3)" },
+    { "gl_backend", harness.Machine.GLBackend }, { "gl_renderer", harness.Machine.GLRenderer },
+    { "frames", this->Frames }, { "large_frames", this->LargeFrames },
+    { "view",
+      { { "azimuth", Round(this->View[0], 2) }, { "elevation", Round(this->View[1], 2) } } },
+    { "total_seconds", 0 }, { "datasets", Json::array() }, { "cases", Json::array() } };
   bool ok = true;
-  // A case per dataset here (its transfer functions and sizes run inside RunDataset).
-  CaseProgress progress(
-    "accelvolume_benchmark_composite", static_cast<int>(options.Datasets.size()));
-  for (const std::string& name : options.Datasets)
+  // A progress step per dataset (its transfer functions and sizes run inside).
+  CaseProgress progress(this->Name(), static_cast<int>(this->Datasets.size()));
+  for (const std::string& name : this->Datasets)
   {
     progress.Begin(name);
     DatasetInfo info;
-    vtkSmartPointer<vtkImageData> image;
-    if (!LoadDataset(options, name, info, image))
+    vtkSmartPointer<vtkImageData> image = LoadDataset(harness.Options.DataDir, name, info);
+    if (!image)
     {
       ok = false;
       continue;
     }
-    std::cout << "=== " << name << ": " << info.Description << ", spacing " << info.Spacing[0]
-              << " " << info.Spacing[1] << " " << info.Spacing[2] << ", range " << info.Range[0]
-              << ".." << info.Range[1] << " (loaded in " << Num(info.LoadSeconds, 2) << " s)\n"
-              << std::flush;
-    RunDataset(options, info, image, window, cases);
-    datasets.push_back(info);
+    Scene scene(image, info, harness.Window());
+    // The CLI's settings for `render --blend composite --tf tfN --shade on` (window = data range).
+    accelvolume::cli::Options cli;
+    cli.blend = accelvolume::cli::BlendKind::Composite;
+    cli.haveShade = true;
+    cli.shade = true;
+    const double tfWindow[2] = { info.Range[0],
+      info.Range[1] > info.Range[0] ? info.Range[1] : info.Range[0] + 1 };
+    for (const std::string& tf : this->Tfs)
+    {
+      cli.transferFunction = tf;
+      accelvolume::cli::ApplyTransferFunction(
+        accelvolume::cli::LoadTransferFunction(cli), cli, tfWindow, scene.Property);
+      for (int size : this->Sizes)
+      {
+        result["cases"].push_back(CaseJson(this->RunCase(scene, harness.Window(), info, tf, size)));
+      }
+    }
+    result["datasets"].push_back(DatasetJson(info, true));
   }
-  if (!cases.empty())
-  {
-    PrintTable(datasets, cases);
-  }
-  const double total = SecondsSince(start);
-  WriteJson(options, rendererName, backendName, datasets, cases, total);
-  std::cout << "results written to " << options.Json << "; total " << Num(total, 1) << " s\n";
-  return ok && !cases.empty() ? 0 : 1;
+  result["total_seconds"] = Round(harness.Seconds(), 2);
+  return ok && !result["cases"].empty() ? 0 : 1;
 }
+
+} // namespace
+
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<CompositeBenchmark>();
+}
+
+} // namespace accelvolume::benchmark

@@ -13,12 +13,9 @@
 // frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
 // printed description of the masks).
-// Options: BenchmarkCroppingOptions.{h,cxx}; table and JSON: BenchmarkCroppingReport.{h,cxx}.
-#include "BenchmarkCommon.h"
-#include "BenchmarkCroppingOptions.h"
-#include "BenchmarkCroppingReport.h"
+// JSON: cropping.json of the report (scripts/bench_report/cropping.py renders it).
+#include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
-#include "VolumeIO.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeSliceMapper.h"
@@ -28,56 +25,48 @@
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPiecewiseFunction.h>
-#include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdint>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
-#include <regex>
-#include <string>
-#include <vector>
 
 namespace fs = std::filesystem;
-using namespace accelvolume::benchmark;
 
+namespace accelvolume::benchmark
+{
 namespace
 {
-struct DatasetWindow
+
+struct View
 {
-  double Low;
-  double High;
+  const char* Name;
+  double Azimuth;
+  double Elevation;
+};
+// The error is measured at these two views; the timed sequence starts at the first.
+constexpr View Views[] = { { "view1_az30_el25", 30.0, 25.0 }, { "view2_az-55_el40", -55.0, 40.0 } };
+constexpr std::size_t ViewCount = sizeof(Views) / sizeof(Views[0]);
+
+// One rendering configuration: a row of the table.
+struct Config
+{
+  std::string Id;
+  std::string Label;
+  bool Gpu = false;
+  bool Rerender = false;
+  bool AutoAdjust = false;
+  double SliceFactor = 1.0; // slices per smallest voxel spacing
+  bool Reference = false;
 };
 
-// Transfer-function windows chosen per dataset (grey ramp, linear opacity ramp over the window).
-bool KnownWindow(const std::string& name, DatasetWindow& window)
+const std::vector<Config>& Configs()
 {
-  if (name == "cthead")
-  {
-    window = { 300.0, 2000.0 }; // 16-bit CT, range 0..3272: soft tissue faint, bone bright
-    return true;
-  }
-  if (name == "cta_avm")
-  {
-    window = { 30.0, 255.0 }; // 8-bit CTA, range 0..255: contrast-filled vessels
-    return true;
-  }
-  return false;
-}
-
-std::vector<Config> MakeConfigs()
-{
-  return {
+  static const std::vector<Config> configs = {
     { "a", "slice 1x (auto), re-render off", false, false, true, 1.0, false },
     { "b", "slice 1x (auto), re-render ON", false, true, true, 1.0, false },
     { "c", "slice 1.5x, re-render off", false, false, false, 1.5, false },
@@ -85,400 +74,592 @@ std::vector<Config> MakeConfigs()
     { "e", "vtkGPUVolumeRayCastMapper 1x", true, false, false, 1.0, false },
     { "ref", "slice 8x + re-render (reference)", false, true, false, 8.0, true },
   };
+  return configs;
 }
 
-bool RunDataset(const Options& options, const std::string& name, bool saveImages,
-  vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result)
+struct ConfigResult
 {
-  const auto datasetStart = Clock::now();
-  result.Name = name;
-  result.File = FindDatasetFile(options.DataDir, name);
-  if (result.File.empty())
+  Config Cfg;
+  std::vector<double> FrameMs;  // Render() + 1x1 read-back
+  std::vector<double> MapperMs; // slice mapper's own GetLastRenderTime (it waits for the GPU)
+  int Slices = 0;
+  int Faces = 0;
+  double SliceSpacing = 0;
+  std::vector<std::vector<std::uint8_t>> Images; // per view, RGB, bottom row first
+  std::vector<ErrorStats> Footprint, Band, Face; // per view
+  ErrorStats FootprintAll, BandAll, FaceAll;
+  double MedianMs() const { return Median(this->FrameMs); }
+  double MinMs() const
   {
-    std::cerr << "dataset " << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "
-              << options.DataDir << "\n";
-    return false;
+    return this->FrameMs.empty() ? 0.0
+                                 : *std::min_element(this->FrameMs.begin(), this->FrameMs.end());
   }
-  accelvolume::cli::VolumeRequest request;
-  request.inputPath = result.File;
-  std::string error;
-  const auto loadStart = Clock::now();
-  vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
-  result.LoadSeconds = SecondsSince(loadStart);
-  if (!image)
+  // Median over the interleaved rounds of (this frame / the other's frame of the same round):
+  // robust to load changes on a shared machine.
+  double PairedRatio(const ConfigResult& other) const
   {
-    std::cerr << "dataset " << name << ": " << error << "\n";
-    return false;
-  }
-  result.Description = accelvolume::cli::DescribeVolume(image);
-  image->GetSpacing(result.Spacing);
-  result.MinSpacing = std::min({ result.Spacing[0], result.Spacing[1], result.Spacing[2] });
-  double range[2];
-  image->GetPointData()->GetScalars()->GetRange(range);
-  DatasetWindow tf;
-  if (options.HaveWindow)
-  {
-    tf = { options.Window[0], options.Window[1] };
-  }
-  else if (!KnownWindow(name, tf))
-  {
-    tf = { range[0] + 0.1 * (range[1] - range[0]), range[1] };
-  }
-  result.Window[0] = tf.Low;
-  result.Window[1] = tf.High;
-
-  double bounds[6];
-  image->GetBounds(bounds);
-  double cropBounds[6];
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    const double length = bounds[2 * axis + 1] - bounds[2 * axis];
-    cropBounds[2 * axis] = bounds[2 * axis] + options.CropLow * length;
-    cropBounds[2 * axis + 1] = bounds[2 * axis] + options.CropHigh * length;
-  }
-  std::copy(cropBounds, cropBounds + 6, result.CropPlanes);
-
-  std::cout << "\n=== " << name << ": " << fs::path(result.File).filename().string() << " ("
-            << result.Description << ", spacing " << result.Spacing[0] << " " << result.Spacing[1]
-            << " " << result.Spacing[2] << ", scalar range " << range[0] << ".." << range[1]
-            << ", loaded in " << Num(result.LoadSeconds, 2) << " s)\n"
-            << "    TF window " << tf.Low << ".." << tf.High
-            << " (grey ramp, linear opacity ramp 0..1), crop box " << options.CropLow * 100 << "%.."
-            << options.CropHigh * 100 << "% of each axis = [" << cropBounds[0] << ","
-            << cropBounds[1] << "]x[" << cropBounds[2] << "," << cropBounds[3] << "]x["
-            << cropBounds[4] << "," << cropBounds[5] << "]\n"
-            << std::flush;
-
-  // Scene: one renderer, two volumes sharing the property (one visible at a time).
-  vtkNew<vtkColorTransferFunction> colours;
-  colours->AddRGBPoint(tf.Low, 0, 0, 0);
-  colours->AddRGBPoint(tf.High, 1, 1, 1);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(tf.Low, 0.0);
-  opacity->AddPoint(tf.High, 1.0);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetColor(colours);
-  property->SetScalarOpacity(opacity);
-  property->SetInterpolationTypeToLinear();
-  property->ShadeOff();
-
-  vtkNew<vtkAccelVolumeSliceMapper> slice;
-  slice->SetInputData(image);
-  slice->SetBlendModeToMaximumIntensity();
-  slice->SetCropping(1);
-  slice->SetCroppingRegionPlanes(cropBounds);
-  slice->SetCroppingRegionFlagsToSubVolume();
-  slice->SetMaximumNumberOfSlices(1 << 16); // the 8x reference must not be widened
-  vtkNew<vtkVolume> sliceVolume;
-  sliceVolume->SetMapper(slice);
-  sliceVolume->SetProperty(property);
-
-  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
-  gpu->SetInputData(image);
-  gpu->SetBlendModeToMaximumIntensity();
-  gpu->SetCropping(1);
-  gpu->SetCroppingRegionPlanes(cropBounds);
-  gpu->SetCroppingRegionFlagsToSubVolume();
-  gpu->SetAutoAdjustSampleDistances(0);
-  gpu->SetSampleDistance(result.MinSpacing);
-  gpu->SetImageSampleDistance(1.0);
-  gpu->SetUseJittering(0);
-  vtkNew<vtkVolume> gpuVolume;
-  gpuVolume->SetMapper(gpu);
-  gpuVolume->SetProperty(property);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  renderer->AddVolume(sliceVolume);
-  renderer->AddVolume(gpuVolume);
-  window->AddRenderer(renderer);
-
-  // The fixed views: camera fitted to the crop box, turned so the cut faces are oblique.
-  std::vector<vtkSmartPointer<vtkCamera>> viewCameras;
-  for (const View& view : Views)
-  {
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->SetPosition(0, 0, 1);
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 1, 0);
-    renderer->ResetCamera(cropBounds);
-    camera->Azimuth(view.Azimuth);
-    camera->Elevation(view.Elevation);
-    camera->OrthogonalizeViewUp();
-    renderer->ResetCamera(cropBounds);
-    camera->Zoom(options.Zoom);
-    auto saved = vtkSmartPointer<vtkCamera>::New();
-    saved->DeepCopy(camera);
-    viewCameras.push_back(saved);
-  }
-  auto setView = [&](size_t v)
-  {
-    renderer->GetActiveCamera()->DeepCopy(viewCameras[v]);
-    renderer->ResetCameraClippingRange();
-  };
-
-  // Crop-box footprint and outline band per view.
-  const int width = options.Width;
-  const int height = options.Height;
-  std::vector<std::vector<std::uint8_t>> hullMasks;
-  std::vector<std::vector<std::uint8_t>> bandMasks;
-  for (size_t v = 0; v < viewCameras.size(); ++v)
-  {
-    setView(v);
-    std::vector<Point2> corners;
-    for (int corner = 0; corner < 8; ++corner)
+    std::vector<double> ratios;
+    for (size_t f = 0; f < this->FrameMs.size() && f < other.FrameMs.size(); ++f)
     {
-      renderer->SetWorldPoint(cropBounds[corner & 1 ? 1 : 0], cropBounds[corner & 2 ? 3 : 2],
-        cropBounds[corner & 4 ? 5 : 4], 1.0);
-      renderer->WorldToDisplay();
-      double display[3];
-      renderer->GetDisplayPoint(display);
-      corners.push_back({ display[0], display[1] });
+      ratios.push_back(this->FrameMs[f] / other.FrameMs[f]);
     }
-    const std::vector<Point2> hull = ConvexHull(corners);
-    hullMasks.push_back(PolygonMask(hull, width, height));
-    bandMasks.push_back(OutlineBandMask(hull, width, height, options.BandRadius));
+    return Median(ratios);
   }
+};
 
-  const std::vector<Config> configs = MakeConfigs();
-  const int cx = width / 2;
-  const int cy = height / 2;
-  vtkNew<vtkUnsignedCharArray> onePixel;
-  auto apply = [&](const Config& cfg)
+struct DatasetResult
+{
+  DatasetInfo Info;
+  double Window[2] = { 0, 1 };
+  double CropPlanes[6] = { 0, 0, 0, 0, 0, 0 };
+  double TotalSeconds = 0;
+  std::vector<long long> FootprintPixels, BandPixels, FacePixels; // per view
+  std::vector<ConfigResult> Results;                              // in Configs() order
+  const ConfigResult& Find(const std::string& id) const
   {
-    sliceVolume->SetVisibility(!cfg.Gpu);
-    gpuVolume->SetVisibility(cfg.Gpu);
+    for (const ConfigResult& r : this->Results)
+    {
+      if (r.Cfg.Id == id)
+      {
+        return r;
+      }
+    }
+    return this->Results.front();
+  }
+};
+
+// Settings of the run (the options).
+struct Settings
+{
+  std::vector<std::string> Datasets = { "cthead", "cta_avm" };
+  std::vector<int> Size = { 512, 512 };
+  int Frames = 10;
+  int ReferenceFrames = 3;
+  std::string Images;
+  std::vector<double> Crop = { 0.2, 0.8 };
+  double BandRadius = 2.5;     // pixels either side of the projected crop-box outline
+  double AboveThreshold = 2.0; // grey levels: "visibly different" pixel
+  double Zoom = 1.0;           // after fitting the camera to the crop box
+  std::vector<double> Window;  // --window LOW HIGH overrides the per-dataset window
+};
+
+// Transfer-function windows chosen per dataset (grey ramp, linear opacity ramp over the window).
+void ChooseWindow(const Settings& s, const std::string& name, const double range[2], double w[2])
+{
+  if (s.Window.size() == 2)
+  {
+    w[0] = s.Window[0];
+    w[1] = s.Window[1];
+  }
+  else if (name == "cthead")
+  {
+    w[0] = 300.0; // 16-bit CT, range 0..3272: soft tissue faint, bone bright
+    w[1] = 2000.0;
+  }
+  else if (name == "cta_avm")
+  {
+    w[0] = 30.0; // 8-bit CTA, range 0..255: contrast-filled vessels
+    w[1] = 255.0;
+  }
+  else
+  {
+    w[0] = range[0] + 0.1 * (range[1] - range[0]);
+    w[1] = range[1];
+  }
+}
+
+Json ConfigJson(const DatasetResult& d, const ConfigResult& r)
+{
+  const ConfigResult& base = d.Find("a");
+  Json out = { { "id", r.Cfg.Id }, { "label", r.Cfg.Label },
+    { "mapper", r.Cfg.Gpu ? "vtkGPUVolumeRayCastMapper" : "vtkAccelVolumeSliceMapper" },
+    { "boundary_rerendering", r.Cfg.Rerender }, { "slice_factor", r.Cfg.SliceFactor },
+    { "auto_adjust", r.Cfg.AutoAdjust } };
+  if (!r.Cfg.Gpu)
+  {
+    out["slices"] = r.Slices;
+    out["boundary_faces"] = r.Faces;
+    out["slice_spacing"] = Round(r.SliceSpacing, 5);
+  }
+  out["median_ms"] = Round(r.MedianMs(), 3);
+  out["fps"] = Round(1000.0 / r.MedianMs(), 3);
+  out["min_ms"] = Round(r.MinMs(), 3);
+  out["time_ratio_vs_a"] = Round(r.PairedRatio(base), 4);
+  out["median_ratio_vs_a"] = Round(r.MedianMs() / base.MedianMs(), 4);
+  if (!r.Cfg.Gpu)
+  {
+    out["median_mapper_ms"] = Round(Median(r.MapperMs), 3);
+  }
+  out["frame_ms"] = RoundAll(r.FrameMs, 2);
+  auto error = [&](const char* key, const ErrorStats& all, const ErrorStats& baseAll)
+  {
+    out[std::string(key) + "rms_error"] = Round(all.Rms(), 4);
+    out[std::string(key) + "max_error"] = Round(all.Max, 2);
+    out[std::string(key) + "error_ratio_vs_a"] = Round(SafeRatio(all.Rms(), baseAll.Rms()), 4);
+    if (std::string(key).empty())
+    {
+      out["above_threshold_fraction"] = Round(all.AboveFraction(), 5);
+    }
+  };
+  error("", r.FootprintAll, base.FootprintAll);
+  error("band_", r.BandAll, base.BandAll);
+  error("cut_face_", r.FaceAll, base.FaceAll);
+  out["per_view"] = Json::array();
+  for (std::size_t v = 0; v < r.Footprint.size(); ++v)
+  {
+    out["per_view"].push_back(
+      { { "view", Views[v].Name }, { "rms_error", Round(r.Footprint[v].Rms(), 4) },
+        { "max_error", Round(r.Footprint[v].Max, 2) },
+        { "above_threshold_fraction", Round(r.Footprint[v].AboveFraction(), 5) },
+        { "band_rms_error", Round(r.Band[v].Rms(), 4) },
+        { "band_max_error", Round(r.Band[v].Max, 2) },
+        { "cut_face_rms_error", Round(r.Face[v].Rms(), 4) } });
+  }
+  return out;
+}
+
+Json DatasetResultJson(const DatasetResult& d)
+{
+  const ConfigResult& base = d.Find("a");
+  const ConfigResult& rerender = d.Find("b");
+  const ConfigResult& doubled = d.Find("d");
+  Json planes = Json::array();
+  for (double plane : d.CropPlanes)
+  {
+    planes.push_back(Round(plane, 4));
+  }
+  Json out = { { "name", d.Info.Name }, { "file", d.Info.File }, { "volume", d.Info.Description },
+    { "spacing", { d.Info.Spacing[0], d.Info.Spacing[1], d.Info.Spacing[2] } },
+    { "tf_window", { d.Window[0], d.Window[1] } }, { "crop_planes", planes },
+    { "cut_face_pixels", d.FacePixels }, { "footprint_pixels", d.FootprintPixels },
+    { "band_pixels", d.BandPixels }, { "seconds", Round(d.TotalSeconds, 2) },
+    { "rerender_overhead_percent", Round(100.0 * (rerender.PairedRatio(base) - 1.0), 2) },
+    { "rerender_beats_2x_in_band", rerender.BandAll.Rms() < doubled.BandAll.Rms() },
+    { "rerender_beats_2x_on_cut_faces", rerender.FaceAll.Rms() < doubled.FaceAll.Rms() },
+    { "rerender_beats_2x_in_footprint", rerender.FootprintAll.Rms() < doubled.FootprintAll.Rms() },
+    { "configs", Json::array() } };
+  for (const ConfigResult& r : d.Results)
+  {
+    out["configs"].push_back(ConfigJson(d, r));
+  }
+  return out;
+}
+
+// One dataset's scene: a renderer with the slice mapper and VTK's GPU ray caster sharing one
+// property (one visible at a time), cropped to the sub-volume, and the fixed views.
+class Scene
+{
+public:
+  Scene(const Settings& settings, vtkImageData* image, DatasetResult& result,
+    vtkAccelVolumeHeadlessRenderWindow* window);
+  ~Scene() { this->Window->RemoveRenderer(this->Renderer); }
+  void Time();
+  void CaptureViews();
+  void MeasureErrors();
+  void SaveImages(const std::string& folder) const;
+
+private:
+  const Settings& S;
+  DatasetResult& Result;
+  vtkAccelVolumeHeadlessRenderWindow* Window;
+  int Width, Height;
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkAccelVolumeSliceMapper> Slice;
+  vtkNew<vtkVolume> SliceVolume;
+  vtkNew<vtkGPUVolumeRayCastMapper> Gpu;
+  vtkNew<vtkVolume> GpuVolume;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkUnsignedCharArray> OnePixel;
+  std::vector<vtkSmartPointer<vtkCamera>> Cameras; // per view
+  std::vector<std::vector<std::uint8_t>> HullMasks, BandMasks;
+
+  void SetUpMappers(vtkImageData* image);
+  void SetUpViews();
+  void SetView(std::size_t v)
+  {
+    this->Renderer->GetActiveCamera()->DeepCopy(this->Cameras[v]);
+    this->Renderer->ResetCameraClippingRange();
+  }
+  void Apply(const Config& cfg)
+  {
+    this->SliceVolume->SetVisibility(!cfg.Gpu);
+    this->GpuVolume->SetVisibility(cfg.Gpu);
     if (!cfg.Gpu)
     {
-      slice->SetBoundaryRerendering(cfg.Rerender);
-      slice->SetAutoAdjustSampleDistances(cfg.AutoAdjust);
-      slice->SetSampleDistance(result.MinSpacing / cfg.SliceFactor);
+      this->Slice->SetBoundaryRerendering(cfg.Rerender);
+      this->Slice->SetAutoAdjustSampleDistances(cfg.AutoAdjust);
+      this->Slice->SetSampleDistance(this->Result.Info.MinSpacing / cfg.SliceFactor);
     }
-  };
-  auto renderAndWait = [&]()
+  }
+  void RenderAndWait()
   {
-    window->Render();
-    static_cast<vtkRenderWindow*>(window)->GetPixelData(cx, cy, cx, cy, 0, onePixel.Get());
-  };
-  for (const Config& cfg : configs)
+    this->Window->Render();
+    const int cx = this->Width / 2, cy = this->Height / 2;
+    static_cast<vtkRenderWindow*>(this->Window)
+      ->GetPixelData(cx, cy, cx, cy, 0, this->OnePixel.Get());
+  }
+};
+
+Scene::Scene(const Settings& settings, vtkImageData* image, DatasetResult& result,
+  vtkAccelVolumeHeadlessRenderWindow* window)
+  : S(settings)
+  , Result(result)
+  , Window(window)
+  , Width(settings.Size[0])
+  , Height(settings.Size[1])
+{
+  const double* w = result.Window;
+  vtkNew<vtkColorTransferFunction> colours;
+  colours->AddRGBPoint(w[0], 0, 0, 0);
+  colours->AddRGBPoint(w[1], 1, 1, 1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(w[0], 0.0);
+  opacity->AddPoint(w[1], 1.0);
+  this->Property->SetColor(colours);
+  this->Property->SetScalarOpacity(opacity);
+  this->Property->SetInterpolationTypeToLinear();
+  this->Property->ShadeOff();
+  this->SetUpMappers(image);
+  this->Renderer->SetBackground(0, 0, 0);
+  this->Renderer->AddVolume(this->SliceVolume);
+  this->Renderer->AddVolume(this->GpuVolume);
+  this->Window->AddRenderer(this->Renderer);
+  this->SetUpViews();
+  for (const Config& cfg : Configs())
   {
     ConfigResult r;
     r.Cfg = cfg;
-    result.Results.push_back(std::move(r));
+    this->Result.Results.push_back(std::move(r));
   }
+}
 
+void Scene::SetUpMappers(vtkImageData* image)
+{
+  double* crop = this->Result.CropPlanes;
+  this->Slice->SetInputData(image);
+  this->Slice->SetBlendModeToMaximumIntensity();
+  this->Slice->SetCropping(1);
+  this->Slice->SetCroppingRegionPlanes(crop);
+  this->Slice->SetCroppingRegionFlagsToSubVolume();
+  this->Slice->SetMaximumNumberOfSlices(1 << 16); // the 8x reference must not be widened
+  this->SliceVolume->SetMapper(this->Slice);
+  this->SliceVolume->SetProperty(this->Property);
+  this->Gpu->SetInputData(image);
+  this->Gpu->SetBlendModeToMaximumIntensity();
+  this->Gpu->SetCropping(1);
+  this->Gpu->SetCroppingRegionPlanes(crop);
+  this->Gpu->SetCroppingRegionFlagsToSubVolume();
+  this->Gpu->SetAutoAdjustSampleDistances(0);
+  this->Gpu->SetSampleDistance(this->Result.Info.MinSpacing);
+  this->Gpu->SetImageSampleDistance(1.0);
+  this->Gpu->SetUseJittering(0);
+  this->GpuVolume->SetMapper(this->Gpu);
+  this->GpuVolume->SetProperty(this->Property);
+}
+
+// The fixed views (camera fitted to the crop box, turned so the cut faces are oblique), and the
+// crop-box footprint and outline band of each.
+void Scene::SetUpViews()
+{
+  double* crop = this->Result.CropPlanes;
+  for (const View& view : Views)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetPosition(0, 0, 1);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    this->Renderer->ResetCamera(crop);
+    camera->Azimuth(view.Azimuth);
+    camera->Elevation(view.Elevation);
+    camera->OrthogonalizeViewUp();
+    this->Renderer->ResetCamera(crop);
+    camera->Zoom(this->S.Zoom);
+    auto saved = vtkSmartPointer<vtkCamera>::New();
+    saved->DeepCopy(camera);
+    this->Cameras.push_back(saved);
+  }
+  for (std::size_t v = 0; v < this->Cameras.size(); ++v)
+  {
+    this->SetView(v);
+    std::vector<Point2> corners;
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      this->Renderer->SetWorldPoint(
+        crop[corner & 1 ? 1 : 0], crop[corner & 2 ? 3 : 2], crop[corner & 4 ? 5 : 4], 1.0);
+      this->Renderer->WorldToDisplay();
+      double display[3];
+      this->Renderer->GetDisplayPoint(display);
+      corners.push_back({ display[0], display[1] });
+    }
+    const std::vector<Point2> hull = ConvexHull(corners);
+    this->HullMasks.push_back(PolygonMask(hull, this->Width, this->Height));
+    this->BandMasks.push_back(OutlineBandMask(hull, this->Width, this->Height, this->S.BandRadius));
+  }
+}
+
+// Warm-up, then timed frames interleaved: in round f every configuration renders the same
+// camera (turned f+1 degrees from view 1), so load changes on a shared machine hit all alike.
+void Scene::Time()
+{
   // Warm-up (texture upload, shader compilation) of every configuration except the reference,
   // which shares the slice mapper's texture and shaders with (a)..(d).
-  setView(0);
-  for (const Config& cfg : configs)
+  this->SetView(0);
+  for (const Config& cfg : Configs())
   {
     if (!cfg.Reference)
     {
-      apply(cfg);
-      renderAndWait();
+      this->Apply(cfg);
+      this->RenderAndWait();
     }
   }
-  // Timed frames, interleaved: in round f every configuration renders the same camera (turned
-  // f+1 degrees from view 1), so load changes on a shared machine hit all of them alike.
-  const int referenceFrames = std::min(options.ReferenceFrames, options.Frames);
-  for (int f = 0; f < options.Frames; ++f)
+  const int referenceFrames = std::min(this->S.ReferenceFrames, this->S.Frames);
+  for (int f = 0; f < this->S.Frames; ++f)
   {
-    renderer->GetActiveCamera()->Azimuth(1.0);
-    renderer->ResetCameraClippingRange();
-    for (ConfigResult& r : result.Results)
+    this->Renderer->GetActiveCamera()->Azimuth(1.0);
+    this->Renderer->ResetCameraClippingRange();
+    for (ConfigResult& r : this->Result.Results)
     {
       if (r.Cfg.Reference && f >= referenceFrames)
       {
         continue;
       }
-      apply(r.Cfg);
+      this->Apply(r.Cfg);
       const auto start = Clock::now();
-      renderAndWait();
-      const auto stop = Clock::now();
-      r.FrameMs.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+      this->RenderAndWait();
+      r.FrameMs.push_back(MsSince(start));
       if (!r.Cfg.Gpu)
       {
-        r.MapperMs.push_back(1000.0 * slice->GetLastRenderTime());
+        r.MapperMs.push_back(1000.0 * this->Slice->GetLastRenderTime());
       }
     }
   }
-  // Fixed views for the error measurement.
-  for (ConfigResult& r : result.Results)
+}
+
+// Every configuration at the fixed views, for the error measurement.
+void Scene::CaptureViews()
+{
+  for (ConfigResult& r : this->Result.Results)
   {
-    apply(r.Cfg);
-    for (size_t v = 0; v < viewCameras.size(); ++v)
+    this->Apply(r.Cfg);
+    for (std::size_t v = 0; v < this->Cameras.size(); ++v)
     {
-      setView(v);
-      window->Render();
-      r.Images.push_back(Capture(window, width, height));
+      this->SetView(v);
+      this->Window->Render();
+      r.Images.push_back(Capture(this->Window, this->Width, this->Height));
       if (v == 0 && !r.Cfg.Gpu)
       {
-        r.Slices = slice->GetLastNumberOfSlices();
-        r.Faces = slice->GetLastNumberOfBoundaryFaces();
-        r.SliceSpacing = slice->GetLastSliceSpacing();
+        r.Slices = this->Slice->GetLastNumberOfSlices();
+        r.Faces = this->Slice->GetLastNumberOfBoundaryFaces();
+        r.SliceSpacing = this->Slice->GetLastSliceSpacing();
       }
     }
-    std::cout << "    " << std::left << std::setw(4) << r.Cfg.Id << std::setw(36) << r.Cfg.Label
-              << std::right << " median " << std::setw(8) << Num(r.MedianMs(), 1) << " ms over "
-              << r.FrameMs.size() << " frames";
-    if (!r.Cfg.Gpu)
-    {
-      std::cout << "  (" << r.Slices << " slices, spacing " << Num(r.SliceSpacing, 4) << ", "
-                << r.Faces << " faces)";
-    }
-    std::cout << "\n" << std::flush;
   }
+}
 
-  // Errors against the reference over the footprint (crop-box projection OR non-background
-  // reference pixels), over the outline band, and over the cut-face pixels (where the
-  // re-rendered faces change the 1x image by more than the threshold: there the boundary
-  // layer holds the maximum).
-  const ConfigResult* referencePtr = nullptr;
-  const ConfigResult* plainPtr = nullptr;
-  const ConfigResult* rerenderPtr = nullptr;
-  for (const ConfigResult& r : result.Results)
-  {
-    referencePtr = r.Cfg.Reference ? &r : referencePtr;
-    plainPtr = r.Cfg.Id == "a" ? &r : plainPtr;
-    rerenderPtr = r.Cfg.Id == "b" ? &r : rerenderPtr;
-  }
-  const ConfigResult& reference = *referencePtr;
-  for (size_t v = 0; v < viewCameras.size(); ++v)
+// Errors against the reference over the footprint (crop-box projection OR non-background
+// reference pixels), over the outline band, and over the cut-face pixels (where the re-rendered
+// faces change the 1x image by more than the threshold: there the boundary layer holds the
+// maximum).
+void Scene::MeasureErrors()
+{
+  const ConfigResult& reference = this->Result.Find("ref");
+  const ConfigResult& plain = this->Result.Find("a");
+  const ConfigResult& rerender = this->Result.Find("b");
+  const double threshold = this->S.AboveThreshold;
+  for (std::size_t v = 0; v < this->Cameras.size(); ++v)
   {
     const auto footprint =
-      MaskOr(hullMasks[v], NonBackgroundMask(reference.Images[v], width, height));
+      MaskOr(this->HullMasks[v], NonBackgroundMask(reference.Images[v], this->Width, this->Height));
     std::vector<std::uint8_t> faceMask(footprint.size(), 0);
-    for (size_t p = 0; p < faceMask.size(); ++p)
+    const auto& ia = plain.Images[v];
+    const auto& ib = rerender.Images[v];
+    for (std::size_t p = 0; p < faceMask.size(); ++p)
     {
-      const auto& ia = plainPtr->Images[v];
-      const auto& ib = rerenderPtr->Images[v];
       const double grey = std::abs((ia[3 * p] + ia[3 * p + 1] + ia[3 * p + 2]) / 3.0 -
         (ib[3 * p] + ib[3 * p + 1] + ib[3 * p + 2]) / 3.0);
-      faceMask[p] = grey > options.AboveThreshold ? 1 : 0;
+      faceMask[p] = grey > threshold ? 1 : 0;
     }
-    result.FootprintPixels.push_back(std::count(footprint.begin(), footprint.end(), 1));
-    result.BandPixels.push_back(std::count(bandMasks[v].begin(), bandMasks[v].end(), 1));
-    result.FacePixels.push_back(std::count(faceMask.begin(), faceMask.end(), 1));
-    for (ConfigResult& r : result.Results)
+    const auto& band = this->BandMasks[v];
+    this->Result.FootprintPixels.push_back(std::count(footprint.begin(), footprint.end(), 1));
+    this->Result.BandPixels.push_back(std::count(band.begin(), band.end(), 1));
+    this->Result.FacePixels.push_back(std::count(faceMask.begin(), faceMask.end(), 1));
+    for (ConfigResult& r : this->Result.Results)
     {
-      r.Footprint.push_back(
-        CompareImages(reference.Images[v], r.Images[v], footprint, options.AboveThreshold));
-      r.Band.push_back(
-        CompareImages(reference.Images[v], r.Images[v], bandMasks[v], options.AboveThreshold));
-      r.Face.push_back(
-        CompareImages(reference.Images[v], r.Images[v], faceMask, options.AboveThreshold));
+      r.Footprint.push_back(CompareImages(reference.Images[v], r.Images[v], footprint, threshold));
+      r.Band.push_back(CompareImages(reference.Images[v], r.Images[v], band, threshold));
+      r.Face.push_back(CompareImages(reference.Images[v], r.Images[v], faceMask, threshold));
       r.FootprintAll.Add(r.Footprint.back());
       r.BandAll.Add(r.Band.back());
       r.FaceAll.Add(r.Face.back());
     }
   }
+}
 
-  if (saveImages)
+// <folder>/<dataset>_<view>_<config>.png, + _diff_x8.png: |config - ref| x8, red = darker.
+void Scene::SaveImages(const std::string& folder) const
+{
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  const ConfigResult& reference = this->Result.Find("ref");
+  for (const ConfigResult& r : this->Result.Results)
   {
-    std::error_code ec;
-    fs::create_directories(options.Images, ec);
-    for (const ConfigResult& r : result.Results)
+    for (std::size_t v = 0; v < r.Images.size(); ++v)
     {
-      for (size_t v = 0; v < viewCameras.size(); ++v)
+      const std::string stem =
+        folder + "/" + this->Result.Info.Name + "_" + Views[v].Name + "_" + r.Cfg.Id;
+      bool ok = WritePng(stem + ".png", r.Images[v], this->Width, this->Height);
+      if (!r.Cfg.Reference)
       {
-        const std::string stem = options.Images + "/" + name + "_" + Views[v].Name + "_" + r.Cfg.Id;
-        bool ok = WritePng(stem + ".png", r.Images[v], width, height);
-        if (!r.Cfg.Reference)
-        {
-          ok = WritePng(stem + "_diff_x8.png",
-                 DifferenceImage(reference.Images[v], r.Images[v], 8.0), width, height) &&
-            ok;
-        }
-        if (!ok)
-        {
-          std::cerr << "could not write " << stem << ".png\n";
-        }
+        ok = WritePng(stem + "_diff_x8.png", DifferenceImage(reference.Images[v], r.Images[v], 8.0),
+               this->Width, this->Height) &&
+          ok;
+      }
+      if (!ok)
+      {
+        std::cerr << "could not write " << stem << ".png\n";
       }
     }
-    std::cout
-      << "    images written to " << options.Images << "/" << name
-      << "_<view>_<config>.png (+ _diff_x8.png: |config - ref| x8, red = darker than ref)\n";
+  }
+}
+
+class CroppingBenchmark : public Benchmark
+{
+public:
+  const char* Name() const override { return "accelvolume_benchmark_cropping"; }
+  const char* Description() const override
+  {
+    return "Hong, Kye and Shin 2007 Table 2: MIP of a cropped volume, boundary re-rendering "
+           "against more slices and vtkGPUVolumeRayCastMapper";
+  }
+  const char* DefaultJson() const override { return "benchmark_cropping.json"; }
+  int InitialSize() const override { return this->S.Size[0]; }
+
+  void AddOptions(CLI::App& app) override
+  {
+    AddList(app, "--datasets", this->S.Datasets,
+      "dataset names: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder");
+    app.add_option("--size", this->S.Size, "image size")->expected(2)->type_name("W H");
+    app.add_option("--frames", this->S.Frames, "timed frames per configuration")
+      ->check(CLI::PositiveNumber);
+    app
+      .add_option("--reference-frames", this->S.ReferenceFrames,
+        "timed frames of the 8x "
+        "reference")
+      ->check(CLI::PositiveNumber);
+    app
+      .add_option("--images", this->S.Images,
+        "save PNGs (and x8 difference images) of the "
+        "first dataset")
+      ->type_name("DIR");
+    app.add_option("--crop", this->S.Crop, "crop box as fractions of every axis")
+      ->expected(2)
+      ->type_name("LOW HIGH");
+    app.add_option("--band", this->S.BandRadius, "half-width in pixels of the outline band")
+      ->check(CLI::PositiveNumber);
+    app.add_option("--zoom", this->S.Zoom, "camera zoom after fitting the crop box")
+      ->check(CLI::PositiveNumber);
+    app
+      .add_option("--window", this->S.Window,
+        "transfer-function window for every dataset (default: per dataset)")
+      ->expected(2)
+      ->type_name("LOW HIGH");
   }
 
-  window->RemoveRenderer(renderer);
+  void Resolve(const CLI::App&, const MachineInfo&) override
+  {
+    const Settings& s = this->S;
+    if (s.Size[0] < 16 || s.Size[1] < 16 || s.Datasets.empty() ||
+      !(s.Crop[0] >= 0 && s.Crop[0] < s.Crop[1] && s.Crop[1] <= 1) ||
+      (s.Window.size() == 2 && !(s.Window[0] < s.Window[1])))
+    {
+      throw CLI::ValidationError("options",
+        "invalid values (size >= 16, 0 <= crop low < high "
+        "<= 1, window low < high, a dataset)");
+    }
+  }
+
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  Settings S;
+  bool RunDataset(const std::string& dataDir, const std::string& name, bool saveImages,
+    vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result) const;
+};
+
+bool CroppingBenchmark::RunDataset(const std::string& dataDir, const std::string& name,
+  bool saveImages, vtkAccelVolumeHeadlessRenderWindow* window, DatasetResult& result) const
+{
+  const auto datasetStart = Clock::now();
+  vtkSmartPointer<vtkImageData> image = LoadDataset(dataDir, name, result.Info);
+  if (!image)
+  {
+    return false;
+  }
+  ChooseWindow(this->S, name, result.Info.Range, result.Window);
+  double bounds[6];
+  image->GetBounds(bounds);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double length = bounds[2 * axis + 1] - bounds[2 * axis];
+    result.CropPlanes[2 * axis] = bounds[2 * axis] + this->S.Crop[0] * length;
+    result.CropPlanes[2 * axis + 1] = bounds[2 * axis] + this->S.Crop[1] * length;
+  }
+  Scene scene(this->S, image, result, window);
+  scene.Time();
+  scene.CaptureViews();
+  scene.MeasureErrors();
+  if (saveImages)
+  {
+    scene.SaveImages(this->S.Images);
+  }
   result.TotalSeconds = SecondsSince(datasetStart);
   return true;
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+int CroppingBenchmark::Run(Harness& harness, Json& result)
 {
-  Options options;
-  if (!ParseArguments(argc, argv, options))
+  const Settings& s = this->S;
+  harness.Window()->SetSize(s.Size[0], s.Size[1]);
+  Json views = Json::array();
+  for (const View& view : Views)
   {
-    return 2;
+    views.push_back(
+      { { "name", view.Name }, { "azimuth", view.Azimuth }, { "elevation", view.Elevation } });
   }
-  int backend = 0;
-  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
-  {
-    return exitCode;
-  }
-
-  vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, options.Width, options.Height);
-  const std::string rendererName = window->GetOpenGLRendererString();
-  const std::string backendName =
-    vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
-
-  std::cout
-    << "accelvolume_benchmark_cropping: Hong, Kye and Shin 2007 Table 2 (MIP of a cropped volume, "
-       "boundary re-rendering vs more slices)\n"
-    << "settings: " << options.Width << "x" << options.Height << ", MultiSamples 0, GL "
-    << backendName << " (" << rendererName << "), " << options.Frames
-    << " timed frames per config (reference: " << std::min(options.ReferenceFrames, options.Frames)
-    << "), after one warm-up frame per config; frames interleaved across configs, camera "
-       "turned 1 deg azimuth per round; time = Render() + 1x1 read-back, median;\n"
-       "  'time x' = median over rounds of (config / (a)) in the same round (robust to load "
-       "from other processes)\n"
-    << "views: " << Views[0].Name << " (timed sequence starts here) and " << Views[1].Name
-    << "; camera fitted to the crop box, zoom " << options.Zoom << "\n"
-    << "data: " << options.DataDir << "\n"
-    << "error: grey levels (0..255) against ref = slice mapper, 8x slices, re-rendering on.\n"
-       "  RMS / max over the footprint = pixels inside the projected crop box OR non-black "
-       "in ref;\n"
-       "  band = pixels within "
-    << options.BandRadius
-    << " px of the projected crop-box outline (where slices clipped to the box leave "
-       "staircase edges);\n"
-       "  cut-face = pixels where re-rendering the faces changes the 1x image ((a) vs (b)) by > "
-    << options.AboveThreshold
-    << " grey levels: the boundary layer holds the maximum there;\n"
-       "  >2lv% = share of footprint pixels off by more than "
-    << options.AboveThreshold << " grey levels; 'x' columns are ratios to config (a).\n"
-    << std::flush;
-
-  std::vector<DatasetResult> datasets;
+  result = { { "benchmark", "cropping (Hong, Kye and Shin 2007 Table 2)" },
+    { "gl_backend", harness.Machine.GLBackend }, { "gl_renderer", harness.Machine.GLRenderer },
+    { "size", s.Size }, { "frames", s.Frames }, { "reference_frames", s.ReferenceFrames },
+    { "crop_fraction", s.Crop }, { "band_radius_px", s.BandRadius },
+    { "above_threshold_grey_levels", s.AboveThreshold }, { "views", views },
+    { "error_units", "grey levels 0..255 (mean of R,G,B) vs the 8x re-rendered slice reference" },
+    { "paper_table2_fps",
+      { { "rerender_256", 149.83 }, { "plain_256", 150.81 }, { "plain_400", 97.24 },
+        { "plain_512", 73.85 } } },
+    { "datasets", Json::array() } };
   bool ok = true;
-  const auto start = Clock::now();
-  CaseProgress progress(
-    "accelvolume_benchmark_cropping", static_cast<int>(options.Datasets.size()));
-  for (size_t i = 0; i < options.Datasets.size(); ++i)
+  CaseProgress progress(this->Name(), static_cast<int>(s.Datasets.size()));
+  for (std::size_t i = 0; i < s.Datasets.size(); ++i)
   {
-    progress.Begin(options.Datasets[i]);
-    DatasetResult result;
-    if (RunDataset(options, options.Datasets[i], i == 0 && !options.Images.empty(), window, result))
+    progress.Begin(s.Datasets[i]);
+    DatasetResult d;
+    if (this->RunDataset(
+          harness.Options.DataDir, s.Datasets[i], i == 0 && !s.Images.empty(), harness.Window(), d))
     {
-      datasets.push_back(std::move(result));
+      result["datasets"].push_back(DatasetResultJson(d));
     }
     else
     {
       ok = false;
     }
   }
-  for (const DatasetResult& d : datasets)
-  {
-    PrintTable(d);
-  }
-  std::cout << "\npaper Table 2 (Radeon 9800 Pro, 256x256x240 Big Head, fps): re-render 256 slices "
-               "149.83, plain 256 150.81, 400 97.24, 512 73.85\n";
-  WriteJson(options, rendererName, backendName, datasets);
-  std::cout << "results written to " << options.Json << "; total " << Num(SecondsSince(start), 1)
-            << " s\n";
-  return ok && !datasets.empty() ? 0 : 1;
+  return ok && !result["datasets"].empty() ? 0 : 1;
 }
+
+} // namespace
+
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<CroppingBenchmark>();
+}
+
+} // namespace accelvolume::benchmark

@@ -201,15 +201,29 @@ std::vector<std::uint8_t> DifferenceImage(
   return result;
 }
 
-double Median(std::vector<double> values)
+ErrorStats CompareVisible(const std::vector<std::uint8_t>& reference,
+  const std::vector<std::uint8_t>& image, int width, int height, double aboveThreshold)
 {
-  if (values.empty())
+  return CompareImages(reference, image,
+    MaskOr(NonBackgroundMask(reference, width, height), NonBackgroundMask(image, width, height)),
+    aboveThreshold);
+}
+
+ByteDifferences CompareBytes(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b)
+{
+  ByteDifferences result;
+  result.Max = a.size() == b.size() ? 0 : 255;
+  for (std::size_t p = 0; p + 2 < a.size() && p + 2 < b.size(); p += 3)
   {
-    return 0.0;
+    int differs = 0;
+    for (std::size_t channel = p; channel < p + 3; ++channel)
+    {
+      differs = std::max(differs, std::abs(int(a[channel]) - int(b[channel])));
+    }
+    result.Pixels += differs > 0;
+    result.Max = std::max(result.Max, differs);
   }
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  return result;
 }
 
 } // namespace accelvolume::benchmark

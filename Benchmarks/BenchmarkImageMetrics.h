@@ -53,11 +53,24 @@ ErrorStats CompareImages(const std::vector<std::uint8_t>& reference,
   const std::vector<std::uint8_t>& image, const std::vector<std::uint8_t>& mask,
   double aboveThreshold);
 
+// CompareImages over the pixels non-black in either image (the black background would dilute the
+// RMS by the empty share of the window).
+ErrorStats CompareVisible(const std::vector<std::uint8_t>& reference,
+  const std::vector<std::uint8_t>& image, int width, int height, double aboveThreshold = 2.0);
+
+// Pixels whose RGB bytes differ at all, and the largest byte difference (255 when the sizes
+// differ).
+struct ByteDifferences
+{
+  long long Pixels = 0;
+  int Max = 0;
+};
+ByteDifferences CompareBytes(
+  const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b);
+
 // |image - reference| of the grey levels scaled by `gain`, clamped, as RGB (for inspection).
 std::vector<std::uint8_t> DifferenceImage(
   const std::vector<std::uint8_t>& reference, const std::vector<std::uint8_t>& image, double gain);
-
-double Median(std::vector<double> values);
 
 } // namespace accelvolume::benchmark
 

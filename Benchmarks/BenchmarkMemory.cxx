@@ -22,12 +22,10 @@
 // Settings: composite, parallel projection (shear-warp needs it), a square image (--size,
 // default 256: the image buffers stay small next to any volume), one sample per smallest voxel
 // spacing, shading on, transfer function tf1 of `accelvolume render --tf` over the data range.
-// Options: BenchmarkMemoryOptions.{h,cxx}; the child: BenchmarkMemoryCase.{h,cxx}; table and
-// JSON: BenchmarkMemoryReport.{h,cxx}.
-#include "BenchmarkCommon.h"
+// The child: BenchmarkMemoryCase.{h,cxx}; the harness (Harness/) parses the options and writes
+// the JSON (memory.json of the report, scripts/bench_report/memory.py renders it).
+#include "BenchmarkHarness.h"
 #include "BenchmarkMemoryCase.h"
-#include "BenchmarkMemoryOptions.h"
-#include "BenchmarkMemoryReport.h"
 
 #include <poll.h>
 #include <signal.h>
@@ -37,16 +35,51 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
 
-using namespace accelvolume::benchmark;
-using namespace accelvolume::benchmark::memory;
-
+namespace accelvolume::benchmark::memory
+{
 namespace
 {
+struct CaseResult
+{
+  std::string VolumeName; // as given to --volumes
+  std::string Mapper;     // MapperIds()
+  bool Ran = false;       // a child process ran it (false: skipped)
+  std::string Note;       // why skipped or failed ("" when it ran cleanly)
+  ChildResult Child;      // valid when the child reported
+  bool Reported = false;  // the child sent a complete result
+  // MiB, wait4's ru_maxrss of the child: the kernel's high-water mark, which the child resets
+  // before its frames and before the third, so it covers the last frame and the teardown only.
+  double MaxRss = 0;
+  double Seconds = 0; // the child's wall time
+
+  bool Ok() const { return this->Ran && this->Reported && this->Child.Ok && this->Note.empty(); }
+  // Peak of the frames minus the baseline (GL context + volume), MiB.
+  double Added() const { return this->Child.Peak - this->Child.RssLoaded; }
+  // What the mapper still holds after the second frame, MiB.
+  double Retained() const { return this->Child.RssAfter - this->Child.RssLoaded; }
+  // Peak of the transfer-function-change frame minus the RSS before it, MiB.
+  double TfAdded() const { return this->Child.TfPeak - this->Child.RssAfter; }
+  // The child's whole life, loading included: the largest of its three high-water marks, MiB.
+  double LifetimePeak() const
+  {
+    return std::max({ this->Child.LoadPeak, this->Child.Peak, this->Child.TfPeak, this->MaxRss });
+  }
+  // Added() as a multiple of the volume's bytes.
+  double AddedPerVolume() const
+  {
+    return SafeRatio(this->Added() * 1024.0 * 1024.0, this->Child.VolumeBytes);
+  }
+};
+
+std::vector<std::string> ChildArguments(
+  const Options& options, const std::string& mapper, const std::string& volume, int resultFd);
+
 // Runs one case in a child process: this program with --child, reporting through a pipe.
 CaseResult RunInChild(const Options& options, const std::string& mapper, const std::string& volume)
 {
@@ -134,10 +167,10 @@ CaseResult RunInChild(const Options& options, const std::string& mapper, const s
   }
   c.Seconds = SecondsSince(start);
   c.MaxRss = static_cast<double>(usage.ru_maxrss) / 1024.0; // kB on Linux
-  c.Reported = ParseChildResult(text, c.Child);
+  c.Reported = ReadChildResult(text, c.Child);
   if (timedOut)
   {
-    c.Note = "timed out after " + Num(options.CaseTimeout, 0) + " s (killed)";
+    c.Note = "timed out after " + std::to_string(std::lround(options.CaseTimeout)) + " s (killed)";
   }
   else if (WIFSIGNALED(status))
   {
@@ -173,53 +206,182 @@ std::string CheckCase(const CaseResult& c)
   return "";
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+class MemoryBenchmark : public Benchmark
 {
-  Options options;
-  if (!ParseArguments(argc, argv, options))
+public:
+  const char* Name() const override { return "accelvolume_benchmark_memory"; }
+  const char* Description() const override
   {
-    return 2;
+    return "Peak resident memory of every mapper, one child process per case. Exit code: 0 "
+           "every case ran, 1 a case failed (error, crash, timeout) or a backend is missing, 2 "
+           "bad options, 125 no case could run because the data is absent";
   }
+  const char* DefaultJson() const override { return "accelvolume_benchmark_memory.json"; }
+  // The parent opens no GL context; each child opens its own under its memory cap.
+  bool NeedsWindow() const override { return false; }
+
+  void AddOptions(CLI::App& app) override;
+  void Resolve(const CLI::App& app, const MachineInfo& machine) override;
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  Options O;
+  std::vector<int> Dims = { 1024, 1024, 512 };
+  std::vector<std::string> Child; // --child MAPPER VOLUME
+  CLI::Option* VolumesOption = nullptr;
+  CLI::Option* DimsOption = nullptr;
+  CLI::Option* SizeOption = nullptr;
+  Json CaseJson(const CaseResult& c) const;
+  Json SettingsJson() const;
+};
+
+void MemoryBenchmark::AddOptions(CLI::App& app)
+{
+  this->O.Mappers = MapperIds();
+  this->VolumesOption = AddList(app, "--volumes", this->O.Volumes,
+    "data-folder names (NAME_<X>x<Y>x<Z>_<type>.raw[.gz]) or 'procedural'");
+  this->DimsOption =
+    app.add_option("--procedural-dims", this->Dims, "the generated uint16 volume (1 GiB)")
+      ->expected(3)
+      ->type_name("X Y Z");
+  AddList(app, "--mappers", this->O.Mappers, "mappers to run");
+  AddList(app, "--procedural-skip", this->O.ProceduralSkip,
+    "mappers not run on the procedural volume (A,B or none)")
+    ->default_str("none");
+  this->SizeOption = app.add_option("--size", this->O.Size, "square image size in pixels")
+                       ->check(CLI::Range(16, 4096));
+  app.add_option("--tf", this->O.Tf, "transfer-function preset of `accelvolume render --tf`")
+    ->check(CLI::IsMember({ "tf1", "tf2" }));
+  AddOnOff(app, "--shade", this->O.Shade, "Phong shading");
+  app.add_option("--threads", this->O.Threads, "'all threads' (0: hardware threads)")
+    ->check(CLI::Range(0, 1024));
+  app
+    .add_option("--case-timeout", this->O.CaseTimeout, "seconds before a case's process is killed")
+    ->check(CLI::PositiveNumber);
+  app.add_option("--memory-limit", this->O.MemoryLimit,
+    "address-space cap of each case's process in MiB (0: 60 % of the machine's memory; "
+    "negative: none)");
+  app.add_flag(
+    "--quick", this->O.Quick, "smoke run: procedural 128x128x96, size 64 (unless given)");
+  // Internal: this process is the child that measures one case.
+  app.add_option("--child", this->Child)->expected(2)->group("");
+  app.add_option("--child-fd", this->O.ChildFd)->group("");
+}
+
+void MemoryBenchmark::Resolve(const CLI::App& app, const MachineInfo& machine)
+{
+  Options& o = this->O;
+  o.DataDir = app.get_option("--data")->as<std::string>();
+  o.GL = app.get_option("--gl")->as<std::string>();
+  if (o.Quick)
+  {
+    o.Size = this->SizeOption->count() ? o.Size : 64;
+    if (!this->VolumesOption->count())
+    {
+      o.Volumes = { ProceduralName };
+    }
+    if (!this->DimsOption->count())
+    {
+      this->Dims = { 128, 128, 96 };
+    }
+  }
+  std::copy(this->Dims.begin(), this->Dims.end(), o.ProceduralDims);
+  o.Child = this->Child.size() == 2;
+  if (o.Child)
+  {
+    o.ChildMapper = this->Child[0];
+    o.ChildVolume = this->Child[1];
+  }
+  if (o.ProceduralSkip == std::vector<std::string>{ "none" })
+  {
+    o.ProceduralSkip.clear();
+  }
+  o.Threads = o.Threads > 0 ? o.Threads : machine.HardwareThreads;
+  o.MemoryLimit = o.MemoryLimit == 0 ? 0.6 * machine.MemoryMiB : o.MemoryLimit;
+  auto known = [](const std::string& id)
+  {
+    const auto& ids = MapperIds();
+    return std::find(ids.begin(), ids.end(), id) != ids.end();
+  };
+  bool valid = !o.Mappers.empty() && !o.Volumes.empty() && (!o.Child || o.ChildFd >= 0) &&
+    std::all_of(o.Mappers.begin(), o.Mappers.end(), known) &&
+    std::all_of(o.ProceduralSkip.begin(), o.ProceduralSkip.end(), known);
+  const int* d = o.ProceduralDims;
+  valid = valid && d[0] >= 2 && d[1] >= 2 && d[2] >= 2 && d[0] <= 4096 && d[1] <= 4096 &&
+    d[2] <= 4096 && static_cast<double>(d[0]) * d[1] * d[2] <= 4.0 * 1024 * 1024 * 1024;
+  if (!valid)
+  {
+    throw CLI::ValidationError("options",
+      "volumes non-empty, known mappers, procedural dims "
+      "2..4096 and at most 2^32 voxels");
+  }
+}
+
+// The arguments that make a child process measure `mapper` on `volume` with these settings.
+std::vector<std::string> ChildArguments(
+  const Options& options, const std::string& mapper, const std::string& volume, int resultFd)
+{
+  const int* d = options.ProceduralDims;
+  return { "--child", mapper, volume, "--child-fd", std::to_string(resultFd), "--data",
+    options.DataDir, "--procedural-dims", std::to_string(d[0]), std::to_string(d[1]),
+    std::to_string(d[2]), "--size", std::to_string(options.Size), "--tf", options.Tf, "--shade",
+    options.Shade ? "on" : "off", "--threads", std::to_string(options.Threads), "--gl", options.GL,
+    "--memory-limit", std::to_string(options.MemoryLimit) };
+}
+
+Json MemoryBenchmark::CaseJson(const CaseResult& c) const
+{
+  Json out = { { "volume", c.VolumeName }, { "mapper", c.Mapper }, { "ran", c.Ran },
+    { "ok", c.Ok() }, { "note", c.Note } };
+  if (c.Ran && c.Reported)
+  {
+    const ChildResult& r = c.Child;
+    out.update(Json{ { "description", r.Volume }, { "volume_bytes", Round(r.VolumeBytes, 0) },
+      { "rss_start_mib", Round(r.RssStart, 1) }, { "baseline_mib", Round(r.RssLoaded, 1) },
+      { "load_peak_mib", Round(r.LoadPeak, 1) }, { "load_seconds", Round(r.LoadSeconds, 2) },
+      { "peak_mib", Round(r.Peak, 1) }, { "peak_minus_baseline_mib", Round(c.Added(), 1) },
+      { "peak_minus_baseline_per_volume", Round(c.AddedPerVolume(), 3) },
+      { "retained_mib", Round(c.Retained(), 1) }, { "peak_reset", r.PeakReset },
+      { "first_frame_ms", Round(r.FirstMs, 1) }, { "second_frame_ms", Round(r.SecondMs, 1) },
+      { "tf_change_frame_ms", Round(r.TfMs, 1) },
+      { "tf_change_peak_minus_before_mib", Round(c.TfAdded(), 1) },
+      { "acceleration_bytes",
+        r.AccelerationBytes >= 0 ? Round(r.AccelerationBytes, 0) : Json(nullptr) },
+      { "lifetime_peak_mib", Round(c.LifetimePeak(), 1) },
+      { "wait4_maxrss_mib", Round(c.MaxRss, 1) }, { "seconds", Round(c.Seconds, 2) },
+      { "error", r.Error } });
+  }
+  return out;
+}
+
+Json MemoryBenchmark::SettingsJson() const
+{
+  const Options& o = this->O;
+  return { { "size", o.Size }, { "tf", o.Tf }, { "shade", o.Shade }, { "threads", o.Threads },
+    { "memory_limit_mib", Round(o.MemoryLimit, 0) }, { "procedural_dims", this->Dims },
+    { "projection", "parallel" }, { "blend", "composite" }, { "frames", 2 }, { "quick", o.Quick },
+    { "units", "MiB" }, { "baseline", "RSS with the GL context and the volume loaded" },
+    { "peak", "VmHWM over the two frames (reset after loading)" } };
+}
+
+int MemoryBenchmark::Run(Harness& harness, Json& result)
+{
+  const Options& options = this->O;
   if (options.Child)
   {
-    return RunChildCase(options);
+    return RunChildCase(options); // the result goes to the parent's pipe
   }
   int backend = 0;
-  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
+  if (const int exitCode = Harness::ResolveBackend(options.GL, backend))
   {
     return exitCode;
   }
-
-  MachineInfo machine = ReadMachine();
-  std::cout << "accelvolume_benchmark_memory: peak resident memory per mapper, one child process "
-               "per case\n"
-            << "machine: " << (machine.Cpu.empty() ? "CPU unknown" : machine.Cpu) << ", "
-            << machine.HardwareThreads << " hardware threads, " << Num(machine.MemoryMiB / 1024, 1)
-            << " GiB\n"
-            << "settings: " << options.Size << "x" << options.Size
-            << " parallel, composite, shading " << (options.Shade ? "on" : "off") << ", "
-            << options.Tf << " over the data range, one sample per smallest spacing, "
-            << options.Threads << " threads ('all'); 2 frames; each case capped at "
-            << (options.MemoryLimit > 0 ? Num(options.MemoryLimit / 1024, 1) + " GiB" : "none")
-            << " of address space\n"
-            << "memory in MiB: base = RSS with GL context + volume; peak = high-water mark of the "
-               "two frames; +peak = peak - base (x vol: in volume sizes); +kept = RSS after the "
-               "frames - base; tf ms / +tf peak = a third frame after a transfer-function change "
-               "and its peak over the RSS before it; accel = the mapper's own count (ray caster: "
-               "acceleration bytes, "
-               "shear-warp: encoded bytes); life = the child's peak over its whole life, loading "
-               "included\n"
-            << "data: " << options.DataDir << "\n\n"
-            << std::flush;
-
-  const auto start = Clock::now();
+  const MachineInfo& m = harness.Machine;
+  std::string glBackend, glRenderer;
   std::vector<CaseResult> cases;
-  CaseProgress progress("accelvolume_benchmark_memory",
-    static_cast<int>(options.Volumes.size() * options.Mappers.size()));
+  CaseProgress progress(
+    this->Name(), static_cast<int>(options.Volumes.size() * options.Mappers.size()));
   int missingVolumes = 0;
-  PrintHeader();
   for (const std::string& volume : options.Volumes)
   {
     const bool procedural = volume == ProceduralName;
@@ -227,9 +389,8 @@ int main(int argc, char* argv[])
     missingVolumes += present ? 0 : 1;
     for (const std::string& mapper : options.Mappers)
     {
-      const bool skipped = procedural &&
-        std::find(options.ProceduralSkip.begin(), options.ProceduralSkip.end(), mapper) !=
-          options.ProceduralSkip.end();
+      const auto& skip = options.ProceduralSkip;
+      const bool skipped = procedural && std::find(skip.begin(), skip.end(), mapper) != skip.end();
       if (!present || skipped)
       {
         CaseResult c;
@@ -239,7 +400,6 @@ int main(int argc, char* argv[])
           ? std::string("skipped (--procedural-skip)")
           : "skipped: no " + volume + "_<X>x<Y>x<Z>_<type>.raw[.gz] in " + options.DataDir;
         progress.Skip();
-        PrintRow(c);
         cases.push_back(c);
         continue;
       }
@@ -249,23 +409,28 @@ int main(int argc, char* argv[])
       {
         c.Note = CheckCase(c);
       }
-      if (c.Reported && machine.GlRenderer.empty())
+      if (c.Reported && glRenderer.empty())
       {
-        machine.GlBackend = c.Child.GlBackend;
-        machine.GlRenderer = c.Child.GlRenderer;
+        glBackend = c.Child.GlBackend;
+        glRenderer = c.Child.GlRenderer;
       }
-      PrintRow(c);
       cases.push_back(c);
     }
   }
-  const double total = SecondsSince(start);
-  WriteJson(options, machine, cases, total);
-  std::cout << "\nGL: " << machine.GlBackend << " (" << machine.GlRenderer
-            << ")\nresults written to " << options.Json << "; total " << Num(total, 1) << " s\n";
-  const int ran = static_cast<int>(
-    std::count_if(cases.begin(), cases.end(), [](const CaseResult& c) { return c.Ran; }));
-  const int failed = static_cast<int>(std::count_if(
-    cases.begin(), cases.end(), [](const CaseResult& c) { return c.Ran && !c.Ok(); }));
+  result = { { "benchmark", "memory (peak resident memory per mapper, one process per case)" },
+    { "machine",
+      { { "cpu", m.Cpu }, { "hardware_threads", m.HardwareThreads },
+        { "memory_mib", Round(m.MemoryMiB, 0) }, { "gl_backend", glBackend },
+        { "gl_renderer", glRenderer } } },
+    { "settings", this->SettingsJson() }, { "total_seconds", Round(harness.Seconds(), 2) },
+    { "cases", Json::array() } };
+  int ran = 0, failed = 0;
+  for (const CaseResult& c : cases)
+  {
+    result["cases"].push_back(this->CaseJson(c));
+    ran += c.Ran ? 1 : 0;
+    failed += c.Ran && !c.Ok() ? 1 : 0;
+  }
   if (ran == 0 && missingVolumes > 0)
   {
     std::cout << "skipped: the data is absent\n";
@@ -278,3 +443,14 @@ int main(int argc, char* argv[])
   }
   return 0;
 }
+
+} // namespace
+} // namespace accelvolume::benchmark::memory
+
+namespace accelvolume::benchmark
+{
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<memory::MemoryBenchmark>();
+}
+} // namespace accelvolume::benchmark

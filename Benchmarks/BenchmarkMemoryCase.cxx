@@ -2,7 +2,6 @@
 // with one mapper, and report resident memory at each step (see BenchmarkMemoryCase.h).
 #include "BenchmarkMemoryCase.h"
 
-#include "BenchmarkCommon.h"
 #include "Options.h"
 #include "TransferFunctions.h"
 #include "VolumeIO.h"
@@ -37,9 +36,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
-#include <map>
 #include <new>
-#include <sstream>
 
 namespace accelvolume::benchmark::memory
 {
@@ -210,7 +207,7 @@ vtkSmartPointer<vtkVolumeMapper> MakeMapper(const std::string& id, double sample
 // Writes the result to the parent's pipe (all of it: a pipe may take it in parts).
 void Send(int fd, const ChildResult& result)
 {
-  const std::string text = FormatChildResult(result);
+  const std::string text = ChildResultJson(result).dump();
   std::size_t done = 0;
   while (done < text.size())
   {
@@ -236,7 +233,7 @@ int RunChildCase(const Options& options)
     setrlimit(RLIMIT_AS, &limit); // best effort: without it the case runs uncapped
   }
   int backend = 0;
-  if (ResolveHeadlessBackend(options.GL, backend) != 0)
+  if (Harness::ResolveBackend(options.GL, backend) != 0)
   {
     result.Error = "headless backend " + options.GL + " is not available";
     Send(options.ChildFd, result);
@@ -247,7 +244,7 @@ int RunChildCase(const Options& options)
 
   // The GL context first, so that the baseline holds it and the volume.
   vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, options.Size, options.Size);
+  Harness::StartWindow(window, backend, options.Size, options.Size);
   result.GlRenderer = window->GetOpenGLRendererString();
   result.GlBackend = vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
   result.RssStart = StatusMiB("VmRSS");
@@ -331,7 +328,7 @@ int RunChildCase(const Options& options)
   {
     // Reported with the readings so far; the process may be in no state to go on.
     result.Error = "out of memory (std::bad_alloc) within the " +
-      Num(options.MemoryLimit / 1024, 1) + " GiB address-space cap";
+      Json(Round(options.MemoryLimit / 1024, 1)).dump() + " GiB address-space cap";
     result.RssAfter = result.RssAfter > 0 ? result.RssAfter : StatusMiB("VmRSS");
     result.Peak = result.Peak > 0 ? result.Peak : StatusMiB("VmHWM");
     Send(options.ChildFd, result);
@@ -352,66 +349,53 @@ int RunChildCase(const Options& options)
   return 0;
 }
 
-std::string FormatChildResult(const ChildResult& r)
+const std::vector<std::string>& MapperIds()
 {
-  // Text fields last on their line; newlines in them become spaces.
-  auto line = [](std::string text)
-  {
-    std::replace(text.begin(), text.end(), '\n', ' ');
-    return text;
-  };
-  std::ostringstream out;
-  out.precision(17);
-  out << "ok " << (r.Ok ? 1 : 0) << "\nvolume_bytes " << r.VolumeBytes << "\nrss_start "
-      << r.RssStart << "\nrss_loaded " << r.RssLoaded << "\nload_peak " << r.LoadPeak
-      << "\nload_seconds " << r.LoadSeconds << "\npeak " << r.Peak << "\nrss_after " << r.RssAfter
-      << "\npeak_reset " << (r.PeakReset ? 1 : 0) << "\nfirst_ms " << r.FirstMs << "\nsecond_ms "
-      << r.SecondMs << "\ntf_ms " << r.TfMs << "\ntf_peak " << r.TfPeak << "\nacceleration_bytes "
-      << r.AccelerationBytes << "\nvolume " << line(r.Volume) << "\ngl_backend "
-      << line(r.GlBackend) << "\ngl_renderer " << line(r.GlRenderer) << "\nerror " << line(r.Error)
-      << "\n";
-  return out.str();
+  static const std::vector<std::string> ids = { "slice", "raycast-none", "raycast-octree",
+    "raycast-dmap", "shearwarp-1", "shearwarp-all", "vtk-fixed", "vtk-gpu" };
+  return ids;
 }
 
-bool ParseChildResult(const std::string& text, ChildResult& r)
+Json ChildResultJson(const ChildResult& r)
 {
-  std::map<std::string, std::string> fields;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line))
+  return { { "ok", r.Ok }, { "volume_bytes", r.VolumeBytes }, { "rss_start", r.RssStart },
+    { "rss_loaded", r.RssLoaded }, { "load_peak", r.LoadPeak }, { "load_seconds", r.LoadSeconds },
+    { "peak", r.Peak }, { "rss_after", r.RssAfter }, { "peak_reset", r.PeakReset },
+    { "first_ms", r.FirstMs }, { "second_ms", r.SecondMs }, { "tf_ms", r.TfMs },
+    { "tf_peak", r.TfPeak }, { "acceleration_bytes", r.AccelerationBytes }, { "volume", r.Volume },
+    { "gl_backend", r.GlBackend }, { "gl_renderer", r.GlRenderer }, { "error", r.Error } };
+}
+
+bool ReadChildResult(const std::string& text, ChildResult& r)
+{
+  const Json v = Json::parse(text, nullptr, false);
+  if (v.is_discarded() || !v.is_object() || !v.contains("error"))
   {
-    const std::size_t space = line.find(' ');
-    fields[line.substr(0, space)] = space == std::string::npos ? "" : line.substr(space + 1);
+    return false;
   }
-  bool ok = true;
-  auto number = [&](const char* key, double& value)
+  try
   {
-    const auto it = fields.find(key);
-    ok = ok && it != fields.end() && !it->second.empty();
-    value = ok ? std::atof(it->second.c_str()) : 0.0;
-  };
-  double flag = 0;
-  number("ok", flag);
-  r.Ok = flag != 0;
-  number("peak_reset", flag);
-  r.PeakReset = flag != 0;
-  number("volume_bytes", r.VolumeBytes);
-  number("rss_start", r.RssStart);
-  number("rss_loaded", r.RssLoaded);
-  number("load_peak", r.LoadPeak);
-  number("load_seconds", r.LoadSeconds);
-  number("peak", r.Peak);
-  number("rss_after", r.RssAfter);
-  number("first_ms", r.FirstMs);
-  number("second_ms", r.SecondMs);
-  number("tf_ms", r.TfMs);
-  number("tf_peak", r.TfPeak);
-  number("acceleration_bytes", r.AccelerationBytes);
-  r.Volume = fields["volume"];
-  r.GlBackend = fields["gl_backend"];
-  r.GlRenderer = fields["gl_renderer"];
-  r.Error = fields["error"];
-  return ok && fields.count("error") > 0;
+    r.Ok = v.at("ok").get<bool>();
+    r.PeakReset = v.at("peak_reset").get<bool>();
+    for (const auto& [key, field] :
+      { std::pair<const char*, double*>{ "volume_bytes", &r.VolumeBytes },
+        { "rss_start", &r.RssStart }, { "rss_loaded", &r.RssLoaded }, { "load_peak", &r.LoadPeak },
+        { "load_seconds", &r.LoadSeconds }, { "peak", &r.Peak }, { "rss_after", &r.RssAfter },
+        { "first_ms", &r.FirstMs }, { "second_ms", &r.SecondMs }, { "tf_ms", &r.TfMs },
+        { "tf_peak", &r.TfPeak }, { "acceleration_bytes", &r.AccelerationBytes } })
+    {
+      *field = v.at(key).get<double>();
+    }
+    r.Volume = v.at("volume").get<std::string>();
+    r.GlBackend = v.at("gl_backend").get<std::string>();
+    r.GlRenderer = v.at("gl_renderer").get<std::string>();
+    r.Error = v.at("error").get<std::string>();
+  }
+  catch (const Json::exception&)
+  {
+    return false;
+  }
+  return true;
 }
 
 } // namespace accelvolume::benchmark::memory

@@ -7,8 +7,8 @@
 // median of --repeat. The read floor sums every byte as 64-bit words on one thread. Re-
 // classification alternates two opacity ramps. The time-varying phantom (Lim and Shin 2009's
 // motivation) also times frames of data update + CPU rebuild + slice-mapper MIP render.
-// Table and JSON: BenchmarkOctreeReport.{h,cxx}.
-#include "BenchmarkOctreeReport.h"
+// JSON: octree.json of the report (scripts/bench_report/octree.py renders it).
+#include "BenchmarkHarness.h"
 #include "VolumeIO.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
@@ -23,25 +23,54 @@
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkSMPTools.h>
-#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 namespace fs = std::filesystem;
-using namespace accelvolume::benchmark;
 
+namespace accelvolume::benchmark
+{
 namespace
 {
+
+struct BuildResult
+{
+  std::string Builder;     // reference | cpu | gpu
+  int Threads = 0;         // 0 for gpu
+  bool AllThreads = false; // the cpu build on every thread
+  std::vector<double> Ms;
+  bool ReducedRepeats = false;
+};
+
+// Per frame of the time-varying phantom (generation is the data source, outside the frame).
+struct FrameResult
+{
+  std::vector<double> GenerateMs, CopyMs, RebuildMs, RenderMs, FrameMs;
+};
+
+struct DatasetResult
+{
+  std::string Name;
+  std::string File; // empty for the phantom
+  std::string Description;
+  std::size_t Bytes = 0;
+  double Range[2] = { 0, 0 };
+  double LoadSeconds = 0;
+  std::vector<double> ReadFloorMs;
+  std::vector<BuildResult> Builds; // reference, cpu 1 thread, cpu all, gpu (if available)
+  long long Nodes = 0;
+  int Depth = 0;
+  std::vector<double> ClassifyMs;
+  double TransparentLeafFraction = 0;
+  FrameResult Frames; // only for the phantom
+};
+
 // One thread streaming every byte once; the sum is published so the loop is not elided.
 volatile std::uint64_t Sink = 0;
 double ReadFloorMs(const void* data, std::size_t bytes)
@@ -64,8 +93,8 @@ double ReadFloorMs(const void* data, std::size_t bytes)
   return MsSince(start);
 }
 
-// NAME_*.raw[.gz] in the data folder ("" if absent): a looser match than the shared
-// FindDatasetFile(), which also requires the _<X>x<Y>x<Z>_<type> part.
+// NAME_*.raw[.gz] in the data folder ("" if absent): a looser match than FindDatasetFile(),
+// which also requires the _<X>x<Y>x<Z>_<type> part.
 std::string FindPrefixedRawFile(const std::string& dir, const std::string& name)
 {
   std::error_code ec;
@@ -115,39 +144,123 @@ bool TimeBuilds(
       count = std::max(1, std::min(repeat, static_cast<int>(8000.0 / result.Ms[0])));
     }
   }
-  result.Repeats = count;
   result.ReducedRepeats = count < repeat;
   return true;
 }
 
-struct GPUState
+const BuildResult* Find(const DatasetResult& d, const std::string& builder)
 {
-  bool Available = false;
-  std::string Why;
-  std::string Renderer;
-  std::string Version;
+  for (const BuildResult& b : d.Builds)
+  {
+    if (b.Builder == builder)
+    {
+      return &b;
+    }
+  }
+  return nullptr;
+}
+
+Json DatasetJson(const DatasetResult& d)
+{
+  const double floor = Median(d.ReadFloorMs);
+  const BuildResult* reference = Find(d, "reference");
+  Json out = { { "name", d.Name }, { "file", StringOrNull(d.File) }, { "volume", d.Description },
+    { "bytes", d.Bytes }, { "load_s", Round(d.LoadSeconds, 3) },
+    { "read_floor_ms", Round(floor, 4) }, { "nodes", d.Nodes }, { "depth", d.Depth },
+    { "classify_ms",
+      { { "median", Round(Median(d.ClassifyMs), 5) }, { "all", RoundAll(d.ClassifyMs, 4) } } },
+    { "transparent_leaf_fraction", Round(d.TransparentLeafFraction, 5) },
+    { "builds", Json::array() } };
+  for (const BuildResult& r : d.Builds)
+  {
+    const double ms = Median(r.Ms);
+    out["builds"].push_back({ { "builder", r.Builder }, { "threads", r.Threads },
+      { "median_ms", Round(ms, 4) }, { "ms", RoundAll(r.Ms, 4) },
+      { "reduced_repeats", r.ReducedRepeats }, { "gb_per_s", Round(d.Bytes / ms / 1e6, 4) },
+      { "x_reference", Round(reference ? SafeRatio(Median(reference->Ms), ms) : NAN, 4) },
+      { "x_floor", Round(SafeRatio(ms, floor), 4) } });
+  }
+  if (!d.Frames.FrameMs.empty())
+  {
+    const FrameResult& f = d.Frames;
+    out["frames"] = { { "generate_ms", RoundAll(f.GenerateMs, 4) },
+      { "copy_ms", RoundAll(f.CopyMs, 4) }, { "rebuild_ms", RoundAll(f.RebuildMs, 4) },
+      { "render_ms", RoundAll(f.RenderMs, 4) }, { "frame_ms", RoundAll(f.FrameMs, 4) },
+      { "rebuild_percent_of_frame", Round(100 * Median(f.RebuildMs) / Median(f.FrameMs), 3) } };
+  }
+  return out;
+}
+
+class OctreeBenchmark : public Benchmark
+{
+public:
+  const char* Name() const override { return "accelvolume_benchmark_octree"; }
+  const char* Description() const override
+  {
+    return "Lim and Shin 2009: min-max octree build times (reference, CPU, GPU) against a "
+           "one-thread read of the volume, re-classification, time-varying rebuilds";
+  }
+  const char* DefaultJson() const override { return "benchmark_octree.json"; }
+
+  void AddOptions(CLI::App& app) override
+  {
+    AddList(app, "--datasets", this->Datasets,
+      "file-name prefixes in the data folder, 'vessels' = time-varying phantom");
+    app
+      .add_option("--repeat", this->Repeat,
+        "builds per builder, median reported (builds over "
+        "2 s get fewer)")
+      ->check(CLI::Range(1, 1 << 20));
+    app.add_option("--leaf", this->Leaf, "leaf edge, power of two 2..64")
+      ->check(CLI::IsMember({ 2, 4, 8, 16, 32, 64 }));
+    app.add_option("--frames", this->Frames, "time-varying phantom frames")
+      ->check(CLI::Range(1, 1 << 20));
+    app.add_option("--phantom-size", this->PhantomSize, "its edge in voxels")
+      ->check(CLI::Range(1, 1 << 20));
+  }
+
+  void Resolve(const CLI::App&, const MachineInfo&) override
+  {
+    if (this->Datasets.empty())
+    {
+      throw CLI::ValidationError("--datasets", "needs at least one name");
+    }
+  }
+
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  std::vector<std::string> Datasets = { "cta_avm", "aneurism", "engine", "ct_chest_lidc0314",
+    "vessels" };
+  int Repeat = 5;
+  int Leaf = 8;
+  int Frames = 5;
+  int PhantomSize = 256;
+  int AllThreads = 1; // vtkSMPTools' thread count at start-up
+  bool GPUAvailable = false;
+  vtkAccelVolumeHeadlessRenderWindow* Window = nullptr;
+
+  bool RunDataset(const std::string& name, vtkImageData* image, DatasetResult& d);
+  void Classify(vtkAccelVolumeMinMaxOctree* octree, DatasetResult& d);
+  void RunTimeVarying(DatasetResult& d);
 };
 
-bool RunDataset(const Options& options, const std::string& name, vtkImageData* image,
-  vtkAccelVolumeHeadlessRenderWindow* window, const GPUState& gpu, DatasetResult& d)
+bool OctreeBenchmark::RunDataset(const std::string& name, vtkImageData* image, DatasetResult& d)
 {
   d.Name = name;
   d.Description = accelvolume::cli::DescribeVolume(image);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   d.Bytes = static_cast<std::size_t>(scalars->GetNumberOfValues()) * scalars->GetDataTypeSize();
   scalars->GetRange(d.Range, 0);
-  for (int k = 0; k < options.Repeat; ++k)
+  for (int k = 0; k < this->Repeat; ++k)
   {
     d.ReadFloorMs.push_back(ReadFloorMs(scalars->GetVoidPointer(0), d.Bytes));
   }
-  std::cout << "=== " << name << " (" << d.Description << ", " << Num(d.Bytes / 1e6, 1)
-            << " MB): read floor " << Num(Median(d.ReadFloorMs), 2) << " ms\n"
-            << std::flush;
 
   vtkNew<vtkAccelVolumeMinMaxOctree> octree;
   octree->SetInputData(image);
-  octree->SetLeafSize(options.Leaf);
-  octree->SetRenderWindow(window);
+  octree->SetLeafSize(this->Leaf);
+  octree->SetRenderWindow(this->Window);
   struct Config
   {
     const char* Builder;
@@ -160,7 +273,8 @@ bool RunDataset(const Options& options, const std::string& name, vtkImageData* i
     { "gpu", vtkAccelVolumeMinMaxOctree::BUILDER_GPU, 0 } };
   for (const Config& config : configs)
   {
-    if (config.Id == vtkAccelVolumeMinMaxOctree::BUILDER_GPU && !gpu.Available)
+    const bool gpu = config.Id == vtkAccelVolumeMinMaxOctree::BUILDER_GPU;
+    if (gpu && !this->GPUAvailable)
     {
       continue;
     }
@@ -168,29 +282,32 @@ bool RunDataset(const Options& options, const std::string& name, vtkImageData* i
     build.Builder = config.Builder;
     // "All threads" is the count measured at start-up, set explicitly: in VTK 9.1 (TBB) a
     // LocalScope of 1 thread does not restore the default afterwards, so 0 would stay at 1.
-    const int threads = config.Threads > 0 ? config.Threads : options.AllThreads;
-    build.Threads = config.Id == vtkAccelVolumeMinMaxOctree::BUILDER_GPU ? 0 : threads;
+    const int threads = config.Threads > 0 ? config.Threads : this->AllThreads;
+    build.Threads = gpu ? 0 : threads;
     build.AllThreads = config.Id == vtkAccelVolumeMinMaxOctree::BUILDER_CPU && config.Threads == 0;
     octree->SetBuilder(config.Id);
     octree->SetNumberOfThreads(threads);
-    if (!TimeBuilds(octree, image, options.Repeat, build))
+    if (!TimeBuilds(octree, image, this->Repeat, build))
     {
       std::cerr << name << ": " << config.Builder << " build failed\n";
       return false;
     }
-    std::cout << "    " << config.Builder << ", threads " << build.Threads << ": "
-              << Num(Median(build.Ms), 2) << " ms median of " << build.Ms.size()
-              << (build.ReducedRepeats ? " (repeats reduced: > 2 s per build)" : "") << "\n"
-              << std::flush;
     d.Builds.push_back(build);
     d.Nodes = octree->GetNumberOfNodes();
     d.Depth = octree->GetDepth();
   }
+  this->Classify(octree, d);
+  this->Window->MakeCurrent();
+  octree->ReleaseGraphicsResources();
+  return true;
+}
 
-  // Re-classification on the last CPU-resident octree: rebuild with all threads first so the
-  // GPU read-back is not part of it; every call gets a modified function, so it really runs.
+// Re-classification on the last CPU-resident octree: rebuild with all threads first so the
+// GPU read-back is not part of it; every call gets a modified function, so it really runs.
+void OctreeBenchmark::Classify(vtkAccelVolumeMinMaxOctree* octree, DatasetResult& d)
+{
   octree->SetBuilder(vtkAccelVolumeMinMaxOctree::BUILDER_CPU);
-  octree->SetNumberOfThreads(options.AllThreads);
+  octree->SetNumberOfThreads(this->AllThreads);
   octree->Update();
   vtkNew<vtkPiecewiseFunction> opacity;
   const double low = d.Range[0] + 0.1 * (d.Range[1] - d.Range[0]);
@@ -198,30 +315,27 @@ bool RunDataset(const Options& options, const std::string& name, vtkImageData* i
   SetRamp(opacity, low, d.Range);
   octree->Classify(opacity, d.Range);
   d.TransparentLeafFraction = octree->GetTransparentLeafFraction();
-  for (int k = 0; k < std::max(options.Repeat, 5); ++k)
+  for (int k = 0; k < std::max(this->Repeat, 5); ++k)
   {
     SetRamp(opacity, k % 2 == 0 ? alternate : low, d.Range);
     const auto start = Clock::now();
     octree->Classify(opacity, d.Range);
     d.ClassifyMs.push_back(MsSince(start));
   }
-  window->MakeCurrent();
-  octree->ReleaseGraphicsResources();
-  return true;
 }
 
-// Lim and Shin 2009's case: the volume changes every frame, so the octree is rebuilt before each render.
-void RunTimeVarying(const Options& options, vtkAccelVolumeHeadlessRenderWindow* window,
-  const GPUState& gpu, DatasetResult& d)
+// Lim and Shin 2009's case: the volume changes every frame, so the octree is rebuilt before each
+// render.
+void OctreeBenchmark::RunTimeVarying(DatasetResult& d)
 {
-  const int dims[3] = { options.PhantomSize, options.PhantomSize, options.PhantomSize };
+  const int dims[3] = { this->PhantomSize, this->PhantomSize, this->PhantomSize };
   accelvolume::PhantomVolume phantom;
   std::string error;
   auto start = Clock::now();
   accelvolume::GeneratePhantom("vessels", dims, 0.0, phantom, error);
   vtkSmartPointer<vtkImageData> image = accelvolume::cli::PhantomToImage(phantom);
   const double generateMs = MsSince(start);
-  if (!RunDataset(options, "vessels (t)", image, window, gpu, d))
+  if (!this->RunDataset("vessels (t)", image, d))
   {
     return;
   }
@@ -245,23 +359,23 @@ void RunTimeVarying(const Options& options, vtkAccelVolumeHeadlessRenderWindow* 
   volume->SetProperty(property);
   vtkNew<vtkRenderer> renderer;
   renderer->AddVolume(volume);
-  window->AddRenderer(renderer);
+  this->Window->AddRenderer(renderer);
   renderer->ResetCamera();
   vtkNew<vtkUnsignedCharArray> pixel;
   auto render = [&]()
   {
-    window->Render();
-    window->GetPixelData(0, 0, 0, 0, 0, pixel, 0); // waits for the GPU
+    this->Window->Render();
+    this->Window->GetPixelData(0, 0, 0, 0, 0, pixel, 0); // waits for the GPU
   };
   render(); // warm-up: texture and shader creation
 
   vtkNew<vtkAccelVolumeMinMaxOctree> octree;
   octree->SetInputData(image);
-  octree->SetLeafSize(options.Leaf);
-  octree->SetNumberOfThreads(options.AllThreads);
+  octree->SetLeafSize(this->Leaf);
+  octree->SetNumberOfThreads(this->AllThreads);
   octree->Update();
   auto* values = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  for (int f = 1; f <= options.Frames; ++f)
+  for (int f = 1; f <= this->Frames; ++f)
   {
     start = Clock::now();
     accelvolume::GeneratePhantom("vessels", dims, 0.05 * f, phantom, error);
@@ -280,98 +394,70 @@ void RunTimeVarying(const Options& options, vtkAccelVolumeHeadlessRenderWindow* 
     d.Frames.RenderMs.push_back(MsSince(start));
     d.Frames.FrameMs.push_back(MsSince(frameStart));
   }
-  window->RemoveRenderer(renderer);
+  this->Window->RemoveRenderer(renderer);
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+int OctreeBenchmark::Run(Harness& harness, Json& result)
 {
-  Options options;
-  if (!ParseArguments(argc, argv, options))
-  {
-    return 2;
-  }
-  const auto begin = Clock::now();
-  const int backend = vtkAccelVolumeHeadlessRenderWindow::ParseBackendName(options.GL.c_str());
-  if (backend < 0 || backend == vtkAccelVolumeHeadlessRenderWindow::BACKEND_X ||
-    (backend != vtkAccelVolumeHeadlessRenderWindow::BACKEND_AUTOMATIC &&
-      !vtkAccelVolumeHeadlessRenderWindow::IsBackendAvailable(backend)))
-  {
-    std::cerr << "--gl must be an available headless backend (egl, osmesa or auto)\n";
-    return 2;
-  }
-  vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, 512, 512);
-  GPUState gpu;
-  gpu.Renderer = window->GetOpenGLRendererString();
-  int major = 0, minor = 0;
-  window->GetOpenGLVersion(major, minor);
-  gpu.Version = std::to_string(major) + "." + std::to_string(minor);
-  gpu.Available = major * 10 + minor >= 43;
-  gpu.Why = gpu.Available ? "" : "OpenGL " + gpu.Version + " < 4.3 (no compute shaders)";
+  const MachineInfo& machine = harness.Machine;
+  this->Window = harness.Window();
+  this->AllThreads = machine.SMPThreads;
+  this->GPUAvailable = machine.GLMajor * 10 + machine.GLMinor >= 43;
+  const std::string gpuNote =
+    this->GPUAvailable ? "" : "OpenGL " + machine.GLVersion + " < 4.3 (no compute shaders)";
 
-  Machine machine;
-  machine.Threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  options.AllThreads = machine.Threads;
-  machine.SMPBackend = vtkSMPTools::GetBackend() ? vtkSMPTools::GetBackend() : "unknown";
-  machine.GLBackend =
-    vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
-  machine.GLRenderer = gpu.Renderer;
-  machine.GLVersion = gpu.Version;
-  machine.GPUNote = gpu.Why;
-  std::cout << "accelvolume_benchmark_octree: Lim and Shin 2009 (min-max octree build), leaf "
-            << options.Leaf << ", median of " << options.Repeat << "; " << machine.Threads
-            << " threads (" << machine.SMPBackend << "), GL " << machine.GLBackend << " "
-            << gpu.Version << " (" << gpu.Renderer << ")"
-            << (gpu.Available ? "" : "; gpu builder skipped: " + gpu.Why) << "\n"
-            << "data: " << options.DataDir << "\n"
-            << std::flush;
-
-  std::vector<DatasetResult> results;
+  result = { { "benchmark", this->Name() }, { "leaf", this->Leaf }, { "repeat", this->Repeat },
+    { "threads", machine.SMPThreads }, { "smp_backend", machine.SMPBackend },
+    { "gl_backend", machine.GLBackend }, { "gl_renderer", machine.GLRenderer },
+    { "gl_version", machine.GLVersion }, { "gpu_note", StringOrNull(gpuNote) },
+    { "datasets", Json::array() } };
   bool ok = true;
-  CaseProgress progress(
-    "accelvolume_benchmark_octree", static_cast<int>(options.Datasets.size()));
-  for (const std::string& name : options.Datasets)
+  CaseProgress progress(this->Name(), static_cast<int>(this->Datasets.size()));
+  for (const std::string& name : this->Datasets)
   {
     progress.Begin(name);
     DatasetResult d;
     if (name == "vessels")
     {
-      RunTimeVarying(options, window, gpu, d);
-      if (d.Builds.empty())
+      this->RunTimeVarying(d);
+    }
+    else
+    {
+      d.File = FindPrefixedRawFile(harness.Options.DataDir, name);
+      if (d.File.empty())
       {
+        std::cerr << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "
+                  << harness.Options.DataDir << "\n";
         ok = false;
         continue;
       }
-      results.push_back(std::move(d));
-      continue;
+      accelvolume::cli::VolumeRequest request;
+      request.inputPath = d.File;
+      std::string error;
+      const auto loadStart = Clock::now();
+      vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
+      d.LoadSeconds = SecondsSince(loadStart);
+      if (!image || !this->RunDataset(name, image, d))
+      {
+        std::cerr << name << ": " << (image ? "benchmark failed" : error) << "\n";
+        d.Builds.clear();
+      }
     }
-    d.File = FindPrefixedRawFile(options.DataDir, name);
-    if (d.File.empty())
+    if (d.Builds.empty())
     {
-      std::cerr << name << ": no file " << name << "_<X>x<Y>x<Z>_<type>.raw[.gz] in "
-                << options.DataDir << "\n";
       ok = false;
       continue;
     }
-    accelvolume::cli::VolumeRequest request;
-    request.inputPath = d.File;
-    std::string error;
-    const auto loadStart = Clock::now();
-    vtkSmartPointer<vtkImageData> image = accelvolume::cli::LoadVolume(request, error);
-    d.LoadSeconds = MsSince(loadStart) / 1000.0;
-    if (!image || !RunDataset(options, name, image, window, gpu, d))
-    {
-      std::cerr << name << ": " << (image ? "benchmark failed" : error) << "\n";
-      ok = false;
-      continue;
-    }
-    results.push_back(std::move(d));
+    result["datasets"].push_back(DatasetJson(d));
   }
-  PrintReport(machine, results);
-  WriteJson(options, machine, results);
-  std::cout << "results written to " << options.Json << "; total " << Num(MsSince(begin) / 1000, 1)
-            << " s\n";
-  return ok && !results.empty() ? 0 : 1;
+  return ok && !result["datasets"].empty() ? 0 : 1;
 }
+
+} // namespace
+
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<OctreeBenchmark>();
+}
+
+} // namespace accelvolume::benchmark

@@ -1,9 +1,9 @@
-// accelvolume_benchmark_raycast: Table 2 of Lim, Kim and Shin 2009 (semi-transparent cell leaping through a
-// modified Marching Cubes table) and beyond, on real volumes.
-// Lim, Kim and Shin 2009 casts rays on the CPU (perspective, 512^2 images) with distance-map or min-max
-// octree leaping, and reports 16.8-24.1 % more speed when semi-transparent cells are leaped as
-// well, with pixel-identical images. This program measures vtkAccelVolumeRayCastMapper in every
-// leap mode (none / distance map / octree) with cell leaping off and on, against VTK's
+// accelvolume_benchmark_raycast: Table 2 of Lim, Kim and Shin 2009 (semi-transparent cell leaping
+// through a modified Marching Cubes table) and beyond, on real volumes. Lim, Kim and Shin 2009
+// casts rays on the CPU (perspective, 512^2 images) with distance-map or min-max octree leaping,
+// and reports 16.8-24.1 % more speed when semi-transparent cells are leaped as well, with
+// pixel-identical images. This program measures vtkAccelVolumeRayCastMapper in every leap mode
+// (none / distance map / octree) with cell leaping off and on, against VTK's
 // vtkFixedPointVolumeRayCastMapper.
 //
 // Per volume x transfer function: perspective camera, composite blend, square image (512^2),
@@ -35,109 +35,200 @@
 // transparent, some not), which is what cell leaping accelerates; neither makes the whole volume
 // transparent or opaque on the six default volumes (71-99 % of their voxels lie below 10 % of
 // the range, datasets.json "empty_fraction").
-// Options: BenchmarkRaycastOptions.{h,cxx}; tables and JSON: BenchmarkRaycastReport.{h,cxx}.
-#include "BenchmarkCommon.h"
+// JSON: raycast.json of the report (scripts/bench_report/raycast.py renders it, Table 2 included).
+#include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
-#include "BenchmarkRaycastOptions.h"
-#include "BenchmarkRaycastReport.h"
 #include "Options.h"
 #include "TransferFunctions.h"
-#include "VolumeIO.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeRayCastMapper.h"
 
 #include <vtkCamera.h>
-#include <vtkDataArray.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
 #include <vtkRenderer.h>
-#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
-#include <sys/resource.h>
-
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <string>
-#include <thread>
-#include <vector>
 
-using namespace accelvolume::benchmark;
-using namespace accelvolume::benchmark::raycast;
-
+namespace accelvolume::benchmark
+{
 namespace
 {
-// Grey-level error of `image` against `reference` over the pixels non-black in either.
-ErrorStats AgainstReference(
-  const std::vector<std::uint8_t>& reference, const std::vector<std::uint8_t>& image, int size)
+
+// Targets of the issue: ours (the default: distance map, cell leaping off) at least this much
+// faster than vtkFixedPointVolumeRayCastMapper at an RMS no larger than its, and cell leaping worth
+// this many percent within a leap mode (the paper: 16.8-24.1 %).
+constexpr double SpeedUpTarget = 2.0;
+constexpr double CellGainTarget = 20.0;
+
+// One row of the table: our mapper in one leap mode with cell leaping off / on, or VTK's.
+struct Config
 {
-  return CompareImages(reference, image,
-    MaskOr(NonBackgroundMask(reference, size, size), NonBackgroundMask(image, size, size)), 2.0);
+  std::string Id;
+  std::string Label;
+  bool Vtk = false; // vtkFixedPointVolumeRayCastMapper
+  int Leap = 0;     // vtkAccelVolumeRayCastMapper::LEAP_*
+  bool Cell = false;
+};
+
+const std::vector<Config>& Configs()
+{
+  using Mapper = vtkAccelVolumeRayCastMapper;
+  static const std::vector<Config> configs = {
+    { "none_off", "none, cell off", false, Mapper::LEAP_NONE, false },
+    { "none_cell", "none, cell on", false, Mapper::LEAP_NONE, true },
+    { "dmap_off", "dist. map, cell off", false, Mapper::LEAP_DISTANCE_MAP, false },
+    { "dmap_cell", "dist. map, cell on", false, Mapper::LEAP_DISTANCE_MAP, true },
+    { "octree_off", "octree, cell off", false, Mapper::LEAP_OCTREE, false },
+    { "octree_cell", "octree, cell on", false, Mapper::LEAP_OCTREE, true },
+    { "vtk_fixed", "vtkFixedPoint", true, 0, false },
+  };
+  return configs;
 }
 
-// Pixels whose bytes differ at all, and the largest byte difference.
-void ByteDifferences(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
-  long long& pixels, int& largest)
+// Our mapper's counters, as per-frame means over the timed rounds.
+struct Counters
 {
-  pixels = 0;
-  largest = 0;
-  for (size_t p = 0; p + 2 < a.size() && p + 2 < b.size(); p += 3)
+  double Rays = 0;
+  double Samples = 0;     // interpolated
+  double LeapedSpace = 0; // skipped by the octree or the distance map
+  double LeapedCell = 0;  // semi-transparent cells: skipped by the modified MC table
+  double EmptyCell = 0;   // all-transparent cells met by the cell table
+  double Terminated = 0;  // rays closed by early ray termination
+};
+
+struct ConfigResult
+{
+  Config Cfg;
+  std::vector<double> FrameMs; // Render() + 1x1 read-back, one per timed round
+  std::vector<double> CastMs;  // ours: GetLastCastTime (ray casting alone)
+  std::vector<double> Cores;   // process CPU time / wall time of each timed frame
+  Counters Count;              // ours
+  // First frame of the mapper (structures built from the scalars, then classified) and first
+  // frame after a transfer-function change (classification only): wall time and, for ours,
+  // GetLastPrepareTime. Excluded from FrameMs.
+  double FirstFrameMs = std::nan("");
+  double FirstPrepareMs = std::nan("");
+  double TfFrameMs = std::nan("");
+  double TfPrepareMs = std::nan("");
+  // Ours at the fixed view against ours with leap none and cell leaping off (same samples).
+  long long DifferingPixels = 0;
+  int MaxDifference = 0; // bytes
+  double MedianMs() const { return Median(this->FrameMs); }
+};
+
+// One volume x transfer function.
+struct CaseResult
+{
+  std::string Dataset;
+  std::string Tf;
+  int Size = 0;
+  int Frames = 0;
+  double SampleDistance = 1;
+  double ReferenceSampleDistance = 0.25;
+  double ReferenceMs = 0; // the one frame of the fine reference
+  double Seconds = 0;
+  std::vector<ConfigResult> Results; // in Configs() order
+  // Grey-level (0..255) differences at the fixed view against the fine reference, over pixels
+  // non-black in either image.
+  ErrorStats OursVsReference; // distance map, cell leaping off (the default)
+  ErrorStats VtkVsReference;
+  ErrorStats OursVsVtk; // for information: includes VTK's own shading and table quantisation
+
+  std::size_t IndexOf(const std::string& id) const
   {
-    int differs = 0;
-    for (size_t channel = p; channel < p + 3; ++channel)
+    for (std::size_t k = 0; k < this->Results.size(); ++k)
     {
-      differs = std::max(differs, std::abs(int(a[channel]) - int(b[channel])));
+      if (this->Results[k].Cfg.Id == id)
+      {
+        return k;
+      }
     }
-    pixels += differs > 0;
-    largest = std::max(largest, differs);
+    return 0;
   }
+  const ConfigResult& Find(const std::string& id) const { return this->Results[IndexOf(id)]; }
+  bool Identical() const
+  {
+    return std::all_of(this->Results.begin(), this->Results.end(),
+      [](const ConfigResult& r) { return r.Cfg.Vtk || r.DifferingPixels == 0; });
+  }
+  // (t_off - t_on) / t_off * 100 of the leap mode's two rows ("none", "dmap", "octree").
+  double CellGain(const std::string& leap) const
+  {
+    const double off = this->Find(leap + "_off").MedianMs();
+    const double on = this->Find(leap + "_cell").MedianMs();
+    return off > 0 ? (off - on) / off * 100.0 : std::nan("");
+  }
+  double SpeedUpOverVtk(const ConfigResult& ours) const
+  {
+    return SafeRatio(this->Find("vtk_fixed").MedianMs(), ours.MedianMs());
+  }
+  bool SpeedTargetMet() const
+  {
+    return this->SpeedUpOverVtk(this->Find("dmap_off")) >= SpeedUpTarget &&
+      this->OursVsReference.Rms() <= this->VtkVsReference.Rms();
+  }
+};
+
+Json ErrorsJson(const ErrorStats& e)
+{
+  return { { "rms", Round(e.Rms(), 3) }, { "max", Round(e.Max, 1) }, { "pixels", e.Pixels } };
 }
 
-// Loads and describes one volume (a line on stdout); false, after saying why, when it can't.
-bool LoadDataset(const Options& options, const std::string& name, DatasetInfo& info,
-  vtkSmartPointer<vtkImageData>& image)
+Json ConfigJson(const CaseResult& c, const ConfigResult& r)
 {
-  info.Name = name;
-  info.File = FindDatasetFile(options.DataDir, name);
-  std::string error = "no file " + name + "_<X>x<Y>x<Z>_<type>.raw[.gz] in " + options.DataDir;
-  if (!info.File.empty())
+  const double baseMs = c.Find("none_off").MedianMs();
+  Json out = { { "id", r.Cfg.Id }, { "label", r.Cfg.Label },
+    { "median_ms", Round(r.MedianMs(), 2) },
+    { "speedup_over_none_off", Round(SafeRatio(baseMs, r.MedianMs()), 3) },
+    { "speedup_over_vtk", Round(c.SpeedUpOverVtk(r), 3) },
+    { "first_frame_ms", Round(r.FirstFrameMs, 1) }, { "tf_change_frame_ms", Round(r.TfFrameMs, 1) },
+    { "median_cores", Round(Median(r.Cores), 2) } };
+  if (!r.Cfg.Vtk)
   {
-    accelvolume::cli::VolumeRequest request;
-    request.inputPath = info.File; // the spacing comes from datasets.json beside the file
-    const auto start = Clock::now();
-    image = accelvolume::cli::LoadVolume(request, error);
-    info.LoadSeconds = SecondsSince(start);
+    const Counters& n = r.Count;
+    out["first_prepare_ms"] = Round(r.FirstPrepareMs, 2);
+    out["tf_change_prepare_ms"] = Round(r.TfPrepareMs, 2);
+    out["median_cast_ms"] = Round(Median(r.CastMs), 2);
+    out["differing_pixels"] = r.DifferingPixels;
+    out["max_difference"] = r.MaxDifference;
+    out["per_frame"] = { { "rays", Round(n.Rays, 0) }, { "samples", Round(n.Samples, 0) },
+      { "leaped_space", Round(n.LeapedSpace, 0) }, { "leaped_cell_table", Round(n.LeapedCell, 0) },
+      { "in_transparent_cells", Round(n.EmptyCell, 0) },
+      { "terminated_rays", Round(n.Terminated, 0) } };
   }
-  if (!image)
-  {
-    std::cerr << "dataset " << name << ": " << error << "\n";
-    return false;
-  }
-  info.Description = accelvolume::cli::DescribeVolume(image);
-  image->GetSpacing(info.Spacing);
-  info.MinSpacing = *std::min_element(info.Spacing, info.Spacing + 3);
-  image->GetPointData()->GetScalars()->GetRange(info.Range);
-  std::cout << "=== " << name << ": " << info.Description << ", spacing " << info.Spacing[0] << " "
-            << info.Spacing[1] << " " << info.Spacing[2] << ", range " << info.Range[0] << ".."
-            << info.Range[1] << " (loaded in " << Num(info.LoadSeconds, 2) << " s)\n"
-            << std::flush;
-  return true;
+  out["frame_ms"] = RoundAll(r.FrameMs, 2);
+  return out;
 }
 
-// User + system CPU time of the whole process (every thread) in milliseconds.
-double ProcessCpuMs()
+Json CaseJson(const CaseResult& c)
 {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return 1000.0 * (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-    (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1000.0;
+  Json out = { { "dataset", c.Dataset }, { "tf", c.Tf }, { "size", c.Size }, { "frames", c.Frames },
+    { "sample_distance", c.SampleDistance },
+    { "reference_sample_distance", c.ReferenceSampleDistance },
+    { "reference_ms", Round(c.ReferenceMs, 1) }, { "seconds", Round(c.Seconds, 2) },
+    { "identical", c.Identical() }, { "ours_vs_reference", ErrorsJson(c.OursVsReference) },
+    { "vtk_vs_reference", ErrorsJson(c.VtkVsReference) },
+    { "ours_vs_vtk", ErrorsJson(c.OursVsVtk) },
+    { "cell_gain_percent",
+      { { "none", Round(c.CellGain("none"), 2) }, { "dmap", Round(c.CellGain("dmap"), 2) },
+        { "octree", Round(c.CellGain("octree"), 2) } } },
+    { "targets_met",
+      { { "speed", c.SpeedTargetMet() }, { "cell_dmap", c.CellGain("dmap") >= CellGainTarget },
+        { "cell_octree", c.CellGain("octree") >= CellGainTarget } } },
+    { "configs", Json::array() } };
+  for (const ConfigResult& r : c.Results)
+  {
+    out["configs"].push_back(ConfigJson(c, r));
+  }
+  return out;
 }
 
 vtkSmartPointer<vtkAccelVolumeRayCastMapper> OurMapper(
@@ -168,7 +259,7 @@ vtkSmartPointer<vtkFixedPointVolumeRayCastMapper> VtkMapper(double sampleDistanc
 
 // The CLI's camera (looking along +z at the centre, the volume filling the view), turned to the
 // fixed oblique view; perspective.
-void SetFixedView(vtkRenderer* renderer, vtkImageData* image, const Options& options)
+void SetFixedView(vtkRenderer* renderer, vtkImageData* image, double azimuth, double elevation)
 {
   double bounds[6];
   image->GetBounds(bounds);
@@ -180,144 +271,224 @@ void SetFixedView(vtkRenderer* renderer, vtkImageData* image, const Options& opt
   camera->SetPosition(centre[0], centre[1], centre[2] - 1);
   camera->SetViewUp(0, 1, 0);
   renderer->ResetCamera();
-  camera->Azimuth(options.Azimuth);
-  camera->Elevation(options.Elevation);
+  camera->Azimuth(azimuth);
+  camera->Elevation(elevation);
   camera->OrthogonalizeViewUp();
   renderer->ResetCameraClippingRange();
 }
 
-// One volume x transfer function: fresh mappers (so every case pays its own first frame), the
-// prepare frames, the image checks at the fixed view and the timed rounds.
-CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData* image,
-  const std::string& tf, vtkAccelVolumeHeadlessRenderWindow* window)
+// Every configuration's mapper (and the fine reference, last) in one renderer, shown one at a
+// time.
+class Scene
 {
-  const auto caseStart = Clock::now();
-  const int size = options.Size;
-  CaseResult c;
-  c.Dataset = info.Name;
-  c.Tf = tf;
-  c.Size = size;
-  c.Frames = options.Frames;
-  c.SampleDistance = options.SampleFactor * info.MinSpacing;
-  c.ReferenceSampleDistance = c.SampleDistance / options.ReferenceFactor;
-
-  vtkNew<vtkVolumeProperty> property;
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0, 0, 0);
-  std::vector<vtkSmartPointer<vtkVolume>> volumes;
-  std::vector<vtkAccelVolumeRayCastMapper*> ours; // nullptr for VTK's mapper
-  auto addVolume = [&](vtkVolumeMapper* mapper)
+public:
+  Scene(vtkImageData* image, vtkAccelVolumeHeadlessRenderWindow* window, int size)
+    : Image(image)
+    , Window(window)
+    , Size(size)
   {
-    mapper->SetInputData(image);
+    this->Renderer->SetBackground(0, 0, 0);
+    this->Window->AddRenderer(this->Renderer);
+  }
+  ~Scene() { this->Window->RemoveRenderer(this->Renderer); }
+
+  void Add(vtkVolumeMapper* mapper)
+  {
+    mapper->SetInputData(this->Image);
     mapper->SetBlendModeToComposite();
     auto volume = vtkSmartPointer<vtkVolume>::New();
     volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
-    volumes.push_back(volume);
-    ours.push_back(vtkAccelVolumeRayCastMapper::SafeDownCast(mapper));
-  };
-  for (const Config& cfg : MakeConfigs())
-  {
-    c.Results.push_back({ cfg });
-    if (cfg.Vtk)
-    {
-      addVolume(VtkMapper(c.SampleDistance, options.Threads));
-    }
-    else
-    {
-      addVolume(OurMapper(c.SampleDistance, options.Threads, cfg.Leap, cfg.Cell));
-    }
+    volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(volume);
+    this->Volumes.push_back(volume);
+    this->Ours.push_back(vtkAccelVolumeRayCastMapper::SafeDownCast(mapper));
   }
-  const size_t reference = volumes.size(); // the fine reference, last
-  addVolume(OurMapper(
-    c.ReferenceSampleDistance, options.Threads, vtkAccelVolumeRayCastMapper::LEAP_NONE, false));
-  window->AddRenderer(renderer);
 
-  vtkNew<vtkUnsignedCharArray> onePixel;
-  double lastCores = 0; // CPU time / wall time of the last render(): the cores it kept busy
   // Shows volume k alone and renders it; wall milliseconds of Render() + a 1x1 read-back.
-  auto render = [&](size_t k)
+  double Render(std::size_t k)
   {
-    for (size_t j = 0; j < volumes.size(); ++j)
+    for (std::size_t j = 0; j < this->Volumes.size(); ++j)
     {
-      volumes[j]->SetVisibility(j == k);
+      this->Volumes[j]->SetVisibility(j == k);
     }
+    const int s = this->Size;
     const double cpuStart = ProcessCpuMs();
     const auto start = Clock::now();
-    window->Render();
-    static_cast<vtkRenderWindow*>(window)->GetPixelData(
-      size / 2, size / 2, size / 2, size / 2, 0, onePixel.Get());
+    this->Window->Render();
+    static_cast<vtkRenderWindow*>(this->Window)
+      ->GetPixelData(s / 2, s / 2, s / 2, s / 2, 0, this->OnePixel.Get());
     const double wall = MsSince(start);
-    lastCores = SafeRatio(ProcessCpuMs() - cpuStart, wall);
+    this->LastCores = SafeRatio(ProcessCpuMs() - cpuStart, wall);
     return wall;
-  };
-
-  // The CLI's `render --blend composite --tf <tf> --shade on|off`, window = the data range.
-  accelvolume::cli::Options cli;
-  cli.blend = accelvolume::cli::BlendKind::Composite;
-  cli.haveShade = true;
-  cli.shade = options.Shade;
-  cli.transferFunction = tf;
-  const auto spec = accelvolume::cli::LoadTransferFunction(cli);
-  const double low = info.Range[0];
-  const double high = info.Range[1] > low ? info.Range[1] : low + 1;
-  const double wider[2] = { low, high + 0.02 * (high - low) };
-  const double tfWindow[2] = { low, high };
-
-  SetFixedView(renderer, image, options);
-  accelvolume::cli::ApplyTransferFunction(spec, cli, wider, property);
-  for (size_t k = 0; k < c.Results.size(); ++k)
-  {
-    c.Results[k].FirstFrameMs = render(k);
-    c.Results[k].FirstPrepareMs = ours[k] ? 1000.0 * ours[k]->GetLastPrepareTime() : std::nan("");
   }
-  accelvolume::cli::ApplyTransferFunction(spec, cli, tfWindow, property);
-  std::vector<std::vector<std::uint8_t>> images;
-  for (size_t k = 0; k < c.Results.size(); ++k)
-  {
-    c.Results[k].TfFrameMs = render(k);
-    c.Results[k].TfPrepareMs = ours[k] ? 1000.0 * ours[k]->GetLastPrepareTime() : std::nan("");
-    images.push_back(Capture(window, size, size));
-  }
-  c.ReferenceMs = render(reference);
-  const std::vector<std::uint8_t> referenceImage = Capture(window, size, size);
 
-  for (size_t k = 0; k < c.Results.size(); ++k)
+  std::vector<std::uint8_t> Capture() { return benchmark::Capture(Window, Size, Size); }
+  // 1000 x GetLastPrepareTime of our mapper k; NaN for VTK's.
+  double PrepareMs(std::size_t k) const
   {
-    if (ours[k])
+    return this->Ours[k] ? 1000.0 * this->Ours[k]->GetLastPrepareTime() : std::nan("");
+  }
+
+  vtkNew<vtkVolumeProperty> Property;
+  vtkNew<vtkRenderer> Renderer;
+  std::vector<vtkAccelVolumeRayCastMapper*> Ours; // nullptr for VTK's mapper
+  double LastCores = 0; // CPU time / wall time of the last Render(): the cores it kept busy
+
+private:
+  vtkImageData* Image;
+  vtkAccelVolumeHeadlessRenderWindow* Window;
+  int Size;
+  std::vector<vtkSmartPointer<vtkVolume>> Volumes;
+  vtkNew<vtkUnsignedCharArray> OnePixel;
+};
+
+class RaycastBenchmark : public Benchmark
+{
+public:
+  const char* Name() const override { return "accelvolume_benchmark_raycast"; }
+  const char* Description() const override
+  {
+    return "Lim, Kim and Shin 2009 Table 2: CPU ray casting with distance-map / octree leaping, "
+           "with and without semi-transparent cell leaping, against vtkFixedPoint. Exit code: 0 "
+           "ok, 1 a dataset or backend missing, 2 bad options, 3 our six leaping configurations "
+           "gave different images";
+  }
+  const char* DefaultJson() const override { return "accelvolume_benchmark_raycast.json"; }
+  int InitialSize() const override { return this->Size; }
+
+  void AddOptions(CLI::App& app) override
+  {
+    this->DatasetsOption = AddList(app, "--datasets", this->Datasets,
+      "dataset names: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder");
+    this->TfsOption =
+      AddList(app, "--tfs", this->Tfs, "transfer-function presets of `accelvolume render --tf`");
+    this->SizeOption = app.add_option("--size", this->Size, "square image size in pixels")
+                         ->check(CLI::Range(16, 4096));
+    this->FramesOption = app.add_option("--frames", this->Frames, "timed frames per configuration")
+                           ->check(CLI::PositiveNumber);
+    app.add_option("--threads", this->Threads, "threads of every mapper (0: hardware threads)")
+      ->check(CLI::Range(0, 1024));
+    app
+      .add_option(
+        "--sample-factor", this->SampleFactor, "sample distance = F x smallest voxel spacing")
+      ->check(CLI::PositiveNumber);
+    app
+      .add_option("--reference-factor", this->ReferenceFactor,
+        "the quality reference samples K times more densely")
+      ->check(CLI::PositiveNumber);
+    app.add_option("--view", this->View, "initial camera azimuth / elevation in degrees")
+      ->expected(2)
+      ->type_name("AZ EL");
+    app.add_option("--turn", this->Turn, "azimuth turn per timed round in degrees");
+    AddOnOff(app, "--shade", this->Shade, "Phong shading");
+    app.add_flag(
+      "--quick", this->Quick, "smoke run: size 128, 2 frames, engine, tf2 (unless given)");
+    app.add_option("--images", this->Images, "save PNGs of the fixed view (ours, VTK, reference)")
+      ->type_name("DIR");
+  }
+
+  void Resolve(const CLI::App&, const MachineInfo& machine) override
+  {
+    if (this->Quick)
     {
-      ByteDifferences(
-        images[0], images[k], c.Results[k].DifferingPixels, c.Results[k].MaxDifference);
+      this->Size = this->SizeOption->count() ? this->Size : 128;
+      this->Frames = this->FramesOption->count() ? this->Frames : 2;
+      if (!this->DatasetsOption->count())
+      {
+        this->Datasets = { "engine" };
+      }
+      if (!this->TfsOption->count())
+      {
+        this->Tfs = { "tf2" };
+      }
+    }
+    this->Threads = this->Threads > 0 ? this->Threads : machine.HardwareThreads;
+    CheckTransferFunctions(this->Tfs, "--tfs");
+    if (this->Datasets.empty())
+    {
+      throw CLI::ValidationError("--datasets", "needs at least one name");
     }
   }
-  auto indexOf = [&](const char* id) { return static_cast<size_t>(c.Find(id) - c.Results.data()); };
-  const size_t ourDefault = indexOf("dmap_off"); // the mapper's default configuration
-  const size_t vtk = indexOf("vtk_fixed");
-  c.OursVsReference = AgainstReference(referenceImage, images[ourDefault], size);
-  c.VtkVsReference = AgainstReference(referenceImage, images[vtk], size);
-  c.OursVsVtk = AgainstReference(images[vtk], images[ourDefault], size);
-  if (!options.Images.empty())
+
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  std::vector<std::string> Datasets = { "cthead", "aneurism", "cta_avm", "boston_teapot", "engine",
+    "bonsai_hazeremoved" };
+  std::vector<std::string> Tfs = { "tf2", "tf1" };
+  int Size = 512;
+  int Frames = 10;
+  int Threads = 0;         // 0: the hardware threads
+  double SampleFactor = 1; // sample distance = factor x the smallest voxel spacing
+  int ReferenceFactor = 4; // the fine reference samples this many times more densely
+  std::vector<double> View = { 30.0, 20.0 }; // fixed initial view
+  double Turn = 3.0;                         // azimuth degrees per timed round
+  bool Shade = true;
+  bool Quick = false;
+  std::string Images;
+  CLI::Option* DatasetsOption = nullptr;
+  CLI::Option* TfsOption = nullptr;
+  CLI::Option* SizeOption = nullptr;
+  CLI::Option* FramesOption = nullptr;
+
+  CaseResult RunCase(const DatasetInfo& info, vtkImageData* image, const std::string& tf,
+    vtkAccelVolumeHeadlessRenderWindow* window) const;
+  void CheckImages(
+    CaseResult& c, Scene& scene, std::size_t reference, const std::string& stem) const;
+  void TimeRounds(CaseResult& c, Scene& scene) const;
+  Json SettingsJson() const;
+};
+
+// The prepare frames and the image checks at the fixed view.
+void RaycastBenchmark::CheckImages(
+  CaseResult& c, Scene& scene, std::size_t reference, const std::string& stem) const
+{
+  std::vector<std::vector<std::uint8_t>> images;
+  for (std::size_t k = 0; k < c.Results.size(); ++k)
+  {
+    c.Results[k].TfFrameMs = scene.Render(k);
+    c.Results[k].TfPrepareMs = scene.PrepareMs(k);
+    images.push_back(scene.Capture());
+  }
+  c.ReferenceMs = scene.Render(reference);
+  const std::vector<std::uint8_t> referenceImage = scene.Capture();
+  for (std::size_t k = 0; k < c.Results.size(); ++k)
+  {
+    if (scene.Ours[k])
+    {
+      const ByteDifferences d = CompareBytes(images[0], images[k]);
+      c.Results[k].DifferingPixels = d.Pixels;
+      c.Results[k].MaxDifference = d.Max;
+    }
+  }
+  const std::size_t ourDefault = c.IndexOf("dmap_off"); // the mapper's default configuration
+  const std::size_t vtk = c.IndexOf("vtk_fixed");
+  c.OursVsReference = CompareVisible(referenceImage, images[ourDefault], this->Size, this->Size);
+  c.VtkVsReference = CompareVisible(referenceImage, images[vtk], this->Size, this->Size);
+  c.OursVsVtk = CompareVisible(images[vtk], images[ourDefault], this->Size, this->Size);
+  if (!this->Images.empty())
   {
     std::error_code ec;
-    std::filesystem::create_directories(options.Images, ec);
-    const std::string stem = options.Images + "/" + info.Name + "_" + tf + "_";
-    WritePng(stem + "dmap_off.png", images[ourDefault], size, size);
-    WritePng(stem + "vtk_fixed.png", images[vtk], size, size);
-    WritePng(stem + "reference.png", referenceImage, size, size);
+    std::filesystem::create_directories(this->Images, ec);
+    WritePng(stem + "dmap_off.png", images[ourDefault], this->Size, this->Size);
+    WritePng(stem + "vtk_fixed.png", images[vtk], this->Size, this->Size);
+    WritePng(stem + "reference.png", referenceImage, this->Size, this->Size);
   }
+}
 
-  const double perFrame = 1.0 / options.Frames;
-  for (int f = 0; f < options.Frames; ++f)
+void RaycastBenchmark::TimeRounds(CaseResult& c, Scene& scene) const
+{
+  const double perFrame = 1.0 / this->Frames;
+  for (int f = 0; f < this->Frames; ++f)
   {
-    renderer->GetActiveCamera()->Azimuth(options.Turn);
-    renderer->ResetCameraClippingRange();
-    for (size_t k = 0; k < c.Results.size(); ++k)
+    scene.Renderer->GetActiveCamera()->Azimuth(this->Turn);
+    scene.Renderer->ResetCameraClippingRange();
+    for (std::size_t k = 0; k < c.Results.size(); ++k)
     {
       ConfigResult& r = c.Results[k];
-      r.FrameMs.push_back(render(k));
-      r.Cores.push_back(lastCores);
-      if (vtkAccelVolumeRayCastMapper* m = ours[k])
+      r.FrameMs.push_back(scene.Render(k));
+      r.Cores.push_back(scene.LastCores);
+      if (vtkAccelVolumeRayCastMapper* m = scene.Ours[k])
       {
         r.CastMs.push_back(1000.0 * m->GetLastCastTime());
         r.Count.Rays += perFrame * m->GetLastNumberOfRays();
@@ -330,94 +501,125 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
       }
     }
   }
-  window->RemoveRenderer(renderer);
+}
+
+// One volume x transfer function: fresh mappers (so every case pays its own first frame), the
+// prepare frames, the image checks at the fixed view and the timed rounds.
+CaseResult RaycastBenchmark::RunCase(const DatasetInfo& info, vtkImageData* image,
+  const std::string& tf, vtkAccelVolumeHeadlessRenderWindow* window) const
+{
+  const auto caseStart = Clock::now();
+  CaseResult c;
+  c.Dataset = info.Name;
+  c.Tf = tf;
+  c.Size = this->Size;
+  c.Frames = this->Frames;
+  c.SampleDistance = this->SampleFactor * info.MinSpacing;
+  c.ReferenceSampleDistance = c.SampleDistance / this->ReferenceFactor;
+
+  Scene scene(image, window, this->Size);
+  for (const Config& cfg : Configs())
+  {
+    c.Results.emplace_back();
+    c.Results.back().Cfg = cfg;
+    if (cfg.Vtk)
+    {
+      scene.Add(VtkMapper(c.SampleDistance, this->Threads));
+    }
+    else
+    {
+      scene.Add(OurMapper(c.SampleDistance, this->Threads, cfg.Leap, cfg.Cell));
+    }
+  }
+  const std::size_t reference = c.Results.size(); // the fine reference, last
+  scene.Add(OurMapper(
+    c.ReferenceSampleDistance, this->Threads, vtkAccelVolumeRayCastMapper::LEAP_NONE, false));
+
+  // The CLI's `render --blend composite --tf <tf> --shade on|off`, window = the data range.
+  accelvolume::cli::Options cli;
+  cli.blend = accelvolume::cli::BlendKind::Composite;
+  cli.haveShade = true;
+  cli.shade = this->Shade;
+  cli.transferFunction = tf;
+  const auto spec = accelvolume::cli::LoadTransferFunction(cli);
+  const double low = info.Range[0];
+  const double high = info.Range[1] > low ? info.Range[1] : low + 1;
+  const double wider[2] = { low, high + 0.02 * (high - low) };
+  const double tfWindow[2] = { low, high };
+
+  SetFixedView(scene.Renderer, image, this->View[0], this->View[1]);
+  accelvolume::cli::ApplyTransferFunction(spec, cli, wider, scene.Property);
+  for (std::size_t k = 0; k < c.Results.size(); ++k)
+  {
+    c.Results[k].FirstFrameMs = scene.Render(k);
+    c.Results[k].FirstPrepareMs = scene.PrepareMs(k);
+  }
+  accelvolume::cli::ApplyTransferFunction(spec, cli, tfWindow, scene.Property);
+  this->CheckImages(c, scene, reference, this->Images + "/" + info.Name + "_" + tf + "_");
+  this->TimeRounds(c, scene);
   c.Seconds = SecondsSince(caseStart);
   return c;
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+Json RaycastBenchmark::SettingsJson() const
 {
-  Options options;
-  if (!ParseArguments(argc, argv, options))
-  {
-    return 2;
-  }
-  int backend = 0;
-  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
-  {
-    return exitCode;
-  }
+  return { { "size", this->Size }, { "frames", this->Frames }, { "threads", this->Threads },
+    { "sample_factor", this->SampleFactor }, { "reference_factor", this->ReferenceFactor },
+    { "view",
+      { { "azimuth", Round(this->View[0], 2) }, { "elevation", Round(this->View[1], 2) } } },
+    { "turn_degrees", Round(this->Turn, 2) }, { "shade", this->Shade },
+    { "projection", "perspective" }, { "blend", "composite" }, { "image_sample_distance", 1 },
+    { "auto_adjust_sample_distances", false }, { "early_ray_termination", true },
+    { "quick", this->Quick }, { "speedup_target", SpeedUpTarget },
+    { "cell_gain_target_percent", CellGainTarget } };
+}
 
-  vtkNew<vtkAccelVolumeHeadlessRenderWindow> window;
-  StartHeadlessWindow(window, backend, options.Size, options.Size);
-  MachineInfo machine;
-  machine.Cpu = ReadCpuModel();
-  machine.HardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
-  machine.GlRenderer = window->GetOpenGLRendererString();
-  machine.GlBackend =
-    vtkAccelVolumeHeadlessRenderWindow::GetBackendName(window->GetActiveBackend());
-
-  std::cout << "accelvolume_benchmark_raycast: Lim, Kim and Shin 2009 Table 2 (CPU ray casting: empty-space "
-               "leaping with / without semi-transparent cell leaping) and vtkFixedPoint\n"
-            << "machine: " << (machine.Cpu.empty() ? "CPU unknown" : machine.Cpu) << ", "
-            << machine.HardwareThreads << " hardware threads; GL " << machine.GlBackend << " ("
-            << machine.GlRenderer << ")\n"
-            << "settings: " << options.Size << "x" << options.Size << " perspective, composite, "
-            << "shading " << (options.Shade ? "on" : "off")
-            << " (tf presets of `accelvolume render --tf` over the data range), sample distance = "
-            << options.SampleFactor << " x smallest voxel spacing, ImageSampleDistance 1, "
-            << "AutoAdjust off, early ray termination on, " << options.Threads
-            << " threads for every mapper;\n  view azimuth " << options.Azimuth << " elevation "
-            << options.Elevation << ", camera turned " << options.Turn << " deg per round; "
-            << options.Frames
-            << " timed frames per config after the prepare / warm-up frames, interleaved; "
-               "time = Render() + 1x1 read-back, median\n"
-            << "data: " << options.DataDir << "\n"
-            << std::flush;
-
-  const auto start = Clock::now();
-  std::vector<DatasetInfo> datasets;
-  std::vector<CaseResult> cases;
-  bool ok = true;
-  const int tfCount = static_cast<int>(options.TransferFunctions.size());
-  CaseProgress progress(
-    "accelvolume_benchmark_raycast", static_cast<int>(options.Datasets.size()) * tfCount);
-  for (const std::string& name : options.Datasets)
+int RaycastBenchmark::Run(Harness& harness, Json& result)
+{
+  const MachineInfo& machine = harness.Machine;
+  result = { { "benchmark",
+               "raycast (Lim, Kim and Shin 2009 Table 2: semi-transparent cell leaping)" },
+    { "machine",
+      { { "cpu", machine.Cpu }, { "hardware_threads", machine.HardwareThreads },
+        { "gl_backend", machine.GLBackend }, { "gl_renderer", machine.GLRenderer } } },
+    { "settings", this->SettingsJson() }, { "total_seconds", 0 }, { "datasets", Json::array() },
+    { "cases", Json::array() } };
+  bool ok = true, identical = true;
+  const int tfCount = static_cast<int>(this->Tfs.size());
+  CaseProgress progress(this->Name(), static_cast<int>(this->Datasets.size()) * tfCount);
+  for (const std::string& name : this->Datasets)
   {
     DatasetInfo info;
-    vtkSmartPointer<vtkImageData> image;
-    if (!LoadDataset(options, name, info, image))
+    vtkSmartPointer<vtkImageData> image = LoadDataset(harness.Options.DataDir, name, info);
+    if (!image)
     {
       ok = false;
       progress.Skip(tfCount);
       continue;
     }
-    for (const std::string& tf : options.TransferFunctions)
+    for (const std::string& tf : this->Tfs)
     {
       progress.Begin(name + " " + tf);
-      cases.push_back(RunCase(options, info, image, tf, window));
-      const CaseResult& c = cases.back();
-      std::cout << "--- " << name << " " << tf << ": sample distance " << c.SampleDistance << ", "
-                << c.Frames << " frames (" << Num(c.Seconds, 1) << " s)\n";
-      PrintCase(c);
+      const CaseResult c = this->RunCase(info, image, tf, harness.Window());
+      identical = identical && c.Identical();
+      result["cases"].push_back(CaseJson(c));
     }
-    datasets.push_back(info);
+    result["datasets"].push_back(DatasetJson(info, false));
   }
-  if (!cases.empty())
-  {
-    PrintSummary(cases);
-  }
-  const double total = SecondsSince(start);
-  WriteJson(options, machine, datasets, cases, total);
-  std::cout << "results written to " << options.Json << "; total " << Num(total, 1) << " s\n";
-  const bool identical =
-    std::all_of(cases.begin(), cases.end(), [](const CaseResult& c) { return c.Identical(); });
+  result["total_seconds"] = Round(harness.Seconds(), 2);
   if (!identical)
   {
     std::cout << "FAILED: our leaping configurations gave different images\n";
     return 3;
   }
-  return ok && !cases.empty() ? 0 : 1;
+  return ok && !result["cases"].empty() ? 0 : 1;
 }
+
+} // namespace
+
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<RaycastBenchmark>();
+}
+
+} // namespace accelvolume::benchmark

@@ -30,20 +30,20 @@
 // (the RGB colour transfer function in VolPack's RGB mode, so both render the same coloured
 // image with three colour channels; --volpack-grey: the mean of R, G, B in its luminance mode)
 // and its opacity raised to spacing(principal axis) / unit distance.
-// Options: BenchmarkShearWarpOptions.{h,cxx}; tables and JSON: BenchmarkShearWarpReport.{h,cxx};
-// the scene, frame records, run JSON and VolPack: BenchmarkShearWarpScene.{h,cxx}.
-#include "BenchmarkCommon.h"
+// The harness (Harness/) parses the options and writes the JSON (shearwarp.json of the report,
+// scripts/bench_report/shearwarp.py); the scene, frame records and VolPack:
+// BenchmarkShearWarpScene.{h,cxx}; results and their JSON: BenchmarkShearWarpResults.{h,cxx}.
+#include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
-#include "BenchmarkShearWarpOptions.h"
-#include "BenchmarkShearWarpReport.h"
+#include "BenchmarkShearWarpResults.h"
 #include "BenchmarkShearWarpScene.h"
-#include "JsonReader.h"
+
+#include "vtkAccelVolumeShearWarpMapper.h"
 
 #include <vtkCommunicator.h>
 #include <vtkImageData.h>
 #include <vtkMPI.h> // MPI_Abort
 #include <vtkMPIController.h>
-#include <vtkAccelVolumeShearWarpMapper.h>
 
 #include <unistd.h>
 
@@ -58,43 +58,53 @@
 #include <memory>
 #include <regex>
 #include <sstream>
-#include <string>
-#include <thread>
-#include <vector>
 
-using namespace accelvolume::benchmark;
-using namespace accelvolume::benchmark::shearwarp;
 namespace fs = std::filesystem;
 
+namespace accelvolume::benchmark::shearwarp
+{
 namespace
 {
+// The command-line arguments that make a worker render the same cases of `dataset` (everything
+// but the output options), for the MPI re-launch.
+std::vector<std::string> WorkerArguments(
+  const Options& options, const std::string& dataset, const std::string& mpiDir)
+{
+  std::string tfs, sizes;
+  for (const std::string& tf : options.TransferFunctions)
+  {
+    tfs += (tfs.empty() ? "" : ",") + tf;
+  }
+  for (int size : options.Sizes)
+  {
+    sizes += (sizes.empty() ? "" : ",") + std::to_string(size);
+  }
+  const std::string shade = options.Shades.size() == 2 ? "both" : options.Shades[0] ? "on" : "off";
+  auto exact = [](double value)
+  {
+    std::ostringstream text;
+    text.precision(17);
+    text << value;
+    return text.str();
+  };
+  return { "--mpi-worker", "--mpi-dir", mpiDir, "--data", options.DataDir, "--datasets", dataset,
+    "--sizes", sizes, "--tfs", tfs, "--shade", shade, "--frames", std::to_string(options.Frames),
+    "--view", exact(options.Azimuth), exact(options.Elevation), "--turn", exact(options.Turn),
+    "--gl", options.GL };
+}
+
 // Byte differences of two images against a bound (0: identical).
 ImageCheck Compare(
   const std::string& a, const std::string& b, const Image& x, const Image& y, int bound)
 {
+  const ByteDifferences d = CompareBytes(x, y);
   ImageCheck check;
   check.A = a;
   check.B = b;
   check.Bound = bound;
-  check.MaxDifference = x.size() == y.size() ? 0 : 255;
-  for (size_t p = 0; p + 2 < x.size() && p + 2 < y.size(); p += 3)
-  {
-    int differs = 0;
-    for (size_t channel = p; channel < p + 3; ++channel)
-    {
-      differs = std::max(differs, std::abs(int(x[channel]) - int(y[channel])));
-    }
-    check.DifferingPixels += differs > 0;
-    check.MaxDifference = std::max(check.MaxDifference, differs);
-  }
+  check.DifferingPixels = d.Pixels;
+  check.MaxDifference = d.Max;
   return check;
-}
-
-// Grey-level error over the pixels non-black in either image.
-ErrorStats GreyError(const Image& reference, const Image& image, int size)
-{
-  return CompareImages(reference, image,
-    MaskOr(NonBackgroundMask(reference, size, size), NonBackgroundMask(image, size, size)), 2.0);
 }
 
 // Channel-level error (0..255) over the pixels non-black in either image: each of R, G, B of a
@@ -156,7 +166,7 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
       c.Runs.back().Threads = threads;
     }
   }
-  scene.FixedView(options);
+  scene.FixedView(options.Azimuth, options.Elevation);
   std::vector<Image> images;
   for (size_t k = 0; k < c.Runs.size(); ++k)
   {
@@ -190,7 +200,7 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
     Compare(name("dense", 1), name("rle", 1), images[index("dense", 1)], images[rle], ertBound));
   if (shade)
   {
-    c.PhongVsTable = GreyError(images[balanced], images[index("phong", 1)], size);
+    c.PhongVsTable = CompareVisible(images[balanced], images[index("phong", 1)], size, size);
   }
   ours = images[balanced];
   const std::string stem = options.Images + "/" + info.Name + "_" + tf +
@@ -217,7 +227,7 @@ CaseResult RunCase(const Options& options, const DatasetInfo& info, vtkImageData
       volpack->Render(image, volume, camera, size, &volpackImage, c.VolPack.Axis, c.VolPack.Note));
     if (c.VolPack.Ran)
     {
-      c.VolPack.VsOurs = GreyError(ours, volpackImage, size);
+      c.VolPack.VsOurs = CompareVisible(ours, volpackImage, size, size);
       c.VolPack.VsOursRgb = RgbError(ours, volpackImage, size);
       if (!options.Images.empty())
       {
@@ -301,29 +311,26 @@ bool LaunchMpi(const Options& options, const std::string& dataset, int ranks,
     note = "mpiexec run failed (status " + std::to_string(status) + "); log tail: " + tail;
     return false;
   }
-  try
+  const Json root = Json::parse(text.str(), nullptr, false);
+  if (root.is_discarded() || !root.contains("cases") || !root["cases"].is_array())
   {
-    const accelvolume::cli::JsonValue root = accelvolume::cli::ParseJson(text.str());
-    for (const auto& item : root.members.at("cases").items)
-    {
-      RunResult run;
-      const std::string key = item.members.at("key").text;
-      if (ReadRunJson(item.members.at("run"), run))
-      {
-        runs[key] = run;
-        std::ifstream raw(
-          dir + "/" + std::to_string(ranks) + "_" + FileKey(key) + ".rgb", std::ios::binary);
-        images[key] = Image(std::istreambuf_iterator<char>(raw), {});
-      }
-    }
-  }
-  catch (const std::exception& e)
-  {
-    note = std::string("cannot read the MPI worker's JSON: ") + e.what();
+    note = "cannot read the MPI worker's JSON " + json;
     return false;
   }
+  for (const Json& item : root["cases"])
+  {
+    RunResult run;
+    const std::string key = item.value("key", "");
+    if (item.contains("run") && ReadRunJson(item["run"], run))
+    {
+      runs[key] = run;
+      std::ifstream raw(
+        dir + "/" + std::to_string(ranks) + "_" + FileKey(key) + ".rgb", std::ios::binary);
+      images[key] = Image(std::istreambuf_iterator<char>(raw), {});
+    }
+  }
   std::cout << "  MPI: " << ranks << " rank(s) x 1 thread for " << dataset << " in "
-            << Num(SecondsSince(start), 1) << " s\n"
+            << Round(SecondsSince(start), 1) << " s\n"
             << std::flush;
   return true;
 }
@@ -337,8 +344,8 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
   int backend = 0;
   DatasetInfo info;
   vtkSmartPointer<vtkImageData> image;
-  int ok = ResolveHeadlessBackend(options.GL, backend) == 0 &&
-      LoadDataset(options, options.Datasets[0], info, image, true)
+  int ok = Harness::ResolveBackend(options.GL, backend) == 0 &&
+      LoadDataset(options.DataDir, options.Datasets[0], info, image, true)
     ? 1
     : 0;
   int allOk = 0;
@@ -347,10 +354,7 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
   {
     return 1;
   }
-  std::ostringstream out;
-  out << "{\"ranks\": " << ranks << ", \"dataset\": \"" << JsonEscape(info.Name)
-      << "\", \"cases\": [\n";
-  bool first = true;
+  Json out = { { "ranks", ranks }, { "dataset", info.Name }, { "cases", Json::array() } };
   const Config cfg = MakeConfigs(false)[2]; // (3)
   for (const std::string& tf : options.TransferFunctions)
   {
@@ -363,7 +367,7 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
         RunResult run;
         run.Cfg = cfg;
         run.Ranks = ranks;
-        scene.FixedView(options);
+        scene.FixedView(options.Azimuth, options.Elevation);
         RecordFirst(scene.Mapper(0), scene.Render(0), run);
         const std::string key = CaseKey(info.Name, tf, shade, size);
         if (rank == 0)
@@ -381,18 +385,14 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
           const double wall = scene.Render(0);
           Record(scene.Mapper(0), wall, scene.LastCores(), 1.0 / options.Frames, run);
         }
-        out << (first ? "" : ",\n") << "{\"key\": \"" << JsonEscape(key) << "\", \"run\": ";
-        WriteRunJson(out, run, " ");
-        out << "}";
-        first = false;
+        out["cases"].push_back({ { "key", key }, { "run", RunJson(run) } });
       }
     }
   }
-  out << "\n]}\n";
   if (rank == 0)
   {
-    std::ofstream file(options.MpiDir + "/" + info.Name + "_" + std::to_string(ranks) + ".json");
-    file << out.str();
+    Harness::WriteJson(
+      options.MpiDir + "/" + info.Name + "_" + std::to_string(ranks) + ".json", out);
   }
   return 0;
 }
@@ -406,47 +406,215 @@ void AbortWorkers(const char* message)
   MPI_Abort(MPI_COMM_WORLD, 1);
 }
 
-} // namespace
-
-int main(int argc, char* argv[])
+class ShearWarpBenchmark : public Benchmark
 {
-  const bool worker = std::any_of(
-    argv + 1, argv + argc, [](const char* a) { return std::string(a) == "--mpi-worker"; });
-  if (worker)
+public:
+  const char* Name() const override { return "accelvolume_benchmark_shearwarp"; }
+  const char* Description() const override
+  {
+    return "Kim 1998 Tables 2-3: parallel shear-warp with run-length encoding, skip links and "
+           "load balancing, on threads, against VolPack, and on MPI ranks. Exit code: 0 ok, 1 a "
+           "dataset, backend or MPI run failed, 2 bad options, 3 the image checks failed "
+           "(thread counts / balancing not byte-identical, or no RLE vs RLE beyond the "
+           "early-termination bound)";
+  }
+  const char* DefaultJson() const override { return "accelvolume_benchmark_shearwarp.json"; }
+  // $ACCELVOLUME_GL when it names a headless backend, else egl.
+  const char* DefaultGL() const override
+  {
+    const char* gl = std::getenv("ACCELVOLUME_GL");
+    const std::string value = gl ? gl : "";
+    return value == "egl" || value == "osmesa" || value == "auto" ? gl : "egl";
+  }
+  // Every scene opens its own window; the harness's (parent only) describes the GL.
+  bool NeedsWindow() const override { return !this->O.MpiWorker; }
+  int InitialSize() const override { return 64; }
+
+  void AddOptions(CLI::App& app) override;
+  void Resolve(const CLI::App& app, const MachineInfo& machine) override;
+  int Run(Harness& harness, Json& result) override;
+
+private:
+  Options O;
+  std::string Shade = "on";
+  bool NoMpi = false;
+  bool NoVolPack = false;
+  void RunDataset(const std::string& name, int backend, CaseProgress& progress, int perDataset,
+    const std::string& mpiDir, Json& result, bool& ok, bool& checksOk) const;
+};
+
+void ShearWarpBenchmark::AddOptions(CLI::App& app)
+{
+  AddList(app, "--datasets", this->O.Datasets,
+    "dataset names: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder");
+  app.add_flag(
+    "--skip-large", this->O.SkipLarge, "drop volumes over 32 Mi voxels (the 512x512x275 CT)");
+  AddList(app, "--sizes", this->O.Sizes, "square final image sizes (16..4096)");
+  AddList(app, "--tfs", this->O.TransferFunctions,
+    "transfer-function presets of `accelvolume render --tf` (tf2: opaque surfaces, tf1: "
+    "semi-transparent)");
+  app.add_option("--shade", this->Shade, "shaded, unshaded or both")
+    ->check(CLI::IsMember({ "on", "off", "both" }))
+    ->type_name("on|off|both");
+  app.add_option("--frames", this->O.Frames, "timed frames per configuration")
+    ->check(CLI::PositiveNumber);
+  app.add_option("--threads", this->O.Threads, "the \"all threads\" count (0: hardware threads)")
+    ->check(CLI::Range(0, 1024));
+  app
+    .add_option_function<std::vector<double>>(
+      "--view",
+      [this](const std::vector<double>& view)
+      {
+        this->O.Azimuth = view[0];
+        this->O.Elevation = view[1];
+      },
+      "initial camera azimuth / elevation in degrees")
+    ->expected(2)
+    ->type_name("AZ EL")
+    ->default_str("30 20");
+  app.add_option("--turn", this->O.Turn, "azimuth turn per timed frame (1, as the paper)");
+  AddList(app, "--mpi-ranks", this->O.MpiRanks, "rank counts of the MPI rows (1..256)");
+  app.add_flag("--no-mpi", this->NoMpi, "skip the MPI rows (no mpiexec launch)");
+  app.add_flag("--no-volpack", this->NoVolPack, "skip the VolPack rows");
+  app.add_flag("--volpack-grey", this->O.VolPackGrey,
+    "VolPack in luminance mode (grey = mean of the transfer function's R, G, B) instead of RGB");
+  app
+    .add_option("--images", this->O.Images,
+      "save PNGs of the fixed view (ours (3) 1 thread, "
+      "VolPack)")
+    ->type_name("DIR");
+  // Internal: this process is one rank of the MPI run the benchmark launched itself.
+  app.add_flag("--mpi-worker", this->O.MpiWorker)->group("");
+  app.add_option("--mpi-dir", this->O.MpiDir)->group("");
+}
+
+void ShearWarpBenchmark::Resolve(const CLI::App& app, const MachineInfo& machine)
+{
+  this->O.DataDir = app.get_option("--data")->as<std::string>();
+  this->O.GL = app.get_option("--gl")->as<std::string>();
+  this->O.Threads = this->O.Threads > 0 ? this->O.Threads : machine.HardwareThreads;
+  this->O.Mpi = !this->NoMpi;
+  this->O.VolPack = !this->NoVolPack;
+  this->O.Shades = this->Shade == "both" ? std::vector<bool>{ true, false }
+                                         : std::vector<bool>{ this->Shade == "on" };
+  CheckTransferFunctions(this->O.TransferFunctions, "--tfs");
+  bool valid = !this->O.Sizes.empty() && !this->O.Datasets.empty() && !this->O.MpiRanks.empty();
+  for (int size : this->O.Sizes)
+  {
+    valid = valid && size >= 16 && size <= 4096;
+  }
+  for (int ranks : this->O.MpiRanks)
+  {
+    valid = valid && ranks >= 1 && ranks <= 256;
+  }
+  if (!valid || (this->O.MpiWorker && this->O.MpiDir.empty()))
+  {
+    throw CLI::ValidationError("options", "sizes 16..4096, MPI ranks 1..256, a dataset");
+  }
+}
+
+// Every case of one dataset: the MPI rows first (one launch per rank count), then ours and VolPack.
+void ShearWarpBenchmark::RunDataset(const std::string& name, int backend, CaseProgress& progress,
+  int perDataset, const std::string& mpiDir, Json& result, bool& ok, bool& checksOk) const
+{
+  const Options& options = this->O;
+  const std::string file = FindDatasetFile(options.DataDir, name);
+  if (options.SkipLarge && VoxelsOfFile(file) > LargeVoxels)
+  {
+    std::cout << "=== " << name << ": skipped (--skip-large)\n";
+    progress.Skip(perDataset);
+    return;
+  }
+  DatasetInfo info;
+  vtkSmartPointer<vtkImageData> image;
+  if (!LoadDataset(options.DataDir, name, info, image, false))
+  {
+    ok = false;
+    progress.Skip(perDataset);
+    return;
+  }
+  std::map<int, std::map<std::string, RunResult>> mpiRuns;
+  std::map<int, std::map<std::string, Image>> mpiImages;
+  std::string mpiNote = options.Mpi ? "" : "--no-mpi";
+  for (int ranks : options.Mpi ? options.MpiRanks : std::vector<int>())
+  {
+    if (!LaunchMpi(options, name, ranks, mpiDir, mpiRuns[ranks], mpiImages[ranks], mpiNote))
+    {
+      std::cout << "  MPI " << ranks << " rank(s): " << mpiNote << "\n";
+      ok = false;
+    }
+  }
+  std::unique_ptr<VolPackAnchor> volpack;
+  if (options.VolPack && VolPackAnchor::Available())
+  {
+    volpack = std::make_unique<VolPackAnchor>(image, info);
+  }
+  for (const std::string& tf : options.TransferFunctions)
+  {
+    for (bool shade : options.Shades)
+    {
+      for (int size : options.Sizes)
+      {
+        Image ours;
+        progress.Begin(name + " " + tf + (shade ? " shaded " : " ") + std::to_string(size));
+        CaseResult c = RunCase(options, info, image, tf, shade, size, backend, volpack.get(), ours);
+        for (auto& [ranks, runs] : mpiRuns)
+        {
+          const auto found = runs.find(c.Key());
+          if (found != runs.end())
+          {
+            c.Mpi.push_back(found->second);
+            c.Checks.push_back(Compare("balanced/1t", "MPI " + std::to_string(ranks) + "r", ours,
+              mpiImages[ranks][c.Key()], 0));
+          }
+        }
+        c.MpiNote =
+          c.Mpi.empty() ? (mpiNote.empty() ? "no MPI result for this case" : mpiNote) : "";
+        checksOk = checksOk && c.ChecksOk();
+        result["cases"].push_back(CaseJson(c));
+      }
+    }
+  }
+  result["datasets"].push_back(DatasetJson(info));
+}
+
+int ShearWarpBenchmark::Run(Harness& harness, Json& result)
+{
+  const Options& options = this->O;
+  if (options.MpiWorker)
   {
     vtkNew<vtkMPIController> controller;
-    controller->Initialize(&argc, &argv);
+    controller->Initialize(&harness.Argc, &harness.Argv);
     vtkMultiProcessController::SetGlobalController(controller);
     vtkAccelVolumeShearWarpMapper::SetCommunicationAbortFunction(AbortWorkers);
-    Options options;
-    const int code = ParseArguments(argc, argv, options) ? RunWorker(options, controller) : 2;
+    const int code = RunWorker(options, controller);
     controller->Finalize();
     vtkMultiProcessController::SetGlobalController(nullptr);
-    return code;
+    return code; // the worker writes its own JSON (rank 0)
   }
-  Options options;
-  if (!ParseArguments(argc, argv, options))
-  {
-    return 2;
-  }
-  int backend = 0;
-  if (const int exitCode = ResolveHeadlessBackend(options.GL, backend))
-  {
-    return exitCode;
-  }
-  MachineInfo machine;
-  {
-    vtkNew<vtkAccelVolumeHeadlessRenderWindow> probe;
-    StartHeadlessWindow(probe, backend, 64, 64);
-    machine.GlRenderer = probe->GetOpenGLRendererString();
-    machine.GlBackend =
-      vtkAccelVolumeHeadlessRenderWindow::GetBackendName(probe->GetActiveBackend());
-  }
-  machine.Cpu = ReadCpuModel();
-  machine.HardwareThreads = static_cast<int>(std::thread::hardware_concurrency());
-  machine.HaveVolPack = VolPackAnchor::Available();
-  machine.MpiExec = ACCELVOLUME_MPIEXEC;
-  PrintHeader(options, machine);
+  const MachineInfo& machine = harness.Machine;
+  result = { { "benchmark",
+               "shearwarp (Kim 1998 Tables 2-3: parallel shear-warp, RLE, load "
+               "balancing; VolPack; MPI)" },
+    { "machine",
+      { { "cpu", machine.Cpu }, { "hardware_threads", machine.HardwareThreads },
+        { "gl_backend", machine.GLBackend }, { "gl_renderer", machine.GLRenderer },
+        { "volpack", VolPackAnchor::Available() }, { "mpiexec", ACCELVOLUME_MPIEXEC } } },
+    { "settings",
+      { { "frames", options.Frames }, { "threads", options.Threads },
+        { "view",
+          { { "azimuth", Round(options.Azimuth, 2) },
+            { "elevation", Round(options.Elevation, 2) } } },
+        { "turn_degrees", Round(options.Turn, 2) }, { "projection", "parallel" },
+        { "blend", "composite" }, { "mpi", options.Mpi }, { "volpack", options.VolPack },
+        { "volpack_mode", options.VolPackGrey ? "grey" : "rgb" },
+        { "ms_per_frame", "median of the mapper's GetLastRenderTime" },
+        { "engine_ms", "encode + tables + composite + gather + warp" },
+        { "ratios", "median over frames of paired per-frame ratios" },
+        { "targets",
+          { { "volpack_speedup", VolPackTarget }, { "efficiency", EfficiencyTarget },
+            { "imbalance", ImbalanceTarget } } } } },
+    { "total_seconds", 0 }, { "datasets", Json::array() }, { "cases", Json::array() } };
 
   const std::string mpiDir =
     (fs::temp_directory_path() / ("accelvolume_swbench_" + std::to_string(getpid()))).string();
@@ -456,90 +624,31 @@ int main(int argc, char* argv[])
   {
     fs::create_directories(options.Images, ec);
   }
-  const auto start = Clock::now();
-  std::vector<DatasetInfo> datasets;
-  std::vector<CaseResult> cases;
-  bool ok = true;
+  bool ok = true, checksOk = true;
   const int perDataset = static_cast<int>(
     options.TransferFunctions.size() * options.Shades.size() * options.Sizes.size());
-  CaseProgress progress(
-    "accelvolume_benchmark_shearwarp", static_cast<int>(options.Datasets.size()) * perDataset);
+  CaseProgress progress(this->Name(), static_cast<int>(options.Datasets.size()) * perDataset);
   for (const std::string& name : options.Datasets)
   {
-    const std::string file = FindDatasetFile(options.DataDir, name);
-    if (options.SkipLarge && VoxelsOfFile(file) > LargeVoxels)
-    {
-      std::cout << "=== " << name << ": skipped (--skip-large)\n";
-      progress.Skip(perDataset);
-      continue;
-    }
-    DatasetInfo info;
-    vtkSmartPointer<vtkImageData> image;
-    if (!LoadDataset(options, name, info, image, false))
-    {
-      ok = false;
-      progress.Skip(perDataset);
-      continue;
-    }
-    std::map<int, std::map<std::string, RunResult>> mpiRuns;
-    std::map<int, std::map<std::string, Image>> mpiImages;
-    std::string mpiNote = options.Mpi ? "" : "--no-mpi";
-    for (int ranks : options.Mpi ? options.MpiRanks : std::vector<int>())
-    {
-      if (!LaunchMpi(options, name, ranks, mpiDir, mpiRuns[ranks], mpiImages[ranks], mpiNote))
-      {
-        std::cout << "  MPI " << ranks << " rank(s): " << mpiNote << "\n";
-        ok = false;
-      }
-    }
-    std::unique_ptr<VolPackAnchor> volpack;
-    if (options.VolPack && VolPackAnchor::Available())
-    {
-      volpack = std::make_unique<VolPackAnchor>(image, info);
-    }
-    for (const std::string& tf : options.TransferFunctions)
-    {
-      for (bool shade : options.Shades)
-      {
-        for (int size : options.Sizes)
-        {
-          Image ours;
-          progress.Begin(name + " " + tf + (shade ? " shaded " : " ") + std::to_string(size));
-          CaseResult c =
-            RunCase(options, info, image, tf, shade, size, backend, volpack.get(), ours);
-          for (auto& [ranks, runs] : mpiRuns)
-          {
-            const auto found = runs.find(c.Key());
-            if (found != runs.end())
-            {
-              c.Mpi.push_back(found->second);
-              c.Checks.push_back(Compare("balanced/1t", "MPI " + std::to_string(ranks) + "r", ours,
-                mpiImages[ranks][c.Key()], 0));
-            }
-          }
-          c.MpiNote =
-            c.Mpi.empty() ? (mpiNote.empty() ? "no MPI result for this case" : mpiNote) : "";
-          std::cout << "--- " << c.Key() << ": " << c.Frames << " frames (" << Num(c.Seconds, 1)
-                    << " s)\n";
-          PrintCase(c);
-          cases.push_back(std::move(c));
-        }
-      }
-    }
-    datasets.push_back(info);
+    this->RunDataset(name, harness.Backend(), progress, perDataset, mpiDir, result, ok, checksOk);
   }
   fs::remove_all(mpiDir, ec);
-  if (!cases.empty())
+  result["total_seconds"] = Round(harness.Seconds(), 2);
+  if (!checksOk)
   {
-    PrintSummary(cases);
-  }
-  const double total = SecondsSince(start);
-  WriteJson(options, machine, datasets, cases, total);
-  std::cout << "results written to " << options.Json << "; total " << Num(total, 1) << " s\n";
-  if (!std::all_of(cases.begin(), cases.end(), [](const CaseResult& c) { return c.ChecksOk(); }))
-  {
-    std::cout << "FAILED: image checks (see above)\n";
+    std::cout << "FAILED: image checks (see the JSON's \"checks\")\n";
     return 3;
   }
-  return ok && !cases.empty() ? 0 : 1;
+  return ok && !result["cases"].empty() ? 0 : 1;
 }
+
+} // namespace
+} // namespace accelvolume::benchmark::shearwarp
+
+namespace accelvolume::benchmark
+{
+std::unique_ptr<Benchmark> MakeBenchmark()
+{
+  return std::make_unique<shearwarp::ShearWarpBenchmark>();
+}
+} // namespace accelvolume::benchmark

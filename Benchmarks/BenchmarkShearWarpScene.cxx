@@ -1,10 +1,8 @@
-// The scene one process of accelvolume_benchmark_shearwarp renders, its frame records, the JSON of
-// one run, and VolPack rendering the same scene (see BenchmarkShearWarpScene.h).
+// The scene one process of accelvolume_benchmark_shearwarp renders, its frame records, and
+// VolPack rendering the same scene (see BenchmarkShearWarpScene.h).
 #include "BenchmarkShearWarpScene.h"
 
-#include "BenchmarkCommon.h"
 #include "BenchmarkImageMetrics.h"
-#include "JsonReader.h"
 #include "Options.h"
 #include "TransferFunctions.h"
 #include "VolumeIO.h"
@@ -22,8 +20,6 @@
 #include "VolPackRenderer.h"
 #endif
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -34,41 +30,6 @@ namespace accelvolume::benchmark::shearwarp
 {
 namespace
 {
-// User + system CPU time of the whole process (every thread) in milliseconds.
-double ProcessCpuMs()
-{
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return 1000.0 * (usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-    (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1000.0;
-}
-
-double Number(const accelvolume::cli::JsonValue& object, const char* key)
-{
-  const auto found = object.members.find(key);
-  if (found == object.members.end() ||
-    found->second.kind != accelvolume::cli::JsonValue::Kind::Number)
-  {
-    return std::nan("");
-  }
-  return found->second.number;
-}
-
-std::vector<double> Numbers(const accelvolume::cli::JsonValue& object, const char* key)
-{
-  std::vector<double> values;
-  const auto found = object.members.find(key);
-  if (found != object.members.end())
-  {
-    for (const auto& item : found->second.items)
-    {
-      values.push_back(
-        item.kind == accelvolume::cli::JsonValue::Kind::Number ? item.number : std::nan(""));
-    }
-  }
-  return values;
-}
-
 // voxel index -> image pixel coordinates of the renderer's parallel camera (as the mapper).
 void VoxelToImage(vtkImageData* image, vtkVolume* volume, vtkCamera* camera, int width, int height,
   double out[3][4])
@@ -98,12 +59,12 @@ void VoxelToImage(vtkImageData* image, vtkVolume* volume, vtkCamera* camera, int
 }
 } // namespace
 
-bool LoadDataset(const Options& options, const std::string& name, DatasetInfo& info,
+bool LoadDataset(const std::string& dataDir, const std::string& name, DatasetInfo& info,
   vtkSmartPointer<vtkImageData>& image, bool quiet)
 {
   info.Name = name;
-  info.File = FindDatasetFile(options.DataDir, name);
-  std::string error = "no file " + name + "_<X>x<Y>x<Z>_<type>.raw[.gz] in " + options.DataDir;
+  info.File = FindDatasetFile(dataDir, name);
+  std::string error = "no file " + name + "_<X>x<Y>x<Z>_<type>.raw[.gz] in " + dataDir;
   if (!info.File.empty())
   {
     accelvolume::cli::VolumeRequest request;
@@ -123,10 +84,7 @@ bool LoadDataset(const Options& options, const std::string& name, DatasetInfo& i
   image->GetPointData()->GetScalars()->GetRange(info.Range);
   if (!quiet)
   {
-    std::cout << "=== " << name << ": " << info.Description << ", spacing " << info.Spacing[0]
-              << " " << info.Spacing[1] << " " << info.Spacing[2] << ", range " << info.Range[0]
-              << ".." << info.Range[1] << " (loaded in " << Num(info.LoadSeconds, 2) << " s)\n"
-              << std::flush;
+    std::cout << "=== " << name << ": " << info.Description << "\n" << std::flush;
   }
   return true;
 }
@@ -146,7 +104,7 @@ double VoxelsOfFile(const std::string& file)
 Scene::Scene(const DatasetInfo& info, int backend, const std::string& tf, bool shade, int size)
   : Size(size)
 {
-  StartHeadlessWindow(this->Window, backend, size, size);
+  Harness::StartWindow(this->Window, backend, size, size);
   this->Renderer->SetBackground(0, 0, 0);
   this->Window->AddRenderer(this->Renderer);
   accelvolume::cli::Options cli; // `render --blend composite --tf <tf> --shade on|off`
@@ -186,7 +144,7 @@ void Scene::Add(
   this->Mappers.push_back(mapper);
 }
 
-void Scene::FixedView(const Options& options)
+void Scene::FixedView(double azimuth, double elevation)
 {
   double bounds[6];
   this->Renderer->ComputeVisiblePropBounds(bounds);
@@ -198,8 +156,8 @@ void Scene::FixedView(const Options& options)
   camera->SetPosition(centre[0], centre[1], centre[2] - 1);
   camera->SetViewUp(0, 1, 0);
   this->Renderer->ResetCamera(bounds);
-  camera->Azimuth(options.Azimuth);
-  camera->Elevation(options.Elevation);
+  camera->Azimuth(azimuth);
+  camera->Elevation(elevation);
   camera->OrthogonalizeViewUp();
   this->Renderer->ResetCameraClippingRange(bounds);
 }
@@ -274,105 +232,6 @@ void RecordFirst(vtkAccelVolumeShearWarpMapper* m, double wallMs, RunResult& r)
   r.Axis = m->GetLastPrincipalAxis();
 }
 
-void JsonArray(std::ostream& out, const std::vector<double>& values)
-{
-  out << "[";
-  for (size_t i = 0; i < values.size(); ++i)
-  {
-    out << (i ? ", " : "") << Num(values[i], 3);
-  }
-  out << "]";
-}
-
-void WriteRunJson(std::ostream& out, const RunResult& r, const char* indent)
-{
-  const Config& g = r.Cfg;
-  out << "{\"id\": \"" << g.Id << "\", \"label\": \"" << JsonEscape(g.Label)
-      << "\", \"experiment\": " << g.Experiment << ", \"rle\": " << (g.Rle ? "true" : "false")
-      << ", \"ert\": " << (g.Ert ? "true" : "false")
-      << ", \"balance\": " << (g.Balance ? "true" : "false")
-      << ", \"phong\": " << (g.Phong ? "true" : "false") << ", \"threads\": " << r.Threads
-      << ", \"ranks\": " << r.Ranks << ",\n"
-      << indent << " \"median_ms\": " << Num(r.MedianMs(), 3)
-      << ", \"median_engine_ms\": " << Num(r.MedianEngineMs(), 3)
-      << ", \"median_wall_ms\": " << Num(Median(r.WallMs), 3)
-      << ", \"median_composite_ms\": " << Num(Median(r.CompositeMs), 3)
-      << ", \"median_warp_ms\": " << Num(Median(r.WarpMs), 3)
-      << ", \"median_table_ms\": " << Num(Median(r.TableMs), 3)
-      << ", \"median_gather_ms\": " << Num(Median(r.GatherMs), 3)
-      << ", \"mean_imbalance\": " << Num(r.MeanImbalance(), 4)
-      << ", \"median_cores\": " << Num(Median(r.Cores), 2) << ",\n"
-      << indent << " \"first_frame_ms\": " << Num(r.FirstFrameMs, 2)
-      << ", \"encode_ms\": " << Num(r.EncodeMs, 2) << ", \"stored_voxels\": " << r.StoredVoxels
-      << ", \"encoded_bytes\": " << r.EncodedBytes << ", \"principal_axis\": " << r.Axis
-      << ", \"bands\": " << r.Bands << ", \"voxels_per_frame\": " << Num(r.Voxels, 0)
-      << ", \"samples_per_frame\": " << Num(r.Samples, 0)
-      << ", \"skipped_pixels_per_frame\": " << Num(r.SkippedPixels, 0) << ",\n"
-      << indent << " \"render_ms\": ";
-  JsonArray(out, r.RenderMs);
-  out << ",\n" << indent << " \"engine_ms\": ";
-  JsonArray(out, r.EngineMs);
-  out << ",\n" << indent << " \"wall_ms\": ";
-  JsonArray(out, r.WallMs);
-  out << ",\n" << indent << " \"composite_ms\": ";
-  JsonArray(out, r.CompositeMs);
-  out << ",\n" << indent << " \"warp_ms\": ";
-  JsonArray(out, r.WarpMs);
-  out << ",\n" << indent << " \"table_ms\": ";
-  JsonArray(out, r.TableMs);
-  out << ",\n" << indent << " \"gather_ms\": ";
-  JsonArray(out, r.GatherMs);
-  out << ",\n" << indent << " \"imbalance\": ";
-  JsonArray(out, r.Imbalance);
-  out << ",\n" << indent << " \"cores\": ";
-  JsonArray(out, r.Cores);
-  out << ",\n" << indent << " \"last_band_ms\": ";
-  JsonArray(out, r.BandMs);
-  out << "}";
-}
-
-bool ReadRunJson(const accelvolume::cli::JsonValue& v, RunResult& r)
-{
-  if (v.kind != accelvolume::cli::JsonValue::Kind::Object || !v.members.count("id"))
-  {
-    return false;
-  }
-  auto flag = [&](const char* key)
-  {
-    const auto found = v.members.find(key);
-    return found != v.members.end() && found->second.boolean;
-  };
-  r.Cfg.Id = v.members.at("id").text;
-  r.Cfg.Label = v.members.count("label") ? v.members.at("label").text : r.Cfg.Id;
-  r.Cfg.Experiment = static_cast<int>(Number(v, "experiment"));
-  r.Cfg.Rle = flag("rle");
-  r.Cfg.Ert = flag("ert");
-  r.Cfg.Balance = flag("balance");
-  r.Cfg.Phong = flag("phong");
-  r.Threads = static_cast<int>(Number(v, "threads"));
-  r.Ranks = static_cast<int>(Number(v, "ranks"));
-  r.FirstFrameMs = Number(v, "first_frame_ms");
-  r.EncodeMs = Number(v, "encode_ms");
-  r.StoredVoxels = static_cast<long long>(Number(v, "stored_voxels"));
-  r.EncodedBytes = static_cast<long long>(Number(v, "encoded_bytes"));
-  r.Axis = static_cast<int>(Number(v, "principal_axis"));
-  r.Bands = static_cast<int>(Number(v, "bands"));
-  r.Voxels = Number(v, "voxels_per_frame");
-  r.Samples = Number(v, "samples_per_frame");
-  r.SkippedPixels = Number(v, "skipped_pixels_per_frame");
-  r.RenderMs = Numbers(v, "render_ms");
-  r.EngineMs = Numbers(v, "engine_ms");
-  r.WallMs = Numbers(v, "wall_ms");
-  r.CompositeMs = Numbers(v, "composite_ms");
-  r.WarpMs = Numbers(v, "warp_ms");
-  r.TableMs = Numbers(v, "table_ms");
-  r.GatherMs = Numbers(v, "gather_ms");
-  r.Imbalance = Numbers(v, "imbalance");
-  r.Cores = Numbers(v, "cores");
-  r.BandMs = Numbers(v, "last_band_ms");
-  return !r.RenderMs.empty();
-}
-
 // ---- VolPack ------------------------------------------------------------------------------------
 struct VolPackAnchor::Internals
 {
@@ -437,8 +296,8 @@ bool VolPackAnchor::Prepare(vtkVolumeProperty* property, bool shade, int axis,
   const DatasetInfo& info = vp.Info;
   const double unit = std::max(1e-6, property->GetScalarOpacityUnitDistance(0));
   vp.Exponent = info.Spacing[std::clamp(axis, 0, 2)] / unit;
-  const std::string key = tf + (shade ? "/shaded/" : "/unshaded/") + std::to_string(axis) +
-    (grey ? "/grey" : "/rgb");
+  const std::string key =
+    tf + (shade ? "/shaded/" : "/unshaded/") + std::to_string(axis) + (grey ? "/grey" : "/rgb");
   if (key == vp.PreparedKey && vp.Renderer)
   {
     return true;

@@ -1,11 +1,10 @@
 // What one process of accelvolume_benchmark_shearwarp renders and records: the volume, the
-// headless window with the shear-warp mappers of a case, the frame records, the JSON of one run
-// (what an MPI worker hands back), and VolPack rendering the same scene.
+// headless window with the shear-warp mappers of a case, the frame records, and VolPack rendering
+// the same scene.
 #ifndef accelvolume_benchmark_BenchmarkShearWarpScene_h
 #define accelvolume_benchmark_BenchmarkShearWarpScene_h
 
-#include "BenchmarkShearWarpOptions.h"
-#include "BenchmarkShearWarpReport.h"
+#include "BenchmarkShearWarpResults.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeShearWarpMapper.h"
@@ -19,7 +18,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -27,18 +25,13 @@ class vtkCamera;
 class vtkImageData;
 class vtkMultiProcessController;
 
-namespace accelvolume::cli
-{
-struct JsonValue;
-}
-
 namespace accelvolume::benchmark::shearwarp
 {
 
 using Image = std::vector<std::uint8_t>; // RGB bytes, bottom row first
 
 // Loads `name` from the data folder (a line on stdout unless quiet); false after saying why.
-bool LoadDataset(const Options& options, const std::string& name, DatasetInfo& info,
+bool LoadDataset(const std::string& dataDir, const std::string& name, DatasetInfo& info,
   vtkSmartPointer<vtkImageData>& image, bool quiet);
 // The voxels NAME_<X>x<Y>x<Z>_... says the file holds (0 when the name does not say).
 double VoxelsOfFile(const std::string& file);
@@ -56,7 +49,7 @@ public:
   void Add(
     vtkImageData* image, const Config& cfg, int threads, vtkMultiProcessController* controller);
   // Parallel camera fitted to the volume (looking along +z), turned to the fixed view.
-  void FixedView(const Options& options);
+  void FixedView(double azimuth, double elevation);
   void Turn(double degrees); // azimuth
   // Shows mapper k alone and renders it: wall milliseconds of Render() + a 1x1 read-back.
   double Render(std::size_t k);
@@ -83,12 +76,6 @@ private:
 void RecordFirst(vtkAccelVolumeShearWarpMapper* m, double wallMs, RunResult& r);
 void Record(
   vtkAccelVolumeShearWarpMapper* m, double wallMs, double cores, double perFrame, RunResult& r);
-
-// Values with 3 decimals as a JSON array (null for NaN).
-void JsonArray(std::ostream& out, const std::vector<double>& values);
-// One run as a JSON object (in the benchmark's JSON, and what an MPI worker writes), and back.
-void WriteRunJson(std::ostream& out, const RunResult& run, const char* indent);
-bool ReadRunJson(const accelvolume::cli::JsonValue& value, RunResult& run);
 
 // VolPack rendering a case's scene: the volume quantized over its range to 8 bits, the property's
 // tables at 256 entries (colour: the RGB transfer function, VolPack's RGB mode, or with grey the

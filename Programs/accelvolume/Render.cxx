@@ -354,11 +354,9 @@ void CheckCrop(const Options& options, vtkImageData* image)
   }
 }
 
-RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
-  VTKMessages& messages, vtkAccelVolumeMPIExchange* mpi)
+// The window (--window or the data range), the raysum unit and the sample distance.
+void ChooseRanges(const Options& options, vtkImageData* image, RenderResult& result)
 {
-  const FaultInjection fault = FaultInjection::FromEnvironment();
-  RenderResult result;
   image->GetPointData()->GetScalars()->GetRange(result.scalarRange, 0);
   if (options.haveWindow)
   {
@@ -370,10 +368,6 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.window[1] = result.scalarRange[1] > result.scalarRange[0] ? result.scalarRange[1]
                                                                      : result.scalarRange[0] + 1;
   }
-
-  // Transfer functions and lighting shared by every mapper.
-  vtkNew<vtkVolumeProperty> property;
-  result.transferFunction = ApplyTransferFunction(tf, options, result.window, property);
 
   const double* spacing = image->GetSpacing();
   double bounds[6];
@@ -398,9 +392,12 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     result.sampleDistance = std::min({ spacing[0], spacing[1], spacing[2] });
     result.sampleDistanceSource = "min-spacing";
   }
+}
 
-  const MapperSet mappers = CreateMapper(options, result, mpi);
-  vtkVolumeMapper* mapper = mappers.Mapper;
+// Blend mode, input and cropping of the mapper.
+void ConfigureMapper(
+  const Options& options, vtkImageData* image, vtkVolumeMapper* mapper, RenderResult& result)
+{
   switch (options.blend)
   {
     case BlendKind::MIP:
@@ -427,15 +424,11 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
     mapper->SetCroppingRegionPlanes(result.cropPlanes);
     mapper->SetCroppingRegionFlagsToSubVolume();
   }
+}
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(options.background[0], options.background[1], options.background[2]);
-  renderer->AddVolume(volume);
-
-  // Front view: looking along +z at the centre, view-up +y; then the requested moves.
+// Front view: looking along +z at the centre, view-up +y; then the requested moves.
+void PlaceCamera(const Options& options, const double bounds[6], vtkRenderer* renderer)
+{
   vtkCamera* camera = renderer->GetActiveCamera();
   const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
@@ -450,7 +443,10 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   camera->Roll(options.roll);
   camera->Zoom(options.zoom);
   renderer->ResetCameraClippingRange();
+}
 
+vtkSmartPointer<vtkRenderWindow> CreateWindow(const Options& options, vtkRenderer* renderer)
+{
   auto window = vtkSmartPointer<vtkRenderWindow>::Take(vtkRenderWindow::New());
   if (!window)
   {
@@ -460,6 +456,106 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   window->SetMultiSamples(0);
   window->SetSize(options.size[0], options.size[1]);
   window->AddRenderer(renderer);
+  return window;
+}
+
+// ACCELVOLUME_FAULT (test hook): strikes from the mapper's own events on the main thread.
+void PrepareFault(const FaultInjection& fault, vtkCallbackCommand* onFault)
+{
+  onFault->SetClientData(const_cast<FaultInjection*>(&fault));
+  onFault->SetCallback(
+    [](vtkObject*, unsigned long event, void* client, void* data)
+    {
+      const auto* plan = static_cast<const FaultInjection*>(client);
+      // The shear-warp mapper reports 0.75 once its band is composited, before the gather;
+      // VTK's pipeline sends 1 of its own when it updates a modified mapper.
+      const double value =
+        event == vtkCommand::ProgressEvent && data ? *static_cast<double*>(data) : -1;
+      const bool due =
+        plan->AtStart ? event == vtkCommand::StartEvent : value >= 0.75 && value < 0.9;
+      if (due)
+      {
+        plan->Strike();
+      }
+    });
+}
+
+// The GL backend and renderer names for --stats, and the mappers' own results.
+void ReadResults(const MapperSet& mappers, vtkImageData* image, vtkRenderWindow* window,
+  vtkCamera* camera, VTKMessages& messages, vtkAccelVolumeMPIExchange* mpi, RenderResult& result)
+{
+  auto* headless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
+  if (headless)
+  {
+    result.glBackend =
+      vtkAccelVolumeHeadlessRenderWindow::GetBackendName(headless->GetActiveBackend());
+  }
+  else
+  {
+    const std::string name = window->GetClassName();
+    result.glBackend = name.find("XOpenGL") != std::string::npos ? "x" : name;
+  }
+  ReadMapperResults(mappers, image, camera, mpi, result);
+  const char* rendererName = nullptr;
+  if (result.sliceUsed)
+  {
+    rendererName = mappers.Slice->GetOpenGLRenderer();
+  }
+  else if (headless)
+  {
+    rendererName = headless->GetOpenGLRendererString();
+  }
+  result.glRenderer =
+    rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);
+  messages.Clear(); // a failed capability query is not a render failure
+}
+
+void WritePng(const Options& options, vtkRenderWindow* window, VTKMessages& messages)
+{
+  if (!options.outPath.empty())
+  {
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->ReadFrontBufferOff();
+    grab->ShouldRerenderOff();
+    grab->SetInputBufferTypeToRGB();
+    grab->Update();
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(options.outPath.c_str());
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->Write();
+    messages.ThrowIfError("cannot write '" + options.outPath + "'");
+    if (writer->GetErrorCode() != 0)
+    {
+      throw CliError(ExitRuntime, "cannot write '" + options.outPath + "'");
+    }
+  }
+}
+
+RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, vtkImageData* image,
+  VTKMessages& messages, vtkAccelVolumeMPIExchange* mpi)
+{
+  const FaultInjection fault = FaultInjection::FromEnvironment();
+  RenderResult result;
+  ChooseRanges(options, image, result);
+  // Transfer functions and lighting shared by every mapper.
+  vtkNew<vtkVolumeProperty> property;
+  result.transferFunction = ApplyTransferFunction(tf, options, result.window, property);
+
+  const MapperSet mappers = CreateMapper(options, result, mpi);
+  vtkVolumeMapper* mapper = mappers.Mapper;
+  ConfigureMapper(options, image, mapper, result);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(options.background[0], options.background[1], options.background[2]);
+  renderer->AddVolume(volume);
+  double bounds[6];
+  image->GetBounds(bounds);
+  PlaceCamera(options, bounds, renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const vtkSmartPointer<vtkRenderWindow> window = CreateWindow(options, renderer);
   // --mpi: the ranks render in lockstep, so a failure on any rank must stop every rank (a rank
   // left alone would wait for the failed one forever); rank 0 reports the failed rank's error.
   const auto agree = [&](const std::string& context)
@@ -483,29 +579,13 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   }
   const int tasks = options.frames + 1;
 
-  // ACCELVOLUME_FAULT (test hook): strikes from the mapper's own events on the main thread.
   int renders = 0;
   vtkNew<vtkCallbackCommand> onFault;
   const bool faultHere =
     fault.What != FaultInjection::Kind::None && fault.Rank == (mpi ? mpi->GetRank() : 0);
   if (faultHere)
   {
-    onFault->SetClientData(const_cast<FaultInjection*>(&fault));
-    onFault->SetCallback(
-      [](vtkObject*, unsigned long event, void* client, void* data)
-      {
-        const auto* plan = static_cast<const FaultInjection*>(client);
-        // The shear-warp mapper reports 0.75 once its band is composited, before the gather;
-        // VTK's pipeline sends 1 of its own when it updates a modified mapper.
-        const double value =
-          event == vtkCommand::ProgressEvent && data ? *static_cast<double*>(data) : -1;
-        const bool due =
-          plan->AtStart ? event == vtkCommand::StartEvent : value >= 0.75 && value < 0.9;
-        if (due)
-        {
-          plan->Strike();
-        }
-      });
+    PrepareFault(fault, onFault);
   }
 
   vtkNew<vtkUnsignedCharArray> pixel;
@@ -540,48 +620,10 @@ RenderResult RunRender(const Options& options, const TransferFunctionSpec& tf, v
   bar.Finish();
   mapper->RemoveObserver(onProgress);
 
-  auto* headless = vtkAccelVolumeHeadlessRenderWindow::SafeDownCast(window);
-  if (headless)
-  {
-    result.glBackend =
-      vtkAccelVolumeHeadlessRenderWindow::GetBackendName(headless->GetActiveBackend());
-  }
-  else
-  {
-    const std::string name = window->GetClassName();
-    result.glBackend = name.find("XOpenGL") != std::string::npos ? "x" : name;
-  }
-  ReadMapperResults(mappers, image, camera, mpi, result);
-  const char* rendererName = nullptr;
-  if (result.sliceUsed)
-  {
-    rendererName = mappers.Slice->GetOpenGLRenderer();
-  }
-  else if (headless)
-  {
-    rendererName = headless->GetOpenGLRendererString();
-  }
-  result.glRenderer =
-    rendererName && *rendererName ? rendererName : RendererFromCapabilities(window);
-  messages.Clear(); // a failed capability query is not a render failure
-
+  ReadResults(mappers, image, window, camera, messages, mpi, result);
   if (!options.outPath.empty())
   {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->ReadFrontBufferOff();
-    grab->ShouldRerenderOff();
-    grab->SetInputBufferTypeToRGB();
-    grab->Update();
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetFileName(options.outPath.c_str());
-    writer->SetInputConnection(grab->GetOutputPort());
-    writer->Write();
-    messages.ThrowIfError("cannot write '" + options.outPath + "'");
-    if (writer->GetErrorCode() != 0)
-    {
-      throw CliError(ExitRuntime, "cannot write '" + options.outPath + "'");
-    }
+    WritePng(options, window, messages);
   }
   return result;
 }

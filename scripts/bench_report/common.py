@@ -1,8 +1,10 @@
 """Shared pieces of the report: reading result files, number formatting, Markdown tables.
 
 Ratios in the report are ratios of medians (slower median / faster median), computed here from
-the benchmarks' `median_ms` fields, so every table uses one rule. The benchmark programs' own
-printed tables use the median of paired per-frame ratios, which can differ by a few percent.
+the benchmarks' `median_ms` fields, so every table uses one rule. The programs print no tables:
+every table is rendered here. Where a detail table shows the programs' own "paired" ratios
+(`speedup_over_base`, `time_ratio_vs_a`: medians of per-round ratios) it says so; they can
+differ from the ratio of medians by a few percent.
 """
 
 import json
@@ -173,6 +175,21 @@ def table(header, rows, align=None):
         cells = [str(c).replace("|", "\\|") for c in row]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
+
+
+def details(summary, header, rows, align=None):
+    """A collapsed block holding a table: the per-configuration numbers behind a section's
+    main table (what the benchmark programs measure beside it). "" without rows."""
+    if not rows:
+        return ""
+    return (f"\n<details><summary>{summary}</summary>\n\n" + table(header, rows, align) +
+            "\n</details>\n")
+
+
+def fmt_count(value):
+    """A large count in millions ("12.35M"); "-" when unknown."""
+    value = number(value)
+    return f"{value / 1e6:.2f}M" if math.isfinite(value) else "-"
 
 
 def note(text):

@@ -3,8 +3,8 @@ termination (ERT) and empty-space skipping (ESS) against the plain slicer and VT
 caster (Lee 2005, Table V-3)."""
 
 from . import charts
-from .common import (Comparison, Section, by_id, field_of, fmt_ms, fmt_num, fmt_x, ratio,
-                     records, table, value_range)
+from .common import (Comparison, Section, by_id, details, field_of, fmt_ms, fmt_num, fmt_pct,
+                     fmt_x, number, ratio, records, table, value_range)
 
 FILE = "composite.json"
 TITLE = "Slice mapper, composite: early ray termination and empty-space skipping (Lee 2005)"
@@ -81,6 +81,7 @@ def build(data, ctx):
                  value_range([c.value for c in section.speedups if c.group == TECHNIQUES[3][1]]) +
                  "; ours vs VTK's GPU ray caster " +
                  value_range([c.value for c in section.peers]) + ".\n")
+    text += _details(data, cases)
     text += f"\n{PAPER}\n"
     chart = ctx.chart_path("composite_speedups.png")
     named = [(name.split(": ", 1)[1], series[tid]) for tid, name in TECHNIQUES]
@@ -91,3 +92,30 @@ def build(data, ctx):
         text += f"\n![Composite speed-ups per case]({ctx.link(chart)})\n"
     section.markdown = text
     return section
+
+
+def _details(data, cases):
+    """The volumes, and every configuration of every case as the program measured it."""
+    volumes = [[f"volume {d.get('name', '?')}", d.get("volume", "?"),
+                " ".join(f"{number(v):g}" for v in d.get("spacing", [])),
+                fmt_num(d.get("sample_distance"), 3),
+                "..".join(f"{number(v):g}" for v in d.get("range", [])),
+                fmt_num(d.get("load_seconds"))]
+               for d in data.get("datasets", []) if isinstance(d, dict)]
+    rows = []
+    for case in cases:
+        label = f"{case.get('dataset', '?')}/{case.get('tf', '?')}/{case.get('size', '?')}"
+        for config in case.get("configs", []):
+            leaves = number(config.get("transparent_leaf_fraction"))
+            rows.append([f"{label}: {config.get('id', '?')}", config.get("label", "?"),
+                         fmt_ms(config.get("median_ms")), fmt_num(config.get("fps")),
+                         fmt_x(number(config.get("speedup_over_base"))),
+                         fmt_ms(config.get("mapper_median_ms")), config.get("slices", "-"),
+                         config.get("termination_passes", "-"),
+                         fmt_pct(100 * leaves, 0) if leaves >= 0 else "-"])
+    return (details("Volumes", ["Volume", "Dims and type", "Spacing", "Sample distance",
+                                "Range", "Load s"], volumes, "llrrrr") +
+            details("Every configuration (paired speed-up = median of per-round ratios)",
+                    ["Case: configuration", "Label", "ms", "fps", "Paired speed-up",
+                     "Mapper ms", "Slices", "ERT passes", "Transparent leaves"], rows,
+                    "ll" + "r" * 7))

@@ -3,8 +3,8 @@ one and all threads, OpenGL compute "GPU") against a one-thread read of the volu
 rebuild's share of a frame of a time-varying volume (Lim and Shin 2009)."""
 
 from . import charts
-from .common import (Comparison, Section, fmt_ms, fmt_num, fmt_pct, fmt_x, number, ratio,
-                     records, table, value_range)
+from .common import (Comparison, Section, details, fmt_ms, fmt_num, fmt_pct, fmt_x, median,
+                     number, ratio, records, table, value_range)
 
 FILE = "octree.json"
 TITLE = "Min-max octree build: CPU and GPU builders (Lim and Shin 2009)"
@@ -85,6 +85,7 @@ def build(data, ctx):
                  "; GPU vs CPU: " +
                  value_range([c.value for c in section.speedups if c.group == GPU_VS_CPU]) +
                  f" (GPU = OpenGL compute on {data.get('gl_renderer', '?')}).\n")
+    text += _details(datasets)
     text += f"\n{PAPER}\n"
     chart = ctx.chart_path("octree_builds.png")
     if charts.grouped_bars(chart, "Min-max octree build time per builder", names,
@@ -93,3 +94,41 @@ def build(data, ctx):
         text += f"\n![Octree build times]({ctx.link(chart)})\n"
     section.markdown = text
     return section
+
+
+def _details(datasets):
+    """Every build (throughput, ratios), the octrees, and the time-varying frames' breakdown."""
+    builds, trees, frames = [], [], []
+    for dataset in datasets:
+        name = dataset.get("name", "?")
+        reference, one, _, _ = _builds(dataset, FILE)
+        for build in dataset.get("builds", []):
+            builds.append([f"{name}: {build.get('builder', '?')} {build.get('threads', '?')}t",
+                           fmt_ms(build.get("median_ms")), len(build.get("ms", [])),
+                           "yes" if build.get("reduced_repeats") else "no",
+                           fmt_num(1e-6 * number(dataset.get("bytes")) /
+                                   number(build.get("median_ms"))),
+                           fmt_x(ratio(_ms(reference), build.get("median_ms"))),
+                           fmt_num(ratio(build.get("median_ms"), dataset.get("read_floor_ms")))])
+        classify = dataset.get("classify_ms", {})
+        classify = classify if isinstance(classify, dict) else {}
+        trees.append([f"octree {name}", dataset.get("nodes", "?"), dataset.get("depth", "?"),
+                      fmt_ms(classify.get("median")),
+                      fmt_ms(min((number(v) for v in classify.get("all", [])), default=None)),
+                      fmt_x(ratio(_ms(reference), _ms(one))), fmt_num(dataset.get("load_s"))])
+        f = dataset.get("frames")
+        if isinstance(f, dict):
+            frames.append([f"frames {name}", len(f.get("frame_ms", [])),
+                           fmt_ms(median(f.get("copy_ms", []))),
+                           fmt_ms(median(f.get("rebuild_ms", []))),
+                           fmt_ms(median(f.get("render_ms", []))),
+                           fmt_ms(median(f.get("frame_ms", []))),
+                           fmt_pct(number(f.get("rebuild_percent_of_frame"))),
+                           fmt_ms(median(f.get("generate_ms", [])))])
+    return (details("Every build", ["Dataset: builder", "Median ms", "Builds", "Fewer repeats",
+                                    "GB/s", "vs reference", "/ read floor"], builds) +
+            details("Octrees", ["Octree", "Nodes", "Depth", "Re-classify median ms",
+                                "Re-classify min ms", "CPU 1t vs reference", "Load s"], trees) +
+            details("Time-varying frames (medians; generation is outside the frame)",
+                    ["Volume", "Frames", "Copy + Modified ms", "Rebuild ms",
+                     "MIP render ms", "Frame ms", "Rebuild share", "Generate ms"], frames))

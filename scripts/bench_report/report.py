@@ -9,13 +9,16 @@ import math
 import os
 import sys
 
-from . import charts, composite, cropping, gallery, machine, octree, raycast, shearwarp
+from . import (bricking, charts, composite, cropping, gallery, machine, memory, octree, raycast,
+               shearwarp)
 from .common import (Context, InputError, Section, finite, fmt_x, load_json, note, table,
                      value_range)
 
 # Report order follows the papers: 000 slice composite, 001 ray casting, 002 octree, 003
 # shear-warp, 004 cropping.
 MODULES = [composite, raycast, octree, shearwarp, cropping]
+# Sections written only when their JSON is in the results (bench.sh does not run them).
+OPTIONAL_MODULES = [memory, bricking]
 # Which program writes which file (for the notes about missing results).
 PROGRAMS = {
     "composite": "accelvolume_benchmark_composite",
@@ -23,6 +26,8 @@ PROGRAMS = {
     "octree": "accelvolume_benchmark_octree",
     "shearwarp": "accelvolume_benchmark_shearwarp",
     "cropping": "accelvolume_benchmark_cropping",
+    "memory": "accelvolume_benchmark_memory",
+    "bricking": "accelvolume_benchmark_bricking",
 }
 
 
@@ -140,7 +145,8 @@ def generate(results_dir, markdown_path, assets_dir):
     quick = bool(machine_info and machine_info.get("mode") == "quick")
     ctx = Context(md_dir=md_dir, charts_dir=charts_dir, quick=quick)
     runs = read_runs(os.path.join(results_dir, "runs.tsv"))
-    sections = [_section(m, results_dir, ctx, runs, errors) for m in MODULES]
+    present = [m for m in OPTIONAL_MODULES if os.path.exists(os.path.join(results_dir, m.FILE))]
+    sections = [_section(m, results_dir, ctx, runs, errors) for m in MODULES + present]
 
     results_link = ctx.link(results_dir)
     out = ["# AccelVolume benchmark report\n",
@@ -178,8 +184,10 @@ def generate(results_dir, markdown_path, assets_dir):
     out.append("\n## How the numbers are made\n")
     out.append(
         "- Every ratio is computed here from the medians in the JSON files (slower median / "
-        "faster median), the same way in every table; the benchmark programs' own printed "
-        "tables use the median of per-frame paired ratios, which can differ by a few percent.\n"
+        "faster median), the same way in every table; the \"paired\" ratios in the detail "
+        "tables are the programs' medians of per-round ratios, which can differ by a few "
+        "percent. The programs print no tables: they write JSON, and every table is rendered "
+        "here.\n"
         "- Timings are only as good as the machine was quiet: on the shared 2-core machine "
         "the project is developed on, repeated runs varied by 10-40% (docs/benchmarks/). The "
         "Runs table gives each program's exact command line.\n"

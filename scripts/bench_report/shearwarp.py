@@ -3,8 +3,8 @@ skip links, with RLE and bands balanced by the previous frame, on 1 and all thre
 ranks, against Lacroute's VolPack (Kim 1998, Tables 2-3)."""
 
 from . import charts
-from .common import (Comparison, Section, fmt_ms, fmt_num, fmt_pct, fmt_x, number, ratio,
-                     records, table, value_range)
+from .common import (Comparison, Section, details, fmt_count, fmt_ms, fmt_num, fmt_pct, fmt_x,
+                     number, ratio, records, table, value_range)
 
 FILE = "shearwarp.json"
 TITLE = "Shear-warp: run-length encoding, balanced partition, threads, MPI, VolPack (Kim 1998)"
@@ -111,6 +111,7 @@ def build(data, ctx):
                 [c.value for c in section.speedups if c.group == BALANCED]) +
             "; ours (1 thread) vs VolPack " + value_range([c.value for c in section.peers]) +
             ".\n")
+    text += _details(cases)
     text += f"\n{PAPER}\n"
     chart = ctx.chart_path("shearwarp_ms.png")
     if charts.grouped_bars(chart, "Shear-warp: engine ms per frame", categories,
@@ -119,3 +120,33 @@ def build(data, ctx):
         text += f"\n![Shear-warp times per case]({ctx.link(chart)})\n"
     section.markdown = text
     return section
+
+
+def _details(cases):
+    """Every run (threads, MPI ranks) with its time split, and every image check."""
+    rows, checks = [], []
+    for case in cases:
+        key = case.get("key", "?")
+        runs = [(run, f"{run.get('threads', '?')}t") for run in case.get("runs", [])]
+        runs += [(run, f"MPI {run.get('ranks', '?')}r") for run in case.get("mpi", [])]
+        for run, who in runs:
+            rows.append([f"{key}: {run.get('id', '?')} {who}", fmt_ms(run.get("median_ms")),
+                         fmt_ms(run.get("median_engine_ms")), fmt_ms(run.get("median_wall_ms")),
+                         fmt_ms(run.get("median_composite_ms")), fmt_ms(run.get("median_warp_ms")),
+                         fmt_ms(run.get("median_table_ms")), fmt_ms(run.get("median_gather_ms")),
+                         fmt_num(run.get("mean_imbalance"), 3), fmt_num(run.get("median_cores")),
+                         fmt_ms(run.get("first_frame_ms")), fmt_ms(run.get("encode_ms")),
+                         fmt_count(run.get("voxels_per_frame")),
+                         fmt_count(run.get("skipped_pixels_per_frame")), run.get("bands", "-")])
+        for check in case.get("checks", []):
+            ok = number(check.get("max_difference")) <= number(check.get("bound"))
+            checks.append([f"{key}: {check.get('a', '?')} vs {check.get('b', '?')}",
+                           check.get("bound", "?"), check.get("differing_pixels", "?"),
+                           check.get("max_difference", "?"), "ok" if ok else "**failed**"])
+    return (details("Every run (medians per frame)",
+                    ["Case: run", "Render ms", "Engine ms", "Wall ms", "Composite ms", "Warp ms",
+                     "Table ms", "Gather ms", "Imbalance", "Cores", "1st frame ms", "Encode ms",
+                     "Voxels", "Skipped px", "Bands"], rows, "l" + "r" * 14) +
+            details("Image checks (byte differences at the fixed view)",
+                    ["Case: images", "Bound", "Differing pixels", "Max difference", "Result"],
+                    checks, "lrrrr"))

@@ -1,11 +1,11 @@
-// Per-case results of accelvolume_benchmark_shearwarp, its printed tables and its JSON file (also
-// the JSON an MPI worker hands back). A case is one volume x transfer function x shading x size.
-#ifndef accelvolume_benchmark_BenchmarkShearWarpReport_h
-#define accelvolume_benchmark_BenchmarkShearWarpReport_h
+// Settings, per-case results and their JSON of accelvolume_benchmark_shearwarp (the JSON the
+// report reads, and the JSON an MPI worker hands back). A case is one volume x transfer function
+// x shading x image size.
+#ifndef accelvolume_benchmark_BenchmarkShearWarpResults_h
+#define accelvolume_benchmark_BenchmarkShearWarpResults_h
 
-#include "BenchmarkCommon.h"
+#include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
-#include "BenchmarkShearWarpOptions.h"
 
 #include <cmath>
 #include <string>
@@ -13,6 +13,35 @@
 
 namespace accelvolume::benchmark::shearwarp
 {
+
+// Volumes with more voxels than this are "large" (--skip-large drops them).
+constexpr double LargeVoxels = 32.0 * 1024 * 1024;
+
+// The settings of a run (its options).
+struct Options
+{
+  std::string DataDir; // the harness's --data
+  // The paper's MRI brain and CT head, and the 512x512x275 CT for scale.
+  std::vector<std::string> Datasets = { "mri_t1_head", "cthead", "ct_chest_lidc0314" };
+  std::vector<std::string> TransferFunctions = { "tf2", "tf1" };
+  std::vector<int> Sizes = { 256, 512 };
+  std::vector<bool> Shades = { true }; // --shade on|off|both
+  int Frames = 10;
+  int Threads = 0;       // the "all threads" count; 0: the hardware threads
+  double Azimuth = 30.0; // the fixed view (image checks, first frame)
+  double Elevation = 20.0;
+  double Turn = 1.0; // azimuth degrees per timed round (the paper: 1 degree per frame)
+  bool SkipLarge = false;
+  bool Mpi = true;
+  std::vector<int> MpiRanks = { 1, 2 };
+  bool VolPack = true;
+  bool VolPackGrey = false; // VolPack in luminance mode (grey = mean of R, G, B), not RGB
+  std::string GL;           // the harness's --gl
+  std::string Images;       // PNGs of the fixed view, when set
+  // Internal: this process is one rank of the MPI run the benchmark launched itself.
+  bool MpiWorker = false;
+  std::string MpiDir; // where the worker writes its JSON and images
+};
 
 // Targets of the issue: our single-threaded (3) this much faster than VolPack, this parallel
 // efficiency of (3) on all threads (and on MPI ranks), at most this load imbalance.
@@ -136,26 +165,11 @@ struct DatasetInfo
   double LoadSeconds = 0;
 };
 
-struct MachineInfo
-{
-  std::string Cpu;
-  int HardwareThreads = 0;
-  std::string GlBackend;
-  std::string GlRenderer;
-  bool HaveVolPack = false;
-  std::string MpiExec;
-};
-
-std::string ReadCpuModel();
-
-// What is measured and how, before the first case.
-void PrintHeader(const Options& options, const MachineInfo& machine);
-void PrintCase(const CaseResult& c);
-// Tables 2-3 of the paper beside ours.
-void PrintSummary(const std::vector<CaseResult>& cases);
-void WriteJson(const Options& options, const MachineInfo& machine,
-  const std::vector<DatasetInfo>& datasets, const std::vector<CaseResult>& cases,
-  double totalSeconds);
+// One run as a JSON object (in the benchmark's JSON, and what an MPI worker writes), and back.
+Json RunJson(const RunResult& run);
+bool ReadRunJson(const Json& value, RunResult& run);
+Json CaseJson(const CaseResult& c);
+Json DatasetJson(const DatasetInfo& d);
 
 } // namespace accelvolume::benchmark::shearwarp
 
