@@ -18,9 +18,11 @@ set(_av_core_sources
   slicing/Bricking
   slicing/CompositeSlices
   slicing/SlabProxy
+  raycast/RayCastAcceleration
   raycast/RayCastEngine
   raycast/RayCastKernel
   shearwarp/RunLengthVolume
+  shearwarp/ShearWarpEncodings
   shearwarp/ShearWarpCompositor
   shearwarp/ShearWarpEngine
   shearwarp/ShearWarpFactorization

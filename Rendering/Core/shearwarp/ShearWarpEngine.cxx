@@ -1,5 +1,6 @@
 // Shear-warp frames: encodings cached per axis, per-frame tables, banded compositing, warp.
 #include "shearwarp/ShearWarpEngine.h"
+#include "shearwarp/ShearWarpEngineInternals.h"
 
 #include "shearwarp/RunLengthVolume.h"
 #include "shearwarp/ShearWarpCompositor.h"
@@ -19,39 +20,14 @@
 
 namespace accelvolume
 {
+using detail::Clock;
+using detail::EncodingKey;
+using detail::EncodingSlot;
+using detail::Seconds;
+
 namespace
 {
-using Clock = std::chrono::steady_clock;
 
-double Seconds(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// What an encoding was built from; any change rebuilds it.
-struct EncodingKey
-{
-  std::uint64_t volumeVersion = 0, transferVersion = 0;
-  bool normals = false;
-  bool maximum = false;
-  std::uint16_t threshold = 0;
-  bool valid = false;
-  bool operator==(const EncodingKey& o) const
-  {
-    return this->valid && o.valid && this->volumeVersion == o.volumeVersion &&
-      this->transferVersion == o.transferVersion && this->normals == o.normals &&
-      this->maximum == o.maximum && this->threshold == o.threshold;
-  }
-};
-
-template <typename Voxel>
-struct EncodingSlot
-{
-  RunLengthVolume<Voxel> encoded;
-  EncodingKey key;
-  float saturation = 0; // MIP / MinIP: the stored voxels' extreme
-  std::vector<std::uint32_t> rowVoxels; // per scanline (j, k), for cost estimates
-};
 
 template <typename Voxel>
 const std::vector<std::uint32_t>& RowVoxels(EncodingSlot<Voxel>& slot)
@@ -73,31 +49,6 @@ const std::vector<std::uint32_t>& RowVoxels(EncodingSlot<Voxel>& slot)
   return slot.rowVoxels;
 }
 
-// Lowest (MIP) / highest (MinIP) quantized scalar that may be visible: every value beyond it on
-// the other side has zero opacity in the (linearly interpolated) table.
-std::uint16_t VisibleThreshold(const std::vector<float>& rgba, bool maximum)
-{
-  const int n = static_cast<int>(rgba.size() / 4);
-  if (maximum)
-  {
-    for (int e = 0; e < n; ++e)
-    {
-      if (rgba[4 * e + 3] > 0)
-      {
-        return static_cast<std::uint16_t>(std::floor(65535.0 * std::max(0, e - 1) / (n - 1)));
-      }
-    }
-    return 65535;
-  }
-  for (int e = n - 1; e >= 0; --e)
-  {
-    if (rgba[4 * e + 3] > 0)
-    {
-      return static_cast<std::uint16_t>(std::ceil(65535.0 * std::min(n - 1, e + 1) / (n - 1)));
-    }
-  }
-  return 0;
-}
 
 // The arguments BeginFrameReporting refuses before it factorizes the view.
 bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double rangeMax,
@@ -133,42 +84,6 @@ bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double range
   return true;
 }
 
-// What the composite encoding classifies with; false when the index-to-world map is singular.
-bool MakeCompositeClassification(double rangeMin, double rangeMax, const RayCastTransfer& transfer,
-  const RayCastLighting& lighting, const ShearWarpView& view,
-  CompositeClassification& classification, std::string& error)
-{
-  classification.rangeMin = rangeMin;
-  classification.rangeMax = rangeMax;
-  classification.rgba = transfer.rgba;
-  classification.gradientOpacity = transfer.gradientOpacity;
-  classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
-  classification.normals = lighting.shade;
-  // World gradient = inverse transpose of the index -> world linear map times the index one.
-  Affine indexToWorld = Affine::Identity();
-  for (int r = 0; r < 3; ++r)
-  {
-    std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
-  }
-  Affine worldToIndex;
-  try
-  {
-    worldToIndex = indexToWorld.Inverse();
-  }
-  catch (const std::domain_error&)
-  {
-    error = "shear-warp: the index-to-world map is singular";
-    return false;
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
-    }
-  }
-  return true;
-}
 
 // The shading part of the per-frame tables: lighting coefficients, lights and normal matrix.
 void SetShading(
@@ -199,51 +114,6 @@ void SetShading(
 }
 }
 
-struct ShearWarpRenderer::Internals
-{
-  EncodingSlot<ShadedVoxel> composite[2][3]; // [dense][axis]
-  EncodingSlot<ScalarVoxel> extreme[2][3];
-
-  // The frame.
-  ShearWarpFactorization factorization;
-  ShearWarpSettings settings;
-  CompositeTables tables;
-  EncodingSlot<ShadedVoxel>* compositeSlot = nullptr;
-  EncodingSlot<ScalarVoxel>* extremeSlot = nullptr;
-  std::vector<float> transfer; // RGBA table for MIP / MinIP classification
-  std::vector<float> intermediate;
-  std::vector<double> scanlineSeconds;
-  int imageSize[2] = { 0, 0 };
-  double opacityRatio = -1; // ray length between slices / opacity unit distance of tables.opacity
-  std::atomic<std::uint64_t> voxels{ 0 }, samples{ 0 }, skippedOpaque{ 0 };
-
-  // Balancing: the costs of the last frame, for its principal axis.
-  std::vector<double> costs;
-  int costAxis = -1;
-
-  ProgressFunction progress;
-
-  std::vector<double> EstimateCosts();
-  void ClassifyExtremeRow(const float* values, float* rgba) const;
-
-  // Steps of BeginFrameReporting, in order.
-  // Encodings built from other scalars or another transfer function are dropped right away.
-  void DropStaleEncodings(std::uint64_t volumeVersion, std::uint64_t transferVersion);
-  // The (cached) encoding of this frame's axis and layout: composite or MIP / MinIP.
-  bool UpdateCompositeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
-    const RayCastTransfer& transfer, const RayCastLighting& lighting, const ShearWarpView& view,
-    EncodingKey key, int axis, int dense, const ParallelFor& encodeParallel,
-    Clock::time_point encodeStart, ShearWarpStats& stats, std::string& error);
-  bool UpdateExtremeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
-    const RayCastTransfer& transfer, bool maximum, EncodingKey key, int axis, int dense,
-    const ParallelFor& encodeParallel, Clock::time_point encodeStart, ShearWarpStats& stats,
-    std::string& error);
-  // Per-frame tables: opacity for this view's ray length between slices, and shading.
-  void UpdateTables(const RayCastTransfer& transfer, const RayCastLighting& lighting,
-    const ShearWarpView& view, const ShearWarpSettings& settings);
-  // Sizes the intermediate image and clears the counters; fills the frame's stats.
-  void StartFrame(int axis, ShearWarpStats& stats);
-};
 
 std::vector<double> ShearWarpRenderer::Internals::EstimateCosts()
 {
@@ -320,88 +190,6 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     transferVersion, lighting, view, settings, parallel, this->Impl->progress, stats, error);
 }
 
-void ShearWarpRenderer::Internals::DropStaleEncodings(
-  std::uint64_t volumeVersion, std::uint64_t transferVersion)
-{
-  auto stale = [&](const EncodingKey& key)
-  {
-    return key.valid &&
-      (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
-  };
-  for (int d = 0; d < 2; ++d)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      if (stale(this->composite[d][a].key))
-      {
-        this->composite[d][a] = EncodingSlot<ShadedVoxel>();
-      }
-      if (stale(this->extreme[d][a].key))
-      {
-        this->extreme[d][a] = EncodingSlot<ScalarVoxel>();
-      }
-    }
-  }
-}
-
-bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& volume,
-  double rangeMin, double rangeMax, const RayCastTransfer& transfer,
-  const RayCastLighting& lighting, const ShearWarpView& view, EncodingKey key, int axis, int dense,
-  const ParallelFor& encodeParallel, Clock::time_point encodeStart, ShearWarpStats& stats,
-  std::string& error)
-{
-  key.normals = lighting.shade;
-  EncodingSlot<ShadedVoxel>& slot = this->composite[dense][axis];
-  if (!(slot.key == key))
-  {
-    CompositeClassification classification;
-    if (!MakeCompositeClassification(
-          rangeMin, rangeMax, transfer, lighting, view, classification, error))
-    {
-      return false;
-    }
-    slot = EncodingSlot<ShadedVoxel>();
-    if (!EncodeComposite(
-          volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
-    {
-      return false;
-    }
-    slot.key = key;
-    stats.encodeSeconds = Seconds(encodeStart);
-  }
-  this->compositeSlot = &slot;
-  return true;
-}
-
-bool ShearWarpRenderer::Internals::UpdateExtremeEncoding(const VolumeView& volume, double rangeMin,
-  double rangeMax, const RayCastTransfer& transfer, bool maximum, EncodingKey key, int axis,
-  int dense, const ParallelFor& encodeParallel, Clock::time_point encodeStart,
-  ShearWarpStats& stats, std::string& error)
-{
-  key.maximum = maximum;
-  key.threshold = VisibleThreshold(transfer.rgba, maximum);
-  EncodingSlot<ScalarVoxel>& slot = this->extreme[dense][axis];
-  if (!(slot.key == key))
-  {
-    slot = EncodingSlot<ScalarVoxel>();
-    if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
-          encodeParallel, slot.encoded, error))
-    {
-      return false;
-    }
-    slot.key = key;
-    float extreme = maximum ? 0.0f : 65535.0f;
-    for (ScalarVoxel value : slot.encoded.voxels)
-    {
-      extreme = maximum ? std::max(extreme, float(value)) : std::min(extreme, float(value));
-    }
-    slot.saturation = extreme;
-    stats.encodeSeconds = Seconds(encodeStart);
-  }
-  this->extremeSlot = &slot;
-  this->transfer = transfer.rgba;
-  return true;
-}
 
 void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
   const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings)

@@ -1,0 +1,335 @@
+// RayCastAcceleration: the ray caster's cached acceleration structures (min-max octree, cell
+// classification and distance map, the packed cell table, precomputed gradients), rebuilt only
+// when the scalars or the transfer function change.
+#include "raycast/RayCastEngineInternals.h"
+
+#include "skipping/DistanceMap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace accelvolume
+{
+using detail::LeapPlan;
+using detail::PrepareProgress;
+
+namespace
+{
+
+
+// Grows [lower, upper] (per axis, integer grid coordinates) to hold (i, j, k).
+struct GridBounds
+{
+  int lower[3] = { std::numeric_limits<int>::max(), std::numeric_limits<int>::max(),
+    std::numeric_limits<int>::max() };
+  int upper[3] = { -1, -1, -1 };
+  void Add(int i, int j, int k)
+  {
+    const int c[3] = { i, j, k };
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::min(lower[a], c[a]);
+      upper[a] = std::max(upper[a], c[a]);
+    }
+  }
+  void Merge(const GridBounds& other)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::min(lower[a], other.lower[a]);
+      upper[a] = std::max(upper[a], other.upper[a]);
+    }
+  }
+  bool Empty() const { return upper[0] < lower[0]; }
+};
+
+// Index-space box covering grid cells [lower, upper] of `size` voxels each (cell i spans
+// [i * size, (i + 1) * size]), clamped to the volume box; empty when no cell was added.
+Box GridBox(const GridBounds& bounds, int size, const int dims[3])
+{
+  Box box;
+  if (bounds.Empty())
+  {
+    box.lower = { 1, 1, 1 };
+    box.upper = { 0, 0, 0 };
+    return box;
+  }
+  double* lower[3] = { &box.lower.x, &box.lower.y, &box.lower.z };
+  double* upper[3] = { &box.upper.x, &box.upper.y, &box.upper.z };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] > 1)
+    {
+      *lower[a] = static_cast<double>(bounds.lower[a]) * size;
+      *upper[a] = std::min(static_cast<double>(bounds.upper[a] + 1) * size, dims[a] - 1.0);
+    }
+    else
+    {
+      *lower[a] = -0.5; // a one-voxel axis is a slab one voxel thick
+      *upper[a] = 0.5;
+    }
+  }
+  return box;
+}
+
+Box NonEmptyCellBox(const CellClassification& cells, const int dims[3], const ParallelFor& parallel)
+{
+  const int* n = cells.cellDims;
+  std::vector<GridBounds> slabs(static_cast<std::size_t>(n[2]));
+  parallel(slabs.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        const std::uint8_t* flags = cells.nonEmpty.data() + k * n[0] * n[1];
+        for (int j = 0; j < n[1]; ++j)
+        {
+          for (int i = 0; i < n[0]; ++i)
+          {
+            if (flags[static_cast<std::size_t>(j) * n[0] + i])
+            {
+              slabs[k].Add(i, j, static_cast<int>(k));
+            }
+          }
+        }
+      }
+    });
+  GridBounds all;
+  for (const GridBounds& slab : slabs)
+  {
+    all.Merge(slab);
+  }
+  return GridBox(all, 1, dims);
+}
+
+Box NonTransparentLeafBox(const MinMaxOctree& octree, const int dims[3])
+{
+  const int* grid = octree.GetLevel(0).gridSize;
+  const std::vector<std::uint8_t>& transparent = octree.GetTransparentFlags(0);
+  GridBounds all;
+  for (int k = 0; k < grid[2]; ++k)
+  {
+    for (int j = 0; j < grid[1]; ++j)
+    {
+      for (int i = 0; i < grid[0]; ++i)
+      {
+        if (!transparent[MortonEncode(i, j, k)])
+        {
+          all.Add(i, j, k);
+        }
+      }
+    }
+  }
+  return GridBox(all, octree.GetLeafSize(), dims);
+}
+
+// Per-voxel central differences (neighbours clamped to the volume, NaN as 0) quantised to
+// int16 with step `scale` raw units. Rows are handled with clamped neighbour rows and a
+// branch-free interior, since this runs over every voxel when the scalars change.
+template <typename T>
+void ComputeGradients(
+  const T* data, const int dims[3], float scale, std::int16_t* out, const ParallelFor& parallel)
+{
+  const std::ptrdiff_t nx = dims[0], ny = dims[1], nz = dims[2];
+  const float inverse = 0.5f / scale;
+  auto quantise = [](float g) -> std::int16_t
+  {
+    // NaN fails both comparisons and becomes 0; round half away from zero.
+    g = g > -32767.0f ? (g < 32767.0f ? g : 32767.0f) : (g <= -32767.0f ? -32767.0f : 0.0f);
+    return static_cast<std::int16_t>(g + (g >= 0 ? 0.5f : -0.5f));
+  };
+  parallel(static_cast<std::size_t>(nz),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        const std::ptrdiff_t z = static_cast<std::ptrdiff_t>(k);
+        const std::ptrdiff_t zDown = z > 0 ? z - 1 : z, zUp = z + 1 < nz ? z + 1 : z;
+        for (std::ptrdiff_t y = 0; y < ny; ++y)
+        {
+          const std::ptrdiff_t yDown = y > 0 ? y - 1 : y, yUp = y + 1 < ny ? y + 1 : y;
+          const T* row = data + (z * ny + y) * nx;
+          const T* rowYDown = data + (z * ny + yDown) * nx;
+          const T* rowYUp = data + (z * ny + yUp) * nx;
+          const T* rowZDown = data + (zDown * ny + y) * nx;
+          const T* rowZUp = data + (zUp * ny + y) * nx;
+          std::int16_t* o = out + 3 * (z * ny + y) * nx;
+          for (std::ptrdiff_t x = 0; x < nx; ++x)
+          {
+            const std::ptrdiff_t xDown = x > 0 ? x - 1 : x, xUp = x + 1 < nx ? x + 1 : x;
+            o[3 * x] =
+              quantise((static_cast<float>(row[xUp]) - static_cast<float>(row[xDown])) * inverse);
+            o[3 * x + 1] =
+              quantise((static_cast<float>(rowYUp[x]) - static_cast<float>(rowYDown[x])) * inverse);
+            o[3 * x + 2] =
+              quantise((static_cast<float>(rowZUp[x]) - static_cast<float>(rowZDown[x])) * inverse);
+          }
+        }
+      }
+    });
+}
+
+// Resizes v to n elements, asking Linux for transparent huge pages first: the ray caster reads
+// these arrays at random along rays, and 2 MiB pages cut its TLB misses (a hint only).
+template <typename T>
+void ResizeWithHugePages(std::vector<T>& v, std::size_t n)
+{
+  if (v.capacity() < n)
+  {
+    std::vector<T>().swap(v);
+    v.reserve(n);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::uintptr_t Huge = std::uintptr_t(1) << 21;
+    const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+    const std::uintptr_t first = (begin + Huge - 1) & ~(Huge - 1);
+    const std::uintptr_t end = begin + n * sizeof(T);
+    if (end > first + Huge)
+    {
+      madvise(reinterpret_cast<void*>(first), (end - first) & ~(Huge - 1), MADV_HUGEPAGE);
+    }
+#endif
+  }
+  v.resize(n);
+}
+
+} // namespace
+
+bool RayCaster::Internals::UpdateOctree(const VolumeView& volume, std::uint64_t volumeVersion,
+  std::uint64_t transferVersion, const std::vector<float>& alphas, double rangeMin, double rangeMax,
+  const RayCastSettings& settings, const LeapPlan& plan, const ParallelFor& parallel,
+  PrepareProgress& progress, std::string& error)
+{
+  if (!this->OctreeBuilt || this->OctreeVolume != volumeVersion ||
+    this->OctreeLeafSize != settings.octreeLeafSize)
+  {
+    this->OctreeBuilt = this->OctreeClassified = false;
+    if (!this->Octree.Configure(volume.dims, settings.octreeLeafSize, error) ||
+      !this->Octree.BuildParallel(volume, parallel, error))
+    {
+      return false;
+    }
+    this->OctreeBuilt = true;
+    this->OctreeVolume = volumeVersion;
+    this->OctreeLeafSize = settings.octreeLeafSize;
+    progress.Rebuilt();
+  }
+  if (plan.zeroOpacityAddsNothing &&
+    (!this->OctreeClassified || this->OctreeTransfer != transferVersion))
+  {
+    this->Octree.Classify(alphas, rangeMin, rangeMax);
+    this->OctreeOpaqueBox = NonTransparentLeafBox(this->Octree, volume.dims);
+    this->OctreeClassified = true;
+    this->OctreeTransfer = transferVersion;
+    progress.Rebuilt();
+  }
+  return true;
+}
+
+void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
+  std::uint64_t transferVersion, const OpacityRange& opacityRange, const LeapPlan& plan,
+  const ParallelFor& parallel, PrepareProgress& progress)
+{
+  const bool useCellLeap = plan.useCellLeap;
+  const bool useDistance = plan.useDistance;
+  const bool stale = !this->CellsBuilt || this->CellsVolume != volumeVersion ||
+    this->CellsTransfer != transferVersion || this->Packed != useCellLeap ||
+    (useDistance && useCellLeap && !this->CellInfoHasDistance);
+  if (!stale)
+  {
+    return;
+  }
+  // Cell-sized arrays (one byte per cell: half a 16-bit volume) are reused or freed as soon
+  // as they are dead, so that a rebuild of the distance map needs 2 bytes per cell, the map
+  // included, and one with cell leaping 4 (5 when the packed table is reused).
+  CellClassification cells;
+  if (!useCellLeap)
+  {
+    // The configurations are not needed here: the map's own buffer holds them until the
+    // map overwrites them, so a rebuild allocates only the flags.
+    std::vector<std::uint16_t>().swap(this->CellInfo);
+    std::size_t cellCount = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      cellCount *= static_cast<std::size_t>(std::max(volume.dims[a] - 1, 1));
+    }
+    ResizeWithHugePages(this->DistanceOnly, cellCount);
+    cells.configuration.swap(this->DistanceOnly);
+    ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+    ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
+    this->DistanceOnly.swap(cells.configuration);
+  }
+  else
+  {
+    std::vector<std::uint8_t>().swap(this->DistanceOnly);
+    ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+    std::vector<std::uint8_t> distance;
+    if (useDistance)
+    {
+      distance = ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel);
+    }
+    std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
+    this->PackCellInfo(cells, distance, parallel);
+  }
+  this->Packed = useCellLeap;
+  std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
+  this->CellInfoHasDistance = useDistance;
+  this->CellsBuilt = true;
+  this->CellsVolume = volumeVersion;
+  this->CellsTransfer = transferVersion;
+  progress.Rebuilt();
+}
+
+void RayCaster::Internals::PackCellInfo(const CellClassification& cells,
+  const std::vector<std::uint8_t>& distance, const ParallelFor& parallel)
+{
+  ResizeWithHugePages(this->CellInfo, cells.configuration.size());
+  const std::uint8_t* configuration = cells.configuration.data();
+  const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
+  std::uint16_t* info = this->CellInfo.data();
+  parallel(cells.configuration.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        info[i] =
+          static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
+      }
+    });
+}
+
+bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion,
+  double width, const RayCastTransfer& transfer, const RayCastLighting& lighting,
+  const RayCastSettings& settings, const ParallelFor& parallel, PrepareProgress& progress)
+{
+  const bool needGradients = settings.blend == Blend::Composite &&
+    (lighting.shade || transfer.gradientOpacity.size() >= 2);
+  const std::size_t voxels =
+    static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
+  constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
+  const bool useGradients =
+    needGradients && settings.precomputeGradients && 6 * voxels <= GradientBudget;
+  if (useGradients && (!this->GradientsBuilt || this->GradientsVolume != volumeVersion))
+  {
+    // |central difference| <= the range width, so this step keeps every value in int16.
+    this->GradientScale = static_cast<float>(width / 32767.0);
+    ResizeWithHugePages(this->Gradients, 3 * voxels);
+    DispatchScalarType(volume,
+      [&](const auto* data) {
+        ComputeGradients(data, volume.dims, this->GradientScale, this->Gradients.data(), parallel);
+      });
+    this->GradientsBuilt = true;
+    this->GradientsVolume = volumeVersion;
+    progress.Rebuilt();
+  }
+  return useGradients;
+}
+
+} // namespace accelvolume

@@ -1,0 +1,111 @@
+// RayCastEngineInternals: the ray caster's private state (its cached acceleration structures)
+// and the per-frame plan both RayCastEngine.cxx and RayCastAcceleration.cxx use. Not installed.
+#ifndef accelvolume_RayCastEngineInternals_h
+#define accelvolume_RayCastEngineInternals_h
+
+#include "raycast/RayCastEngine.h"
+#include "skipping/CellClassification.h"
+#include "skipping/MinMaxOctree.h"
+#include "skipping/OpacityRange.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace accelvolume
+{
+namespace detail
+{
+struct KernelFrame;
+
+// Which accelerations are exact for a frame's blend mode (see the header), and the threshold
+// the cells are classified with.
+struct LeapPlan
+{
+  bool zeroOpacityAddsNothing = false;
+  bool extremum = false;
+  bool useOctree = false;
+  bool useDistance = false;
+  bool useCellLeap = false;
+  double leapThreshold = 0;
+};
+
+// Rebuilds take [0, PrepareShare] of the frame; each one done halves what is left of it (which
+// rebuilds a frame needs is known only as they run).
+constexpr double PrepareShare = 0.25;
+
+struct PrepareProgress
+{
+  const ProgressFunction& report;
+  double prepared = 0;
+
+  void Rebuilt()
+  {
+    this->prepared += (PrepareShare - this->prepared) / 2;
+    if (this->report)
+    {
+      this->report(this->prepared);
+    }
+  }
+};
+
+} // namespace detail
+
+struct RayCaster::Internals
+{
+  MinMaxOctree Octree;
+  bool OctreeBuilt = false;
+  std::uint64_t OctreeVolume = 0;
+  int OctreeLeafSize = 0;
+  bool OctreeClassified = false;
+  std::uint64_t OctreeTransfer = 0;
+
+  int CellDims[3] = { 0, 0, 0 };
+  bool CellsBuilt = false;
+  Box CellsOpaqueBox;  // index-space box of the cells that may be opaque
+  Box OctreeOpaqueBox; // index-space box of the non-transparent leaves
+  std::uint64_t CellsVolume = 0, CellsTransfer = 0;
+
+  // Per cell: distance-map value (low byte, 0 without a distance map) and Marching Cubes
+  // configuration (high byte), packed so one load serves both leaps. The sources are freed
+  // once packed.
+  std::vector<std::uint16_t> CellInfo;
+  bool CellInfoHasDistance = false;
+  // Without cell leaping only the distance map is read: one byte per cell halves the memory
+  // the rays pull through the caches.
+  std::vector<std::uint8_t> DistanceOnly;
+  bool Packed = false; // which of the two layouts is built
+
+  std::vector<std::int16_t> Gradients;
+  bool GradientsBuilt = false;
+  std::uint64_t GradientsVolume = 0;
+  float GradientScale = 1;
+
+  std::vector<float> CorrectedAlpha;
+  std::vector<float> SpecularTable;
+  int CastRectangle[4] = { 0, -1, 0, -1 };
+  double PrepareSeconds = 0;
+
+  ProgressFunction Progress;
+
+  // Frame preparation steps of RayCaster::Render (each rebuilds only what changed).
+  bool UpdateOctree(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const std::vector<float>& alphas, double rangeMin,
+    double rangeMax, const RayCastSettings& settings, const detail::LeapPlan& plan,
+    const ParallelFor& parallel, detail::PrepareProgress& progress, std::string& error);
+  void UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const OpacityRange& opacityRange, const detail::LeapPlan& plan,
+    const ParallelFor& parallel, detail::PrepareProgress& progress);
+  void PackCellInfo(const CellClassification& cells, const std::vector<std::uint8_t>& distance,
+    const ParallelFor& parallel);
+  bool UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion, double width,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting,
+    const RayCastSettings& settings, const ParallelFor& parallel, detail::PrepareProgress& progress);
+  void FillKernelFrame(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
+    const RayCastSettings& settings, const detail::LeapPlan& plan, bool useGradients, double exponent,
+    detail::KernelFrame& frame);
+};
+
+} // namespace accelvolume
+
+#endif

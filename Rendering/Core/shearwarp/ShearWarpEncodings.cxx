@@ -1,0 +1,168 @@
+// ShearWarpEncodings: the run-length encodings of the classified volume, cached per principal
+// axis and layout, built when the scalars, the transfer function or the shading inputs change.
+#include "shearwarp/ShearWarpEngineInternals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace accelvolume
+{
+using detail::Clock;
+using detail::EncodingKey;
+using detail::EncodingSlot;
+using detail::Seconds;
+
+namespace
+{
+
+// Lowest (MIP) / highest (MinIP) quantized scalar that may be visible: every value beyond it on
+// the other side has zero opacity in the (linearly interpolated) table.
+std::uint16_t VisibleThreshold(const std::vector<float>& rgba, bool maximum)
+{
+  const int n = static_cast<int>(rgba.size() / 4);
+  if (maximum)
+  {
+    for (int e = 0; e < n; ++e)
+    {
+      if (rgba[4 * e + 3] > 0)
+      {
+        return static_cast<std::uint16_t>(std::floor(65535.0 * std::max(0, e - 1) / (n - 1)));
+      }
+    }
+    return 65535;
+  }
+  for (int e = n - 1; e >= 0; --e)
+  {
+    if (rgba[4 * e + 3] > 0)
+    {
+      return static_cast<std::uint16_t>(std::ceil(65535.0 * std::min(n - 1, e + 1) / (n - 1)));
+    }
+  }
+  return 0;
+}
+
+// What the composite encoding classifies with; false when the index-to-world map is singular.
+bool MakeCompositeClassification(double rangeMin, double rangeMax, const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const ShearWarpView& view,
+  CompositeClassification& classification, std::string& error)
+{
+  classification.rangeMin = rangeMin;
+  classification.rangeMax = rangeMax;
+  classification.rgba = transfer.rgba;
+  classification.gradientOpacity = transfer.gradientOpacity;
+  classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
+  classification.normals = lighting.shade;
+  // World gradient = inverse transpose of the index -> world linear map times the index one.
+  Affine indexToWorld = Affine::Identity();
+  for (int r = 0; r < 3; ++r)
+  {
+    std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
+  }
+  Affine worldToIndex;
+  try
+  {
+    worldToIndex = indexToWorld.Inverse();
+  }
+  catch (const std::domain_error&)
+  {
+    error = "shear-warp: the index-to-world map is singular";
+    return false;
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+void ShearWarpRenderer::Internals::DropStaleEncodings(
+  std::uint64_t volumeVersion, std::uint64_t transferVersion)
+{
+  auto stale = [&](const EncodingKey& key)
+  {
+    return key.valid &&
+      (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
+  };
+  for (int d = 0; d < 2; ++d)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (stale(this->composite[d][a].key))
+      {
+        this->composite[d][a] = EncodingSlot<ShadedVoxel>();
+      }
+      if (stale(this->extreme[d][a].key))
+      {
+        this->extreme[d][a] = EncodingSlot<ScalarVoxel>();
+      }
+    }
+  }
+}
+
+bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& volume,
+  double rangeMin, double rangeMax, const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const ShearWarpView& view, EncodingKey key, int axis, int dense,
+  const ParallelFor& encodeParallel, Clock::time_point encodeStart, ShearWarpStats& stats,
+  std::string& error)
+{
+  key.normals = lighting.shade;
+  EncodingSlot<ShadedVoxel>& slot = this->composite[dense][axis];
+  if (!(slot.key == key))
+  {
+    CompositeClassification classification;
+    if (!MakeCompositeClassification(
+          rangeMin, rangeMax, transfer, lighting, view, classification, error))
+    {
+      return false;
+    }
+    slot = EncodingSlot<ShadedVoxel>();
+    if (!EncodeComposite(
+          volume, classification, axis, dense != 0, encodeParallel, slot.encoded, error))
+    {
+      return false;
+    }
+    slot.key = key;
+    stats.encodeSeconds = Seconds(encodeStart);
+  }
+  this->compositeSlot = &slot;
+  return true;
+}
+
+bool ShearWarpRenderer::Internals::UpdateExtremeEncoding(const VolumeView& volume, double rangeMin,
+  double rangeMax, const RayCastTransfer& transfer, bool maximum, EncodingKey key, int axis,
+  int dense, const ParallelFor& encodeParallel, Clock::time_point encodeStart,
+  ShearWarpStats& stats, std::string& error)
+{
+  key.maximum = maximum;
+  key.threshold = VisibleThreshold(transfer.rgba, maximum);
+  EncodingSlot<ScalarVoxel>& slot = this->extreme[dense][axis];
+  if (!(slot.key == key))
+  {
+    slot = EncodingSlot<ScalarVoxel>();
+    if (!EncodeExtreme(volume, rangeMin, rangeMax, maximum, key.threshold, axis, dense != 0,
+          encodeParallel, slot.encoded, error))
+    {
+      return false;
+    }
+    slot.key = key;
+    float extreme = maximum ? 0.0f : 65535.0f;
+    for (ScalarVoxel value : slot.encoded.voxels)
+    {
+      extreme = maximum ? std::max(extreme, float(value)) : std::min(extreme, float(value));
+    }
+    slot.saturation = extreme;
+    stats.encodeSeconds = Seconds(encodeStart);
+  }
+  this->extremeSlot = &slot;
+  this->transfer = transfer.rgba;
+  return true;
+}
+
+} // namespace accelvolume

@@ -1,0 +1,102 @@
+// ShearWarpEngineInternals: the shear-warp renderer's private state (its encodings cached per
+// axis, the frame's tables and image) shared by ShearWarpEngine.cxx and ShearWarpEncodings.cxx.
+// Not installed.
+#ifndef accelvolume_ShearWarpEngineInternals_h
+#define accelvolume_ShearWarpEngineInternals_h
+
+#include "shearwarp/RunLengthVolume.h"
+#include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpEngine.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace accelvolume
+{
+namespace detail
+{
+using Clock = std::chrono::steady_clock;
+
+inline double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// What an encoding was built from; any change rebuilds it.
+struct EncodingKey
+{
+  std::uint64_t volumeVersion = 0, transferVersion = 0;
+  bool normals = false;
+  bool maximum = false;
+  std::uint16_t threshold = 0;
+  bool valid = false;
+  bool operator==(const EncodingKey& o) const
+  {
+    return this->valid && o.valid && this->volumeVersion == o.volumeVersion &&
+      this->transferVersion == o.transferVersion && this->normals == o.normals &&
+      this->maximum == o.maximum && this->threshold == o.threshold;
+  }
+};
+
+template <typename Voxel>
+struct EncodingSlot
+{
+  RunLengthVolume<Voxel> encoded;
+  EncodingKey key;
+  float saturation = 0; // MIP / MinIP: the stored voxels' extreme
+  std::vector<std::uint32_t> rowVoxels; // per scanline (j, k), for cost estimates
+};
+
+} // namespace detail
+
+struct ShearWarpRenderer::Internals
+{
+  detail::EncodingSlot<ShadedVoxel> composite[2][3]; // [dense][axis]
+  detail::EncodingSlot<ScalarVoxel> extreme[2][3];
+
+  // The frame.
+  ShearWarpFactorization factorization;
+  ShearWarpSettings settings;
+  CompositeTables tables;
+  detail::EncodingSlot<ShadedVoxel>* compositeSlot = nullptr;
+  detail::EncodingSlot<ScalarVoxel>* extremeSlot = nullptr;
+  std::vector<float> transfer; // RGBA table for MIP / MinIP classification
+  std::vector<float> intermediate;
+  std::vector<double> scanlineSeconds;
+  int imageSize[2] = { 0, 0 };
+  double opacityRatio = -1; // ray length between slices / opacity unit distance of tables.opacity
+  std::atomic<std::uint64_t> voxels{ 0 }, samples{ 0 }, skippedOpaque{ 0 };
+
+  // Balancing: the costs of the last frame, for its principal axis.
+  std::vector<double> costs;
+  int costAxis = -1;
+
+  ProgressFunction progress;
+
+  std::vector<double> EstimateCosts();
+  void ClassifyExtremeRow(const float* values, float* rgba) const;
+
+  // Steps of BeginFrameReporting, in order.
+  // Encodings built from other scalars or another transfer function are dropped right away.
+  void DropStaleEncodings(std::uint64_t volumeVersion, std::uint64_t transferVersion);
+  // The (cached) encoding of this frame's axis and layout: composite or MIP / MinIP.
+  bool UpdateCompositeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, const RayCastLighting& lighting, const ShearWarpView& view,
+    detail::EncodingKey key, int axis, int dense, const ParallelFor& encodeParallel,
+    detail::Clock::time_point encodeStart, ShearWarpStats& stats, std::string& error);
+  bool UpdateExtremeEncoding(const VolumeView& volume, double rangeMin, double rangeMax,
+    const RayCastTransfer& transfer, bool maximum, detail::EncodingKey key, int axis, int dense,
+    const ParallelFor& encodeParallel, detail::Clock::time_point encodeStart, ShearWarpStats& stats,
+    std::string& error);
+  // Per-frame tables: opacity for this view's ray length between slices, and shading.
+  void UpdateTables(const RayCastTransfer& transfer, const RayCastLighting& lighting,
+    const ShearWarpView& view, const ShearWarpSettings& settings);
+  // Sizes the intermediate image and clears the counters; fills the frame's stats.
+  void StartFrame(int axis, ShearWarpStats& stats);
+};
+
+} // namespace accelvolume
+
+#endif
