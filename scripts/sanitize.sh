@@ -103,7 +103,7 @@ run_asan() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
   phase "ASan + UBSan: configure and build ($build)"
   configure "$build" "address;undefined" egl || { failed+=("asan: configure"); return; }
-  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest AccelVolumeUnitTests \
+  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
     vtkRenderingAccelVolumeCxxTests-MPI accelvolume || { failed+=("asan: build"); return; }
   echo "asan: configure + build $((SECONDS - t)) s"
@@ -122,7 +122,7 @@ run_asan_ci() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
   phase "ASan + UBSan (ci subset): configure and build ($build)"
   configure "$build" "address;undefined" egl || { failed+=("asan: configure"); return; }
-  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest AccelVolumeUnitTests \
+  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
     || { failed+=("asan: build"); return; }
   echo "asan: configure + build $((SECONDS - t)) s"
@@ -144,7 +144,7 @@ run_tsan() {
   fi
   phase "TSan: configure and build ($build)"
   configure "$build" thread osmesa || { failed+=("tsan: configure"); return; }
-  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest AccelVolumeUnitTests \
+  cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     vtkRenderingAccelVolumeCxxTests || { failed+=("tsan: build"); return; }
   echo "tsan: configure + build $((SECONDS - t)) s"
   phase "TSan: tests"

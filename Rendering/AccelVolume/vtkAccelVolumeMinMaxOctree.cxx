@@ -244,7 +244,7 @@ bool vtkAccelVolumeMinMaxOctree::Update()
   }
 
   // A real build: StartEvent, ProgressEvent 0 and 1, EndEvent. No finer steps: the CPU builder
-  // takes ~30 ms for 512x512x275 on two cores (the reference builder is a test oracle).
+  // is one pass over the volume (the reference builder is a test oracle).
   vtkAccelVolumeRenderProgress progress(this);
   internals.Built = false;
   internals.Classified = false;

@@ -70,8 +70,8 @@ public:
   ///@{
   /**
    * Empty-space leaping (default LEAP_DISTANCE_MAP: the fastest frames; its rebuild after a
-   * transfer-function change costs about 50-250 ms on 256^3..512^2x275 volumes, against a
-   * few ms for LEAP_OCTREE, which suits interactive transfer-function editing better).
+   * transfer-function change scans every cell, while LEAP_OCTREE only re-classifies its nodes,
+   * which suits interactive transfer-function editing better; the benchmark report has both).
    */
   vtkSetClampMacro(LeapMode, int, LEAP_NONE, LEAP_DISTANCE_MAP);
   vtkGetMacro(LeapMode, int);

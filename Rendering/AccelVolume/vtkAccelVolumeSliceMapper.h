@@ -116,9 +116,9 @@ public:
    * range 1..64). 1 is classic slicing, one polygon per sample plane. Larger values draw one
    * proxy polygon per group of planes, covering the group's projection, and take the same
    * samples in a loop, which cuts rasterisation and blending work at the price of a ray-box
-   * test per fragment; the samples, and so the image, stay those of plain slicing. On llvmpipe
-   * the per-fragment test costs more than it saves (measured: 2 samples 2x slower, 16 on par),
-   * hence the default; GPUs with costly blending may gain.
+   * test per fragment; the samples, and so the image, stay those of plain slicing. On software GL
+   * the per-fragment test costs more than it saves, hence the default; GPUs with costly
+   * blending may gain (the benchmark report has the figures).
    */
   vtkSetClampMacro(SlabSamples, int, 1, 64);
   vtkGetMacro(SlabSamples, int);
@@ -154,8 +154,8 @@ public:
    * Composite shading / gradient opacity / 2D transfer functions: gradients precomputed into
    * a 4-channel 16-bit texture (the paper's way; 8 bytes per voxel, rebuilt when the data
    * change) instead of central differences on the fly (6 extra fetches per sample).
-   * Default on: measured 15-25% faster on llvmpipe (engine CT, shaded, 512^2: 549-568 vs
-   * 630-720 ms). Volumes whose gradient texture would pass 1 GiB use central differences.
+   * Default on: faster than central differences in the composite benchmark. Volumes whose
+   * gradient texture would pass 1 GiB use central differences.
    */
   vtkSetMacro(PrecomputeGradients, vtkTypeBool);
   vtkGetMacro(PrecomputeGradients, vtkTypeBool);

@@ -3,12 +3,10 @@
 table: CheckHiddenCore.py <library>.
 
 Core is a static library linked into the module with hidden visibility. When the module exported
-Core's functions (default visibility, -fPIC), every call between them went through the PLT and
-could be interposed, and in the ThreadSanitizer build (-O1) the ray caster's "NaN voxels" case of
-TestAccelVolumeRayCastExact drew a different image with cell leaping on than without (issue 15);
-with the same sources built with hidden Core symbols it draws the same image. A program that links
-both the module and Core (the tests, the CLI, the benchmarks) must also get its own copy, never
-the module's.
+Core's functions (default visibility, -fPIC), calls between them went through the PLT, and GCC
+12's -O1 -fsanitize=thread build of that layout built a wrong cell-leap table (the TSan "NaN
+voxels" failure, docs/sanitizers.md). A program that links both the module and Core (the tests,
+the CLI, the benchmarks) must also get its own copy, never the module's.
 """
 import re
 import subprocess

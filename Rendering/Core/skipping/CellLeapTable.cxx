@@ -63,6 +63,19 @@ constexpr int BaseConfigurations[BaseCaseCount] = {
 
 using CornerPermutation = std::array<int, CornerCount>;
 
+// The corners of edge e in [0, 12): what CellEdgeCorners returns, as an internal function so
+// the table build never calls through the exported symbol.
+constexpr void EdgeCorners(int edge, int& lowCorner, int& highCorner)
+{
+  const int axis = edge / EdgesPerAxis;
+  const int position = edge % EdgesPerAxis;
+  // The two other axes in increasing order take the position's bits (first axis = bit 0).
+  const int first = axis == 0 ? 1 : 0;
+  const int second = axis == 2 ? 1 : 2;
+  lowCorner = ((position & 1) << first) | (((position >> 1) & 1) << second);
+  highCorner = lowCorner | (1 << axis);
+}
+
 int CornerAt(const int coordinates[AxisCount])
 {
   return coordinates[0] | (coordinates[1] << 1) | (coordinates[2] << 2);
@@ -153,7 +166,7 @@ CellLeapCase BuildCase(int configuration, int marchingCubesCase)
     for (int i = 0; i < EdgesPerAxis; ++i)
     {
       int low, high;
-      CellEdgeCorners(axis * EdgesPerAxis + i, low, high);
+      EdgeCorners(axis * EdgesPerAxis + i, low, high);
       lowSideOpaque = lowSideOpaque || opaque(low);
       highSideOpaque = highSideOpaque || opaque(high);
       fullyOpaqueEdge = fullyOpaqueEdge || (opaque(low) && opaque(high));
@@ -164,7 +177,7 @@ CellLeapCase BuildCase(int configuration, int marchingCubesCase)
     {
       const int edge = axis * EdgesPerAxis + i;
       int low, high;
-      CellEdgeCorners(edge, low, high);
+      EdgeCorners(edge, low, high);
       if (opaque(low) == opaque(high))
       {
         continue; // no crossing: always below (both transparent) or the axis is unusable
@@ -237,13 +250,7 @@ void CellEdgeCorners(int edge, int& lowCorner, int& highCorner)
     lowCorner = highCorner = -1;
     return;
   }
-  const int axis = edge / EdgesPerAxis;
-  const int position = edge % EdgesPerAxis;
-  // The two other axes in increasing order take the position's bits (first axis = bit 0).
-  const int first = axis == 0 ? 1 : 0;
-  const int second = axis == 2 ? 1 : 2;
-  lowCorner = ((position & 1) << first) | (((position >> 1) & 1) << second);
-  highCorner = lowCorner | (1 << axis);
+  EdgeCorners(edge, lowCorner, highCorner);
 }
 
 const std::array<CellLeapCase, 256>& GetCellLeapTable()
