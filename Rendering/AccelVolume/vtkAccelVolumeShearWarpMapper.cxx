@@ -462,7 +462,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RecordCounters(
   this->BandTimes = stats.bandSeconds;
   self->LastNumberOfVoxels = static_cast<vtkTypeInt64>(stats.voxels);
   self->LastNumberOfSamples = static_cast<vtkTypeInt64>(stats.samples);
-  self->LastNumberOfSkippedPixels = static_cast<vtkTypeInt64>(stats.skippedOpaque);
+  self->LastNumberOfSkippedPixels = static_cast<vtkTypeInt64>(stats.terminatedPixelVisits);
   self->LastPrincipalAxis = stats.principalAxis;
   self->LastNumberOfStoredVoxels = static_cast<vtkTypeInt64>(stats.storedVoxels);
   self->EncodedBytes = static_cast<vtkTypeInt64>(this->Renderer.GetEncodedBytes());

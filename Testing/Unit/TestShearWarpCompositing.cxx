@@ -269,7 +269,7 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
 
     // Brute force: no skip links, no early termination.
     t.earlyTermination = false;
-    t.skipLinks = false;
+    t.terminationLinks = false;
     ScanlineCounters plainCounters;
     const std::vector<float> plain = CompositeEachScanline(sparse, f, t, plainCounters);
     for (int v = 0; v < height; ++v)
@@ -282,10 +282,10 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
         ASSERT_LE(d, 1e-6) << "scanline " << v << " pixel " << q / 4 << " channel " << q % 4;
       }
     }
-    EXPECT_EQ(plainCounters.skippedOpaque, 0u);
+    EXPECT_EQ(plainCounters.terminatedPixelVisits, 0u);
     EXPECT_TRUE(BitIdentical(bands(sparse, t), plain)) << "bands";
     // Skip links alone (no termination) skip nothing; the dense encoding gives the same bits.
-    t.skipLinks = true;
+    t.terminationLinks = true;
     ScanlineCounters linkCounters, denseCounters;
     EXPECT_TRUE(BitIdentical(CompositeEachScanline(sparse, f, t, linkCounters), plain));
     EXPECT_TRUE(BitIdentical(CompositeEachScanline(dense, f, t, denseCounters), plain));
@@ -321,14 +321,14 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
     EXPECT_LE(terminatedCounters.samples, plainCounters.samples);
     if (opaque)
     {
-      EXPECT_GT(terminatedCounters.skippedOpaque, 0u);
+      EXPECT_GT(terminatedCounters.terminatedPixelVisits, 0u);
       EXPECT_LT(terminatedCounters.samples, plainCounters.samples);
     }
-    skipped += terminatedCounters.skippedOpaque;
+    skipped += terminatedCounters.terminatedPixelVisits;
     // Bands share voxel scanlines between their rows, also with termination: same bits.
     EXPECT_TRUE(BitIdentical(bands(sparse, t), terminated)) << "bands, early termination";
     // Termination without skip links (the dense baseline keeps compositing) is the naive image.
-    t.skipLinks = false;
+    t.terminationLinks = false;
     ScanlineCounters noLinks;
     EXPECT_TRUE(BitIdentical(CompositeEachScanline(sparse, f, t, noLinks), plain));
   }

@@ -185,7 +185,7 @@ TEST(ShearWarpCompositing, ExtremeScanlineEqualsNaiveWhereVisible)
         }
       }
     }
-    skipped += skipCounters.skippedOpaque;
+    skipped += skipCounters.terminatedPixelVisits;
     // Bands (two voxel scanlines shared by consecutive rows), with and without skip links.
     for (bool links : { false, true })
     {

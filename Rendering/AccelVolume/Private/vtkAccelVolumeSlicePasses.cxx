@@ -218,7 +218,7 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
 
 // Marks pixels whose front-to-back alpha reached the threshold: depth 0 there, so the early
 // depth test rejects the remaining slices' fragments before shading.
-bool MarkSaturatedPixels(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+bool RunTerminationPass(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame)
 {
   vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
@@ -316,7 +316,7 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
     if (slicesSinceMark == frame.TerminationInterval && slicesLeft > 0)
     {
       resources.SliceArray->Release();
-      if (!MarkSaturatedPixels(window, resources, frame))
+      if (!RunTerminationPass(window, resources, frame))
       {
         return false;
       }

@@ -16,12 +16,8 @@
 
 namespace accelvolume
 {
-using detail::LeapPlan;
-using detail::PrepareProgress;
-
 namespace
 {
-
 
 // Grows [lower, upper] (per axis, integer grid coordinates) to hold (i, j, k).
 struct GridBounds

@@ -19,10 +19,6 @@
 
 namespace accelvolume
 {
-using detail::LeapPlan;
-using detail::PrepareProgress;
-using detail::PrepareShare;
-
 RayCaster::RayCaster()
   : Impl(new Internals)
 {

@@ -50,6 +50,11 @@ struct PrepareProgress
 
 } // namespace detail
 
+// The .cxx files that share this state use these unqualified.
+using detail::LeapPlan;
+using detail::PrepareProgress;
+using detail::PrepareShare;
+
 struct RayCaster::Internals
 {
   MinMaxOctree Octree;

@@ -459,7 +459,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
       {
         frontier = FindOpen(links, spanBegin);
       }
-      counters.skippedOpaque +=
+      counters.terminatedPixelVisits +=
         static_cast<std::uint64_t>(std::max(0, std::min(frontier, spanEnd) - spanBegin));
       u = frontier;
     }
@@ -480,7 +480,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
       if (skip)
       {
         const int found = FindOpen(links, u);
-        counters.skippedOpaque +=
+        counters.terminatedPixelVisits +=
           static_cast<std::uint64_t>(std::max(0, std::min(found, spanEnd) - u));
         u = found;
       }
@@ -549,7 +549,7 @@ inline void CompositeScanlinePair(
     const int found = first < last ? FindOpen(links, first) : last;
     if (found >= last)
     {
-      c.counters.skippedOpaque += static_cast<std::uint64_t>(std::max(0, last - first));
+      c.counters.terminatedPixelVisits += static_cast<std::uint64_t>(std::max(0, last - first));
       return;
     }
   }
@@ -691,16 +691,16 @@ void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpF
   ScanlineCounters& counters, double* work)
 {
   const CompositePolicy policy{ tables };
-  Band(encoded, f, policy, tables.skipLinks && tables.earlyTermination, v0, v1, rgba, workspace,
+  Band(encoded, f, policy, tables.terminationLinks && tables.earlyTermination, v0, v1, rgba, workspace,
     counters, work);
 }
 
 void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded, const ShearWarpFactorization& f,
-  bool maximum, float saturation, bool skipLinks, int v0, int v1, float* value,
+  bool maximum, float saturation, bool terminationLinks, int v0, int v1, float* value,
   ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work)
 {
   const ExtremePolicy policy{ maximum, saturation };
-  Band(encoded, f, policy, skipLinks, v0, v1, value, workspace, counters, work);
+  Band(encoded, f, policy, terminationLinks, v0, v1, value, workspace, counters, work);
 }
 
 }

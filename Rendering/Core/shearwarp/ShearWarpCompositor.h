@@ -41,7 +41,8 @@ struct CompositeTables
   float normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
   bool earlyTermination = true;
   float terminationThreshold = 0.99f;
-  bool skipLinks = true; // false: no pixel is ever skipped (the brute-force baseline)
+  // Termination by skip links over saturated pixels; false: none is ever skipped (the baseline).
+  bool terminationLinks = true;
 };
 
 // Phong with VTK's coefficients, two-sided, for an index-space gradient direction g (eye space
@@ -56,12 +57,12 @@ struct ScanlineCounters
 {
   std::uint64_t voxels = 0;         // voxel values read (a voxel serves up to four pixels)
   std::uint64_t samples = 0;        // intermediate pixels composited (per slice)
-  std::uint64_t skippedOpaque = 0;  // pixel visits skipped by skip links (saturated pixels)
+  std::uint64_t terminatedPixelVisits = 0; // pixel visits skipped by termination (skip links)
   void Add(const ScanlineCounters& other)
   {
     this->voxels += other.voxels;
     this->samples += other.samples;
-    this->skippedOpaque += other.skippedOpaque;
+    this->terminatedPixelVisits += other.terminatedPixelVisits;
   }
 };
 
@@ -90,7 +91,7 @@ void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded,
 // corners are all stored (-inf for MIP / +inf for MinIP on entry: no sample). A pixel that
 // reaches `saturation` (the volume's extreme) can change no further and is skipped.
 void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded,
-  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool skipLinks,
+  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool terminationLinks,
   int v0, int v1, float* value, ScanlineWorkspace& workspace, ScanlineCounters& counters,
   double* work);
 
@@ -102,10 +103,10 @@ inline void CompositeScanline(const RunLengthVolume<ShadedVoxel>& encoded,
   CompositeBand(encoded, factorization, tables, v, v + 1, rgba, workspace, counters, nullptr);
 }
 inline void ExtremeScanline(const RunLengthVolume<ScalarVoxel>& encoded,
-  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool skipLinks,
+  const ShearWarpFactorization& factorization, bool maximum, float saturation, bool terminationLinks,
   int v, float* value, ScanlineWorkspace& workspace, ScanlineCounters& counters)
 {
-  ExtremeBand(encoded, factorization, maximum, saturation, skipLinks, v, v + 1, value, workspace,
+  ExtremeBand(encoded, factorization, maximum, saturation, terminationLinks, v, v + 1, value, workspace,
     counters, nullptr);
 }
 

@@ -9,11 +9,6 @@
 
 namespace accelvolume
 {
-using detail::Clock;
-using detail::EncodingKey;
-using detail::EncodingSlot;
-using detail::Seconds;
-
 namespace
 {
 

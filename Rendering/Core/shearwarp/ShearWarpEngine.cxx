@@ -20,14 +20,8 @@
 
 namespace accelvolume
 {
-using detail::Clock;
-using detail::EncodingKey;
-using detail::EncodingSlot;
-using detail::Seconds;
-
 namespace
 {
-
 
 template <typename Voxel>
 const std::vector<std::uint32_t>& RowVoxels(EncodingSlot<Voxel>& slot)
@@ -48,7 +42,6 @@ const std::vector<std::uint32_t>& RowVoxels(EncodingSlot<Voxel>& slot)
   }
   return slot.rowVoxels;
 }
-
 
 // The arguments BeginFrameReporting refuses before it factorizes the view.
 bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double rangeMax,
@@ -84,7 +77,6 @@ bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double range
   return true;
 }
 
-
 // The shading part of the per-frame tables: lighting coefficients, lights and normal matrix.
 void SetShading(
   const RayCastLighting& lighting, const ShearWarpSettings& settings, CompositeTables& t)
@@ -113,7 +105,6 @@ void SetShading(
   }
 }
 }
-
 
 std::vector<double> ShearWarpRenderer::Internals::EstimateCosts()
 {
@@ -190,14 +181,13 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
     transferVersion, lighting, view, settings, parallel, this->Impl->progress, stats, error);
 }
 
-
 void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
   const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings)
 {
   const ShearWarpFactorization& f = this->factorization;
   CompositeTables& t = this->tables;
   t.earlyTermination = settings.earlyTermination;
-  t.skipLinks = settings.earlyTermination;
+  t.terminationLinks = settings.earlyTermination;
   t.terminationThreshold = static_cast<float>(settings.terminationThreshold);
   if (settings.blend != Blend::Composite)
   {
@@ -237,7 +227,7 @@ void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
   this->scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
   this->voxels = 0;
   this->samples = 0;
-  this->skippedOpaque = 0;
+  this->terminatedPixelVisits = 0;
   stats.principalAxis = axis;
   stats.intermediateSize[0] = f.intermediateSize[0];
   stats.intermediateSize[1] = f.intermediateSize[1];
@@ -371,7 +361,7 @@ void ShearWarpRenderer::CompositeRows(int v0, int v1)
   }
   impl.voxels += counters.voxels;
   impl.samples += counters.samples;
-  impl.skippedOpaque += counters.skippedOpaque;
+  impl.terminatedPixelVisits += counters.terminatedPixelVisits;
 }
 
 void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4])
@@ -618,7 +608,7 @@ void ShearWarpRenderer::GetCounters(ShearWarpStats& stats) const
 {
   stats.voxels = this->Impl->voxels;
   stats.samples = this->Impl->samples;
-  stats.skippedOpaque = this->Impl->skippedOpaque;
+  stats.terminatedPixelVisits = this->Impl->terminatedPixelVisits;
 }
 
 std::size_t ShearWarpRenderer::GetEncodedBytes() const

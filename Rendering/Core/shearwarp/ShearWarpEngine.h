@@ -71,7 +71,7 @@ struct ShearWarpStats
   std::vector<double> bandSeconds; // per band
   std::vector<int> bandBounds;     // bands + 1 scanline boundaries
   double imbalance = 1;            // max / mean band time
-  std::uint64_t voxels = 0, samples = 0, skippedOpaque = 0;
+  std::uint64_t voxels = 0, samples = 0, terminatedPixelVisits = 0;
   std::size_t encodedBytes = 0;   // all encodings held
   std::uint64_t storedVoxels = 0; // voxels in the current axis's encoding
   std::uint64_t runs = 0;

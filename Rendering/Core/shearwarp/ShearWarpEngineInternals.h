@@ -51,6 +51,12 @@ struct EncodingSlot
 
 } // namespace detail
 
+// The .cxx files that share this state use these unqualified.
+using detail::Clock;
+using detail::EncodingKey;
+using detail::EncodingSlot;
+using detail::Seconds;
+
 struct ShearWarpRenderer::Internals
 {
   detail::EncodingSlot<ShadedVoxel> composite[2][3]; // [dense][axis]
@@ -67,7 +73,7 @@ struct ShearWarpRenderer::Internals
   std::vector<double> scanlineSeconds;
   int imageSize[2] = { 0, 0 };
   double opacityRatio = -1; // ray length between slices / opacity unit distance of tables.opacity
-  std::atomic<std::uint64_t> voxels{ 0 }, samples{ 0 }, skippedOpaque{ 0 };
+  std::atomic<std::uint64_t> voxels{ 0 }, samples{ 0 }, terminatedPixelVisits{ 0 };
 
   // Balancing: the costs of the last frame, for its principal axis.
   std::vector<double> costs;
