@@ -38,35 +38,6 @@ namespace accelvolume::cli
 namespace
 {
 
-long ParseLong(const std::string& flag, const std::string& text)
-{
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-  {
-    throw CliError(ExitUsage, flag + " expects an integer, got '" + text + "'");
-  }
-  return value;
-}
-
-// --flag N with N in [low, high].
-void AddBoundedInteger(CLI::App& command, const std::string& flag, const std::string& help,
-  long low, long high, int& target)
-{
-  AddFlag(command, flag, 1, "N", help,
-    [flag, low, high, &target](const FlagValues& values)
-    {
-      const long number = ParseLong(flag, values[0]);
-      if (number < low || number > high)
-      {
-        throw CliError(ExitUsage,
-          flag + " must be between " + std::to_string(low) + " and " + std::to_string(high));
-      }
-      target = static_cast<int>(number);
-    });
-}
-
 double MillisecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -154,7 +125,7 @@ void AddOctreeFlags(CLI::App& command, OctreeOptions& options)
   AddFlag(command, "--leaf", 1, "L", "leaf block edge in voxels, a power of two 2..64 (default 8)",
     [&](const FlagValues& values)
     {
-      const long leaf = ParseLong("--leaf", values[0]);
+      const int leaf = ParseInteger("--leaf", values[0]);
       if (leaf < 2 || leaf > 64 || (leaf & (leaf - 1)) != 0)
       {
         throw CliError(
@@ -180,10 +151,11 @@ void AddOctreeFlags(CLI::App& command, OctreeOptions& options)
       }
       options.builder = found->second;
     });
-  AddBoundedInteger(command, "--threads", "cpu builder threads (0 = vtkSMPTools' default)", 0, 1024,
-    options.threads);
-  AddBoundedInteger(command, "--repeat",
-    "builds, read-floor passes and classifications (default 5)", 1, 10000, options.repeat);
+  AddBoundedInteger(command, "--threads", "N", "cpu builder threads (0 = vtkSMPTools' default)",
+    0, 1024, [&](int value) { options.threads = value; });
+  AddBoundedInteger(command, "--repeat", "N",
+    "builds, read-floor passes and classifications (default 5)", 1, 10000,
+    [&](int value) { options.repeat = value; });
   AddFlag(command, "--tf-low", 1, "V",
     "opacity 0 up to V, ramping to 1 at the maximum\n"
     "(default: 10% into the scalar range)",

@@ -17,6 +17,20 @@
 
 namespace accelvolume::cli
 {
+
+int ParseInteger(const std::string& flag, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || value > 1 << 30 ||
+    value < -(1 << 30))
+  {
+    throw CliError(ExitUsage, flag + " expects an integer, got '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
 namespace
 {
 
@@ -44,18 +58,6 @@ std::string FormatNumber(double value)
   return stream.str();
 }
 
-int ParseInteger(const std::string& flag, const std::string& text)
-{
-  char* end = nullptr;
-  errno = 0;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || value > 1 << 30 ||
-    value < -(1 << 30))
-  {
-    throw Usage(flag + " expects an integer, got '" + text + "'");
-  }
-  return static_cast<int>(value);
-}
 
 template <typename Enum>
 Enum ParseChoice(
@@ -527,6 +529,12 @@ void AddOutputFlags(CLI::App& command, Options& options)
 }
 
 } // namespace
+
+void AddBoundedInteger(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, int low, int high, std::function<void(int)> take)
+{
+  AddBounded<int>(command, flag, text, help, low, high, "", std::move(take));
+}
 
 void AddRenderFlags(CLI::App& command, Options& options)
 {

@@ -160,6 +160,13 @@ std::string OctreeHelp();
 using FlagValues = std::vector<std::string>;
 CLI::Option* AddFlag(CLI::App& command, const std::string& flag, int count, const std::string& text,
   const std::string& help, std::function<void(const FlagValues&)> take, bool anyValue = false);
+// --flag N with N an integer in [low, high]; the usage errors are "--flag expects an integer,
+// got 'x'" and "--flag must be between low and high".
+void AddBoundedInteger(CLI::App& command, const std::string& flag, const std::string& text,
+  const std::string& help, int low, int high, std::function<void(int)> take);
+// An integer flag value (|value| <= 2^30), else CliError(ExitUsage, "--flag expects an integer,
+// got 'text'").
+int ParseInteger(const std::string& flag, const std::string& text);
 // A flag without a value.
 CLI::Option* AddSwitch(
   CLI::App& command, const std::string& flag, const std::string& help, std::function<void()> take);

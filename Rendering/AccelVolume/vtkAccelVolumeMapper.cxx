@@ -25,8 +25,6 @@ double* vtkAccelVolumeMapper::GetBounds()
   return this->Superclass::GetBounds();
 }
 
-void vtkAccelVolumeMapper::ReleaseGraphicsResources(vtkWindow*) {}
-
 int vtkAccelVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
   this->Superclass::FillInputPortInformation(port, info);

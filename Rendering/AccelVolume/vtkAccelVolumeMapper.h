@@ -23,8 +23,6 @@
 #include "vtkTimeStamp.h"                  // For vtkTimeStamp
 #include "vtkVolumeMapper.h"
 
-class vtkWindow;
-
 class VTKRENDERINGACCELVOLUME_EXPORT vtkAccelVolumeMapper : public vtkVolumeMapper
 {
 public:
@@ -49,9 +47,6 @@ public:
   /** Bounds of the input; a missing input is reported here (once per change of the mapper). */
   double* GetBounds() VTK_SIZEHINT(6) override;
   using vtkVolumeMapper::GetBounds;
-
-  /** Frees what the mapper holds for the window; nothing by default. */
-  void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
   vtkAccelVolumeMapper();

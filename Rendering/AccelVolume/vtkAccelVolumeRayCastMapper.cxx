@@ -297,9 +297,7 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::Cast(vtkAccelVolumeRayCastMapper
   vtkAccelVolumeRenderProgress& progress, const RayCastFrameInputs& in,
   accelvolume::RayCastCounters& counters, std::string& error)
 {
-  accelvolume::ParallelFor parallel =
-    [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
+  const accelvolume::ParallelFor parallel = vtkAccelVolumeSMPParallelFor();
   bool ok = false;
   auto cast = [&]()
   {

@@ -112,12 +112,6 @@ struct ShearWarpFrameResult
   std::string error;
 };
 
-accelvolume::ParallelFor SMPParallelFor()
-{
-  return [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
-}
-
 // The view-dependent part of the frame: the image size and the voxel-to-image map.
 void SetUpShearWarpView(vtkCamera* camera, vtkMatrix4x4* indexToWorld, int width, int height,
   accelvolume::ShearWarpView& frame)
@@ -316,7 +310,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrame(const ShearWarpFra
       this->Renderer.SetProgressFunction(progress.Range(0.0, 0.95));
       out.ok = this->Renderer.Render(in.view, in.range[0], in.high, this->Inputs.VolumeVersion,
         in.transfer, this->Inputs.TransferVersion, in.lighting, in.frame, in.settings,
-        SMPParallelFor(), this->Image, out.rectangle, out.stats, out.error);
+        vtkAccelVolumeSMPParallelFor(), this->Image, out.rectangle, out.stats, out.error);
       return;
     }
     this->RenderFrameOnRanks(in, ranks, rank, progress, out);
@@ -336,7 +330,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
   // up to 0.6, then each phase once. Every exchange with another rank is bounded in time
   // (CommunicationTimeout; vtkAccelVolumeMPIExchange).
   accelvolume::ShearWarpRenderer& engine = this->Renderer;
-  const accelvolume::ParallelFor parallel = SMPParallelFor();
+  const accelvolume::ParallelFor parallel = vtkAccelVolumeSMPParallelFor();
   const int threads = in.threads;
   engine.SetProgressFunction(progress.Range(0.0, 0.6));
   try

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -505,13 +506,10 @@ bool vtkAccelVolumeView(vtkImageData* input, vtkDataArray* scalars, accelvolume:
   return vtkAccelVolumeScalarType(scalars->GetDataType(), view.type);
 }
 
-void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported)
+accelvolume::ParallelFor vtkAccelVolumeSMPParallelFor()
 {
-  if (mapper->GetNumberOfInputConnections(0) == 0 && mapper->GetMTime() > reported)
-  {
-    reported.Modified();
-    vtkErrorWithObjectMacro(mapper, "No input: connect a vtkImageData to the mapper");
-  }
+  return [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  { vtkSMPTools::For(0, count, 1, [&](std::size_t begin, std::size_t end) { body(begin, end); }); };
 }
 
 void vtkAccelVolumeCPUInputs::UpdateVolume(vtkImageData* input, vtkDataArray* scalars)

@@ -5,6 +5,7 @@
 #define vtkAccelVolumeMapperSupport_h
 
 #include "common/Geometry.h"
+#include "common/ParallelFor.h"
 #include "skipping/MinMaxOctree.h"  // ScalarType, VolumeView
 #include "raycast/RayCastEngine.h" // RayCastTransfer, RayCastLighting
 
@@ -37,9 +38,9 @@ bool vtkAccelVolumeCheckInput(
 bool vtkAccelVolumeFetchInput(
   vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
 
-// For GetBounds: a vtkErrorMacro on the mapper when it has no input, once per change of the
-// mapper (GetBounds is called many times per frame).
-void vtkAccelVolumeReportMissingInput(vtkVolumeMapper* mapper, vtkTimeStamp& reported);
+// Core's ParallelFor on vtkSMPTools, one work item per range (the CPU mappers' tiles and bands
+// are heavy items).
+accelvolume::ParallelFor vtkAccelVolumeSMPParallelFor();
 
 // The checks a CPU mapper's Render starts with: an OpenGL window to show the image in, a
 // renderable input (vtkAccelVolumeFetchInput) and a volume property. Null, after a
