@@ -1,9 +1,17 @@
 #include "vtkAccelVolumeMapper.h"
 
+#include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAlgorithm.h"
 #include "vtkInformation.h"
+#include "vtkOpenGLRenderWindow.h"
 
-vtkAccelVolumeMapper::vtkAccelVolumeMapper() = default;
+#include <algorithm>
+#include <cmath>
+
+vtkAccelVolumeMapper::vtkAccelVolumeMapper()
+  : InputAdapter(new vtkAccelVolumeInputAdapter)
+{
+}
 
 vtkAccelVolumeMapper::~vtkAccelVolumeMapper() = default;
 
@@ -13,6 +21,30 @@ void vtkAccelVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EarlyRayTermination: " << this->EarlyRayTermination << "\n";
   os << indent << "EarlyRayTerminationThreshold: " << this->EarlyRayTerminationThreshold << "\n";
   os << indent << "LastRenderTime: " << this->LastRenderTime << "\n";
+  os << indent << "FinalColorWindow: " << this->FinalColorWindow << "\n";
+  os << indent << "FinalColorLevel: " << this->FinalColorLevel << "\n";
+}
+
+int vtkAccelVolumeMapper::IsRenderSupported(vtkRenderWindow* window, vtkVolumeProperty*)
+{
+  return !window || vtkOpenGLRenderWindow::SafeDownCast(window) ? 1 : 0;
+}
+
+void vtkAccelVolumeMapper::GetFinalColorScaleAndBias(float& scale, float& bias) const
+{
+  const float window = std::abs(this->FinalColorWindow) < 1.0e-6f
+    ? std::copysign(1.0e-6f, this->FinalColorWindow)
+    : this->FinalColorWindow;
+  scale = 1.0f / window;
+  bias = 0.5f - this->FinalColorLevel / window;
+}
+
+void vtkAccelVolumeMapper::WarnNotApplicable(const char* member, const char* why)
+{
+  if (this->WarnedNotApplicable.insert(member).second)
+  {
+    vtkWarningMacro(<< member << " has no effect on " << this->GetClassName() << ": " << why);
+  }
 }
 
 double* vtkAccelVolumeMapper::GetBounds()

@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeRayCastMapper.h"
 
 #include "vtkAccelVolumeImageDisplay.h"
+#include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
@@ -67,6 +68,7 @@ struct RayCastFrameInputs
   double Range[2] = { 0, 0 };
   double High = 0;
   double VoxelSpacing = 0;
+  double LockedSampleDistance = 0; // vtkVolumeMapper::SpacingAdjustedSampleDistance
   vtkNew<vtkMatrix4x4> IndexToWorld;
   vtkNew<vtkMatrix4x4> WorldToIndex;
   accelvolume::RayCastTransfer Transfer;
@@ -126,6 +128,9 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LeapMode: " << this->LeapMode << "\n";
   os << indent << "CellLeaping: " << this->CellLeaping << "\n";
   os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
+  os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
+     << "\n";
+  os << indent << "IntermixIntersectingGeometry: " << this->IntermixIntersectingGeometry << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
@@ -177,6 +182,11 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   vtkAccelVolumeIndexToWorld(volume, input, in.IndexToWorld);
   vtkMatrix4x4::Invert(in.IndexToWorld, in.WorldToIndex);
   in.VoxelSpacing = vtkAccelVolumeSmallestSpacing(in.IndexToWorld, in.View.dims);
+  double spacing[3];
+  int extent[6];
+  input->GetSpacing(spacing);
+  input->GetExtent(extent);
+  in.LockedSampleDistance = self->SpacingAdjustedSampleDistance(spacing, extent);
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
   this->Inputs.UpdateTransfer(property, in.Range, composite, in.VoxelSpacing, in.Transfer, in.High);
   return true;
@@ -197,6 +207,10 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::SetUpRays(vtkAccelVolumeRayCastM
   const double allotted = volume->GetAllocatedRenderTime();
   const bool interactive = self->AutoAdjustSampleDistances && allotted > 0 && allotted < 1.0;
   double sampleDistance = interactive ? self->InteractiveSampleDistance : self->SampleDistance;
+  if (self->LockSampleDistanceToInputSpacing)
+  {
+    sampleDistance = in.LockedSampleDistance;
+  }
   double imageSampleDistance = self->ImageSampleDistance;
   if (interactive)
   {
@@ -229,7 +243,7 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::SetUpRays(vtkAccelVolumeRayCastM
   }
   rays.worldToIndex = ToAffine(in.WorldToIndex);
   // Opaque geometry drawn before the volume stops the rays.
-  if (renderer->VisibleActorCount() > 0)
+  if (self->IntermixIntersectingGeometry && renderer->VisibleActorCount() > 0)
   {
     this->ReadSceneDepth(window, in);
   }
@@ -360,7 +374,7 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   vtkDataArray* scalars = nullptr;
   vtkVolumeProperty* property = nullptr;
   vtkOpenGLRenderWindow* window =
-    vtkAccelVolumeBeginCPURender(this, renderer, volume, input, scalars, property);
+    vtkAccelVolumeBeginCPURender(this, *this->InputAdapter, renderer, volume, input, scalars, property);
   if (!window)
   {
     return;
@@ -388,8 +402,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
 
   int castRectangle[4];
   internals.Caster.GetLastCastRectangle(castRectangle);
+  float colourScale = 1.0f;
+  float colourBias = 0.0f;
+  this->GetFinalColorScaleAndBias(colourScale, colourBias);
   if (!internals.Display.Draw(window, in.LowerLeft, in.Width, in.Height, in.ImageWidth,
-        in.ImageHeight, internals.Image.data(), castRectangle))
+        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

@@ -105,6 +105,27 @@ public:
   ///@}
 
   ///@{
+  /**
+   * As vtkFixedPointVolumeRayCastMapper (default off): sample at
+   * vtkVolumeMapper::SpacingAdjustedSampleDistance (half the mean voxel spacing, less for small
+   * volumes), still and interactive frames alike, instead of (Interactive)SampleDistance.
+   */
+  vtkSetClampMacro(LockSampleDistanceToInputSpacing, vtkTypeBool, 0, 1);
+  vtkGetMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  vtkBooleanMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * As vtkFixedPointVolumeRayCastMapper (default on): opaque geometry drawn before the volume
+   * stops the rays. Off ignores the scene's depth.
+   */
+  vtkSetClampMacro(IntermixIntersectingGeometry, vtkTypeBool, 0, 1);
+  vtkGetMacro(IntermixIntersectingGeometry, vtkTypeBool);
+  vtkBooleanMacro(IntermixIntersectingGeometry, vtkTypeBool);
+  ///@}
+
+  ///@{
   /** Pixels per ray along each image axis (default 1). */
   vtkSetClampMacro(ImageSampleDistance, double, 1.0, 32.0);
   vtkGetMacro(ImageSampleDistance, double);
@@ -174,6 +195,8 @@ protected:
   vtkAccelVolumeRayCastMapper();
   ~vtkAccelVolumeRayCastMapper() override;
 
+  vtkTypeBool LockSampleDistanceToInputSpacing = 0;
+  vtkTypeBool IntermixIntersectingGeometry = 1;
   int LeapMode = LEAP_DISTANCE_MAP;
   vtkTypeBool CellLeaping = 0;
   int OctreeLeafSize = 4;

@@ -3,6 +3,7 @@
 #include "vtkAccelVolumeShearWarpMapper.h"
 
 #include "vtkAccelVolumeImageDisplay.h"
+#include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMPIExchange.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
@@ -62,7 +63,8 @@ double Now()
 
 // Why vtkAccelVolumeBeginCPURender refused (it reported the error on this rank; this text goes to
 // the other ranks).
-std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkRenderer* renderer, vtkVolume* volume)
+std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter& adapter,
+  vtkRenderer* renderer, vtkVolume* volume)
 {
   if (!vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow()))
   {
@@ -71,7 +73,7 @@ std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkRenderer* renderer, vtk
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   std::string error;
-  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error))
+  if (!vtkAccelVolumeFetchInput(mapper, adapter, input, scalars, error))
   {
     return error;
   }
@@ -488,10 +490,10 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   vtkDataArray* scalars = nullptr;
   vtkVolumeProperty* property = nullptr;
   vtkOpenGLRenderWindow* window =
-    vtkAccelVolumeBeginCPURender(this, renderer, volume, input, scalars, property);
+    vtkAccelVolumeBeginCPURender(this, *this->InputAdapter, renderer, volume, input, scalars, property);
   if (!window)
   {
-    leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, renderer, volume) : "");
+    leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, *this->InputAdapter, renderer, volume) : "");
     return;
   }
   ShearWarpFrameInputs in;
@@ -525,9 +527,12 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   }
   internals.RecordCounters(this, out);
 
+  float colourScale = 1.0f;
+  float colourBias = 0.0f;
+  this->GetFinalColorScaleAndBias(colourScale, colourBias);
   if (rank == 0 &&
     !internals.Display.Draw(window, in.lowerLeft, in.width, in.height, in.width, in.height,
-      internals.Image.data(), out.rectangle))
+      internals.Image.data(), out.rectangle, colourScale, colourBias))
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }

@@ -1,6 +1,7 @@
 // Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
@@ -9,6 +10,7 @@
 #include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -87,6 +89,7 @@ constexpr double SlicePhase = 0.0;
 // regions and the slices' spacing and depth.
 struct SliceView
 {
+  vtkImageData* Input = nullptr;
   int Dimensions[3] = { 0, 0, 0 };
   int Width = 0;
   int Height = 0;
@@ -163,7 +166,127 @@ vtkAccelVolumeSliceMapper::vtkAccelVolumeSliceMapper()
   // drop-in replacement must draw the same picture without being told the blend mode.
 }
 
-vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper() = default;
+vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper()
+{
+  this->SetMaskInput(nullptr);
+  if (this->DepthPassContourValues)
+  {
+    this->DepthPassContourValues->Delete();
+  }
+  this->SetTransfer2DYAxisArray(nullptr);
+}
+
+void vtkAccelVolumeSliceMapper::SetMaxMemoryInBytes(vtkIdType bytes)
+{
+  this->MaxMemoryInBytes = std::max<vtkIdType>(0, bytes);
+  this->SetGPUMemoryBudget(
+    static_cast<vtkIdType>(static_cast<double>(this->MaxMemoryInBytes) * this->MaxMemoryFraction));
+  this->Modified();
+}
+
+void vtkAccelVolumeSliceMapper::SetMaxMemoryFraction(float fraction)
+{
+  this->MaxMemoryFraction = std::min(1.0f, std::max(0.1f, fraction));
+  this->SetMaxMemoryInBytes(this->MaxMemoryInBytes);
+}
+
+void vtkAccelVolumeSliceMapper::SetPartitions(unsigned short x, unsigned short y, unsigned short z)
+{
+  const unsigned short wanted[3] = { std::max<unsigned short>(1, x),
+    std::max<unsigned short>(1, y), std::max<unsigned short>(1, z) };
+  if (!std::equal(wanted, wanted + 3, this->Partitions))
+  {
+    std::copy(wanted, wanted + 3, this->Partitions);
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeSliceMapper::SetMaskInput(vtkImageData* mask)
+{
+  if (mask == this->MaskInput)
+  {
+    return;
+  }
+  if (this->MaskInput)
+  {
+    this->MaskInput->UnRegister(this);
+  }
+  this->MaskInput = mask;
+  if (mask)
+  {
+    mask->Register(this);
+  }
+  this->Modified();
+}
+
+vtkContourValues* vtkAccelVolumeSliceMapper::GetDepthPassContourValues()
+{
+  if (!this->DepthPassContourValues)
+  {
+    this->DepthPassContourValues = vtkContourValues::New();
+  }
+  return this->DepthPassContourValues;
+}
+
+void vtkAccelVolumeSliceMapper::GetDepthImage(vtkImageData* image)
+{
+  if (image)
+  {
+    image->Initialize();
+  }
+  this->WarnNotApplicable("GetDepthImage", "render-to-image is not available yet");
+}
+
+void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
+{
+  if (image)
+  {
+    image->Initialize();
+  }
+  this->WarnNotApplicable("GetColorImage", "render-to-image is not available yet");
+}
+
+void vtkAccelVolumeSliceMapper::GetReductionRatio(double ratio[3])
+{
+  ratio[0] = ratio[1] = ratio[2] = 1.0;
+}
+
+int vtkAccelVolumeSliceMapper::IsRenderSupported(
+  vtkRenderWindow* window, vtkVolumeProperty* property)
+{
+  if (window && !vtkOpenGLRenderWindow::SafeDownCast(window))
+  {
+    return 0;
+  }
+  (void)property; // every property the mapper accepts renders with OpenGL 3.2
+  return 1;
+}
+
+void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
+{
+  if (this->RenderToImage)
+  {
+    this->WarnNotApplicable("RenderToImage", "not available yet; the volume is drawn into the scene");
+  }
+  if (this->UseDepthPass)
+  {
+    this->WarnNotApplicable("UseDepthPass", "not available yet; the volume is drawn without it");
+  }
+  if (!this->ReportProgress)
+  {
+    this->WarnNotApplicable("ReportProgress", "progress events are always sent");
+  }
+  if (this->ColorRangeType != SCALAR || this->ScalarOpacityRangeType != SCALAR ||
+    this->GradientOpacityRangeType != SCALAR)
+  {
+    this->WarnNotApplicable("NATIVE transfer-function ranges", "the tables span the data range");
+  }
+  if (this->Transfer2DYAxisArray && *this->Transfer2DYAxisArray)
+  {
+    this->WarnNotApplicable(
+      "Transfer2DYAxisArray", "the 2D transfer function's y axis is the gradient magnitude");
+  }
+}
 
 void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -193,6 +316,20 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfBrickUploads: " << this->LastNumberOfBrickUploads << "\n";
   os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
   os << indent << "LastResidentBytes: " << this->LastResidentBytes << "\n";
+  os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
+     << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
+  os << indent << "MaxMemoryInBytes: " << this->MaxMemoryInBytes << "\n";
+  os << indent << "MaxMemoryFraction: " << this->MaxMemoryFraction << "\n";
+  os << indent << "Partitions: " << this->Partitions[0] << " " << this->Partitions[1] << " "
+     << this->Partitions[2] << "\n";
+  os << indent << "MaskInput: " << this->MaskInput << "\n";
+  os << indent << "MaskType: " << this->MaskType << "\n";
+  os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
+  os << indent << "RenderToImage: " << this->RenderToImage << "\n";
+  os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
 }
 
 bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
@@ -261,17 +398,19 @@ void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Internals->Resources.ReleaseGraphicsResources(window);
 }
 
-bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkVolume* volume)
+bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray* scalars,
+  const std::string& inputError, vtkVolume* volume)
 {
-  int cellFlag = 0;
-  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
-                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
-                                : nullptr;
-  std::string error;
-  if (!vtkAccelVolumeCheckInput(input, scalars, cellFlag, error) ||
-    !vtkAccelVolumeCheckGeometry(this, error))
+  std::string error = inputError;
+  if (!input || !scalars || !error.empty() || !vtkAccelVolumeCheckGeometry(this, error))
   {
     vtkErrorMacro(<< error);
+    return false;
+  }
+  if (this->MaskInput)
+  {
+    vtkErrorMacro("Mask inputs (SetMaskInput) are not rendered yet; remove the mask to draw the "
+                  "unmasked volume");
     return false;
   }
   if (!IsSupportedBlend(this->BlendMode))
@@ -299,8 +438,20 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
   vtkVolumeProperty* property, const double range[2])
 {
   std::string error;
+  // Partitions: bricks no larger than a block plus the voxel neighbours share.
+  int brickSize = self->MaximumBrickSize;
+  const int* dims = input->GetDimensions();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (self->Partitions[a] > 1 && dims[a] > 1)
+    {
+      const int block = (dims[a] - 1 + self->Partitions[a] - 1) / self->Partitions[a];
+      const int size = std::max(4, block + 1);
+      brickSize = brickSize > 0 ? std::min(brickSize, size) : size;
+    }
+  }
   if (!this->Resources.PrepareVolume(window, input, scalars, range,
-        static_cast<std::uint64_t>(self->GPUMemoryBudget), self->MaximumBrickSize, error))
+        static_cast<std::uint64_t>(self->GPUMemoryBudget), brickSize, error))
   {
     vtkErrorWithObjectMacro(self, "Cannot upload the volume: " << error);
     return false;
@@ -312,6 +463,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
 bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMapper* self,
   vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input, SliceView& view)
 {
+  view.Input = input;
   input->GetDimensions(view.Dimensions);
 
   // Index -> world: the image's index-to-physical matrix, then the prop's matrix.
@@ -363,6 +515,14 @@ void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
   // Slice depths reach the shaders relative to the volume centre's (float precision).
   const double referenceDepth = 0.5 * (depthMinimum + depthMaximum);
   double spacing = self->SampleDistance;
+  if (!self->AutoAdjustSampleDistances && self->LockSampleDistanceToInputSpacing)
+  {
+    double inputSpacing[3];
+    int extent[6];
+    view.Input->GetSpacing(inputSpacing);
+    view.Input->GetExtent(extent);
+    spacing = self->SpacingAdjustedSampleDistance(inputSpacing, extent);
+  }
   if (self->NumberOfSlices > 0)
   {
     spacing = depthExtent / self->NumberOfSlices;
@@ -588,18 +748,14 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   vtkImageData* input = nullptr;
-  if (this->GetNumberOfInputConnections(0) > 0)
-  {
-    this->GetInputAlgorithm()->Update();
-    input = vtkImageData::SafeDownCast(this->GetInput());
-  }
-  if (!this->ValidateInput(input, volume))
+  vtkDataArray* scalars = nullptr;
+  std::string inputError;
+  this->InputAdapter->Fetch(this, input, scalars, inputError);
+  if (!this->ValidateInput(input, scalars, inputError, volume))
   {
     return;
   }
-  int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
-    input, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  this->WarnUnappliedSettings();
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
 

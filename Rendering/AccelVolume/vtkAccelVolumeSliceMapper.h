@@ -60,9 +60,13 @@
 #include "vtkAccelVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
+class vtkContourValues;
+class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
 class vtkVolumeProperty;
 class vtkRenderer;
 class vtkVolume;
@@ -172,6 +176,154 @@ public:
   vtkGetMacro(Jittering, vtkTypeBool);
   vtkBooleanMacro(Jittering, vtkTypeBool);
   ///@}
+
+  ///@{
+  /** vtkGPUVolumeRayCastMapper's name for Jittering (both names set the same flag). */
+  void SetUseJittering(vtkTypeBool use) { this->SetJittering(use); }
+  vtkTypeBool GetUseJittering() { return this->GetJittering(); }
+  void UseJitteringOn() { this->SetJittering(1); }
+  void UseJitteringOff() { this->SetJittering(0); }
+  ///@}
+
+  ///@{
+  /**
+   * As vtkGPUVolumeRayCastMapper: with AutoAdjustSampleDistances off, sample at
+   * vtkVolumeMapper::SpacingAdjustedSampleDistance (half the mean voxel spacing, less for small
+   * volumes) instead of SampleDistance (default off).
+   */
+  vtkSetClampMacro(LockSampleDistanceToInputSpacing, vtkTypeBool, 0, 1);
+  vtkGetMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  vtkBooleanMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * As vtkGPUVolumeRayCastMapper: pixels per ray along each image axis (default 1, clamped to
+   * [0.1, 100]; values below 1 render at full resolution). Above 1 the slices are drawn into a
+   * target that many times smaller and resolved to colours there, then magnified bilinearly
+   * over the scene. Minimum / MaximumImageSampleDistance bound it (defaults 1 and 10); they are
+   * kept for VTK's API (interactive frames adapt the slice spacing, not the image size).
+   */
+  vtkSetClampMacro(ImageSampleDistance, float, 0.1f, 100.0f);
+  vtkGetMacro(ImageSampleDistance, float);
+  vtkSetClampMacro(MinimumImageSampleDistance, float, 0.1f, 100.0f);
+  vtkGetMacro(MinimumImageSampleDistance, float);
+  vtkSetClampMacro(MaximumImageSampleDistance, float, 0.1f, 100.0f);
+  vtkGetMacro(MaximumImageSampleDistance, float);
+  ///@}
+
+  ///@{
+  /**
+   * As vtkGPUVolumeRayCastMapper: GPU memory for the volume, MaxMemoryInBytes *
+   * MaxMemoryFraction (defaults 0 = no limit, and 0.75). Setting either sets GPUMemoryBudget to
+   * their product; GPUMemoryBudget is the one limit the mapper applies.
+   */
+  void SetMaxMemoryInBytes(vtkIdType bytes);
+  vtkGetMacro(MaxMemoryInBytes, vtkIdType);
+  void SetMaxMemoryFraction(float fraction);
+  vtkGetMacro(MaxMemoryFraction, float);
+  ///@}
+
+  /**
+   * As vtkGPUVolumeRayCastMapper: split the volume into x * y * z blocks rendered one after
+   * another, mapped onto this mapper's bricking (MaximumBrickSize per axis becomes the block
+   * size plus the shared voxel). 1 1 1 (the default) turns it off.
+   */
+  void SetPartitions(unsigned short x, unsigned short y, unsigned short z);
+  const unsigned short* GetPartitions() { return this->Partitions; }
+
+  ///@{
+  /** As vtkGPUVolumeRayCastMapper (default true): StartEvent / ProgressEvent / EndEvent. */
+  vtkSetMacro(ReportProgress, bool);
+  vtkGetMacro(ReportProgress, bool);
+  ///@}
+
+  ///@{
+  /**
+   * vtkGPUVolumeRayCastMapper's mask input, type (BinaryMaskType, LabelMapMaskType: the
+   * default) and blend factor (default 1). Not rendered yet: a frame with a mask set reports
+   * one error and draws nothing rather than the unmasked volume.
+   */
+  void SetMaskInput(vtkImageData* mask);
+  vtkGetObjectMacro(MaskInput, vtkImageData);
+  enum MaskTypes
+  {
+    BinaryMaskType = 0,
+    LabelMapMaskType = 1
+  };
+  vtkSetMacro(MaskType, int);
+  vtkGetMacro(MaskType, int);
+  void SetMaskTypeToBinary() { this->SetMaskType(BinaryMaskType); }
+  void SetMaskTypeToLabelMap() { this->SetMaskType(LabelMapMaskType); }
+  vtkSetClampMacro(MaskBlendFactor, float, 0.0f, 1.0f);
+  vtkGetMacro(MaskBlendFactor, float);
+  ///@}
+
+  ///@{
+  /**
+   * vtkGPUVolumeRayCastMapper's render-to-image mode (default off), depth image type (default
+   * VTK_FLOAT) and ClampDepthToBackface (default off). Not available yet: turning it on warns
+   * once and the volume is drawn into the scene as usual; GetColorImage / GetDepthImage then
+   * leave their argument empty.
+   */
+  vtkSetMacro(RenderToImage, vtkTypeBool);
+  vtkGetMacro(RenderToImage, vtkTypeBool);
+  vtkBooleanMacro(RenderToImage, vtkTypeBool);
+  vtkSetMacro(DepthImageScalarType, int);
+  vtkGetMacro(DepthImageScalarType, int);
+  void SetDepthImageScalarTypeToUnsignedChar() { this->SetDepthImageScalarType(VTK_UNSIGNED_CHAR); }
+  void SetDepthImageScalarTypeToUnsignedShort()
+  {
+    this->SetDepthImageScalarType(VTK_UNSIGNED_SHORT);
+  }
+  void SetDepthImageScalarTypeToFloat() { this->SetDepthImageScalarType(VTK_FLOAT); }
+  vtkSetMacro(ClampDepthToBackface, vtkTypeBool);
+  vtkGetMacro(ClampDepthToBackface, vtkTypeBool);
+  vtkBooleanMacro(ClampDepthToBackface, vtkTypeBool);
+  void GetDepthImage(vtkImageData* image);
+  void GetColorImage(vtkImageData* image);
+  ///@}
+
+  ///@{
+  /**
+   * vtkGPUVolumeRayCastMapper's depth pass (default off): not available; turning it on warns
+   * once and the volume is drawn without it.
+   */
+  vtkSetClampMacro(UseDepthPass, vtkTypeBool, 0, 1);
+  vtkGetMacro(UseDepthPass, vtkTypeBool);
+  vtkBooleanMacro(UseDepthPass, vtkTypeBool);
+  vtkContourValues* GetDepthPassContourValues();
+  ///@}
+
+  /** Transfer-function ranges, as vtkGPUVolumeRayCastMapper::TFRangeType. */
+  enum TFRangeType
+  {
+    SCALAR = 0, ///< the tables span the data range (the only one this mapper applies)
+    NATIVE = 1  ///< the functions' own range: warns once, the data range is used
+  };
+  ///@{
+  /** As vtkGPUVolumeRayCastMapper (default SCALAR). */
+  vtkSetMacro(ColorRangeType, int);
+  vtkGetMacro(ColorRangeType, int);
+  vtkSetMacro(ScalarOpacityRangeType, int);
+  vtkGetMacro(ScalarOpacityRangeType, int);
+  vtkSetMacro(GradientOpacityRangeType, int);
+  vtkGetMacro(GradientOpacityRangeType, int);
+  ///@}
+
+  ///@{
+  /**
+   * As vtkGPUVolumeRayCastMapper: the array for the 2D transfer function's y axis (default
+   * none: the gradient magnitude). Another array warns once and the gradient magnitude is used.
+   */
+  vtkSetStringMacro(Transfer2DYAxisArray);
+  vtkGetStringMacro(Transfer2DYAxisArray);
+  ///@}
+
+  /** As vtkGPUVolumeRayCastMapper: the input is never resampled, so 1 1 1. */
+  void GetReductionRatio(double ratio[3]);
+
+  int IsRenderSupported(vtkRenderWindow* window, vtkVolumeProperty* property) override;
 
   enum EmptySpaceSkippingModes
   {
@@ -290,6 +442,27 @@ protected:
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 
+  vtkTypeBool LockSampleDistanceToInputSpacing = 0;
+  float ImageSampleDistance = 1.0f;
+  float MinimumImageSampleDistance = 1.0f;
+  float MaximumImageSampleDistance = 10.0f;
+  vtkIdType MaxMemoryInBytes = 0;
+  float MaxMemoryFraction = 0.75f;
+  unsigned short Partitions[3] = { 1, 1, 1 };
+  bool ReportProgress = true;
+  vtkImageData* MaskInput = nullptr;
+  int MaskType = LabelMapMaskType;
+  float MaskBlendFactor = 1.0f;
+  vtkTypeBool RenderToImage = 0;
+  int DepthImageScalarType = VTK_FLOAT;
+  vtkTypeBool ClampDepthToBackface = 0;
+  vtkTypeBool UseDepthPass = 0;
+  vtkContourValues* DepthPassContourValues = nullptr;
+  int ColorRangeType = SCALAR;
+  int ScalarOpacityRangeType = SCALAR;
+  int GradientOpacityRangeType = SCALAR;
+  char* Transfer2DYAxisArray = nullptr;
+
   vtkIdType GPUMemoryBudget = 0;
   int MaximumBrickSize = 0;
   int LastNumberOfBricks = 0;
@@ -306,7 +479,10 @@ private:
   vtkAccelVolumeSliceMapper(const vtkAccelVolumeSliceMapper&) = delete;
   void operator=(const vtkAccelVolumeSliceMapper&) = delete;
 
-  bool ValidateInput(vtkImageData* input, vtkVolume* volume);
+  bool ValidateInput(vtkImageData* input, vtkDataArray* scalars, const std::string& inputError,
+    vtkVolume* volume);
+  // Warns once for each VTK setting in use that this mapper does not apply.
+  void WarnUnappliedSettings();
   // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.
   bool UpdateEmptyLeaves(vtkOpenGLRenderWindow* window, vtkImageData* input,
     vtkVolumeProperty* property, const double range[2]);

@@ -4,12 +4,17 @@
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
@@ -18,6 +23,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -92,8 +98,132 @@ const char* vtkAccelVolumeSmartMapper::GetRenderModeAsString(int mode)
       return "RayCast";
     case SHEARWARP_RENDER:
       return "ShearWarp";
+    case OSPRAY_RENDER:
+      return "OSPRay";
     default:
       return "Undefined";
+  }
+}
+
+void vtkAccelVolumeSmartMapper::SetRequestedRenderMode(int mode)
+{
+  if (mode != DEFAULT_RENDER && mode != RAYCAST_RENDER && mode != SLICE_RENDER &&
+    mode != OSPRAY_RENDER && mode != SHEARWARP_RENDER)
+  {
+    vtkErrorMacro("Invalid render mode " << mode << " (use DefaultRenderMode, RayCastRenderMode, "
+                                          "GPURenderMode or SHEARWARP_RENDER)");
+    return;
+  }
+  if (mode != this->RequestedRenderMode)
+  {
+    this->RequestedRenderMode = mode;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeSmartMapper::SetVectorMode(int mode)
+{
+  if (mode < DISABLED || mode > COMPONENT)
+  {
+    vtkErrorMacro("Invalid vector mode " << mode << " (use DISABLED, MAGNITUDE or COMPONENT)");
+    return;
+  }
+  if (mode != this->VectorMode)
+  {
+    this->VectorMode = mode;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeSmartMapper::ConnectInput(vtkAccelVolumeMapper* mapper)
+{
+  vtkDataSet* input = this->GetInput();
+  int cellFlag = 0;
+  vtkDataArray* scalars = input ? vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+                                    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag)
+                                : nullptr;
+  if (this->VectorMode == DISABLED || !scalars || scalars->GetNumberOfComponents() < 2)
+  {
+    mapper->SetInputConnection(this->GetInputConnection(0, 0));
+    return;
+  }
+  const int components = scalars->GetNumberOfComponents();
+  const int component = std::min(this->VectorComponent, components - 1);
+  const vtkMTimeType sourceTime = std::max(input->GetMTime(), scalars->GetMTime());
+  if (!this->Reduced || sourceTime > this->ReducedTime || this->ReducedMode != this->VectorMode ||
+    this->ReducedComponent != component)
+  {
+    this->Reduced.TakeReference(input->NewInstance());
+    this->Reduced->CopyStructure(input);
+    vtkNew<vtkFloatArray> reduced;
+    reduced->SetName(this->VectorMode == MAGNITUDE ? "Magnitude" : scalars->GetName());
+    const vtkIdType tuples = scalars->GetNumberOfTuples();
+    reduced->SetNumberOfTuples(tuples);
+    float* out = reduced->GetPointer(0);
+    for (vtkIdType t = 0; t < tuples; ++t)
+    {
+      if (this->VectorMode == MAGNITUDE)
+      {
+        double sum = 0.0;
+        for (int c = 0; c < components; ++c)
+        {
+          const double v = scalars->GetComponent(t, c);
+          sum += v * v;
+        }
+        out[t] = static_cast<float>(std::sqrt(sum));
+      }
+      else
+      {
+        out[t] = static_cast<float>(scalars->GetComponent(t, component));
+      }
+    }
+    (cellFlag ? static_cast<vtkDataSetAttributes*>(this->Reduced->GetCellData())
+              : static_cast<vtkDataSetAttributes*>(this->Reduced->GetPointData()))
+      ->SetScalars(reduced);
+    this->ReducedTime = this->Reduced->GetMTime();
+    this->ReducedMode = this->VectorMode;
+    this->ReducedComponent = component;
+  }
+  mapper->SetInputData(this->Reduced);
+  mapper->SetScalarMode(
+    cellFlag ? VTK_SCALAR_MODE_USE_CELL_DATA : VTK_SCALAR_MODE_USE_POINT_DATA);
+}
+
+void vtkAccelVolumeSmartMapper::ForwardSampleDistances(
+  vtkRenderer* renderer, vtkAccelVolumeMapper* mapper)
+{
+  if (this->MaxMemoryInBytes > 0)
+  {
+    this->SliceMapper->SetMaxMemoryFraction(this->MaxMemoryFraction);
+    this->SliceMapper->SetMaxMemoryInBytes(this->MaxMemoryInBytes);
+  }
+  // Left at their defaults, the owned mappers keep their own sample distances (see the class
+  // documentation for how that differs from vtkSmartVolumeMapper).
+  if (this->SampleDistance <= 0 && this->InteractiveAdjustSampleDistances &&
+    this->AutoAdjustSampleDistances)
+  {
+    return;
+  }
+  vtkRenderWindow* window = renderer->GetRenderWindow();
+  const bool interactive =
+    window && window->GetDesiredUpdateRate() >= this->InteractiveUpdateRate;
+  const vtkTypeBool autoAdjust =
+    this->InteractiveAdjustSampleDistances ? interactive : this->AutoAdjustSampleDistances;
+  // An explicit distance is used as given; -1 locks the owned mappers to the input spacing.
+  const bool lock = this->SampleDistance <= 0;
+  const double distance = lock ? 1.0 : this->SampleDistance;
+  if (mapper == this->SliceMapper.GetPointer())
+  {
+    this->SliceMapper->SetAutoAdjustSampleDistances(autoAdjust);
+    this->SliceMapper->SetLockSampleDistanceToInputSpacing(lock);
+    this->SliceMapper->SetSampleDistance(distance);
+  }
+  else if (mapper == this->RayCastMapper.GetPointer())
+  {
+    this->RayCastMapper->SetAutoAdjustSampleDistances(autoAdjust);
+    this->RayCastMapper->SetLockSampleDistanceToInputSpacing(lock);
+    this->RayCastMapper->SetSampleDistance(distance);
+    this->RayCastMapper->SetInteractiveSampleDistance(2.0 * distance);
   }
 }
 
@@ -131,8 +261,6 @@ void vtkAccelVolumeSmartMapper::Relay(vtkObject* caller, unsigned long event, vo
 
 void vtkAccelVolumeSmartMapper::Forward(vtkAccelVolumeMapper* mapper)
 {
-  mapper->SetInputConnection(
-    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputConnection(0, 0) : nullptr);
   mapper->SetBlendMode(this->BlendMode);
   mapper->SetCropping(this->Cropping);
   mapper->SetCroppingRegionPlanes(this->CroppingRegionPlanes);
@@ -151,6 +279,10 @@ void vtkAccelVolumeSmartMapper::Forward(vtkAccelVolumeMapper* mapper)
   mapper->SetArrayAccessMode(this->ArrayAccessMode);
   mapper->SetEarlyRayTermination(this->EarlyRayTermination);
   mapper->SetEarlyRayTerminationThreshold(this->EarlyRayTerminationThreshold);
+  mapper->SetFinalColorWindow(this->FinalColorWindow);
+  mapper->SetFinalColorLevel(this->FinalColorLevel);
+  // The input last: a VectorMode reduction overrides the scalar mode.
+  this->ConnectInput(mapper);
 }
 
 int vtkAccelVolumeSmartMapper::ChooseMode(
@@ -274,6 +406,10 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     case SHEARWARP_RENDER:
       mode = requested(SHEARWARP_RENDER, "shear-warp", shearWarpUsable, shearWarpBlocker);
       break;
+    case OSPRAY_RENDER:
+      reason = "requested OSPRay, but OSPRay is not available; falling back: ";
+      mode = automatic(DEFAULT_RENDER, reason);
+      break;
     default:
       mode = automatic(DEFAULT_RENDER, reason);
       break;
@@ -325,6 +461,7 @@ void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   this->LastRenderMode = mode;
   this->Forward(mapper);
+  this->ForwardSampleDistances(renderer, mapper);
   // Observed only while it renders for an observed smart mapper: an unobserved mapper keeps its
   // single parallel calls.
   vtkNew<vtkCallbackCommand> forward;
@@ -360,6 +497,15 @@ void vtkAccelVolumeSmartMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RequestedRenderMode: " << GetRenderModeAsString(this->RequestedRenderMode)
      << "\n";
   os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "InteractiveAdjustSampleDistances: " << this->InteractiveAdjustSampleDistances
+     << "\n";
+  os << indent << "VectorMode: " << this->VectorMode << "\n";
+  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
+  os << indent << "MaxMemoryInBytes: " << this->MaxMemoryInBytes << "\n";
+  os << indent << "MaxMemoryFraction: " << this->MaxMemoryFraction << "\n";
+  os << indent << "InterpolationMode: " << this->InterpolationMode << "\n";
   os << indent << "LastRenderMode: " << GetRenderModeAsString(this->LastRenderMode) << "\n";
   os << indent << "LastChoiceReason: " << this->LastChoiceReason << "\n";
   os << indent << "SliceMapper: " << this->SliceMapper.GetPointer() << "\n";

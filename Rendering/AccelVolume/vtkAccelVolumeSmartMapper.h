@@ -54,11 +54,13 @@
 #include "vtkAccelVolumeSliceMapper.h"     // For vtkNew member
 #include "vtkCallbackCommand.h"            // For vtkNew member
 #include "vtkNew.h"                        // For vtkNew
+#include "vtkSmartPointer.h"                // For vtkSmartPointer
 #include "vtkRenderingAccelVolumeModule.h" // For export macro
 #include "vtkAccelVolumeMapper.h"
 
 #include <string> // For std::string
 
+class vtkDataSet;
 class vtkObject;
 class vtkRenderer;
 class vtkVolume;
@@ -71,24 +73,105 @@ public:
   vtkTypeMacro(vtkAccelVolumeSmartMapper, vtkAccelVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /**
+   * Render modes, with vtkSmartVolumeMapper's values: DefaultRenderMode (0), RayCastRenderMode
+   * (1: our ray caster), GPURenderMode (2: our slice mapper), OSPRayRenderMode (3: not
+   * available, warns once and chooses automatically), UndefinedRenderMode (4),
+   * InvalidRenderMode (5); then SHEARWARP_RENDER (6), which VTK lacks.
+   */
   enum RenderModes
   {
-    UNDEFINED_RENDER = -1, // GetLastRenderMode before any render, or when none could run
-    DEFAULT_RENDER = 0,    // automatic choice
-    SLICE_RENDER = 1,      // vtkAccelVolumeSliceMapper
-    RAYCAST_RENDER = 2,    // vtkAccelVolumeRayCastMapper
-    SHEARWARP_RENDER = 3   // vtkAccelVolumeShearWarpMapper
+    DEFAULT_RENDER = 0,   // automatic choice
+    RAYCAST_RENDER = 1,   // vtkAccelVolumeRayCastMapper
+    SLICE_RENDER = 2,     // vtkAccelVolumeSliceMapper
+    OSPRAY_RENDER = 3,    // VTK's OSPRay mode: not available here
+    UNDEFINED_RENDER = 4, // GetLastRenderMode before any render, or when none could run
+    INVALID_RENDER = 5,
+    SHEARWARP_RENDER = 6, // vtkAccelVolumeShearWarpMapper
+    DefaultRenderMode = DEFAULT_RENDER,
+    RayCastRenderMode = RAYCAST_RENDER,
+    GPURenderMode = SLICE_RENDER,
+    OSPRayRenderMode = OSPRAY_RENDER,
+    UndefinedRenderMode = UNDEFINED_RENDER,
+    InvalidRenderMode = INVALID_RENDER
   };
 
   ///@{
-  /** The mapper to use (default DEFAULT_RENDER: automatic, see the class documentation). */
-  vtkSetClampMacro(RequestedRenderMode, int, DEFAULT_RENDER, SHEARWARP_RENDER);
+  /**
+   * The mapper to use (default DEFAULT_RENDER: automatic, see the class documentation). Values
+   * other than those of RenderModes (and INVALID_RENDER, UNDEFINED_RENDER) are an error.
+   */
+  void SetRequestedRenderMode(int mode);
   vtkGetMacro(RequestedRenderMode, int);
   void SetRequestedRenderModeToDefault() { this->SetRequestedRenderMode(DEFAULT_RENDER); }
   void SetRequestedRenderModeToSlice() { this->SetRequestedRenderMode(SLICE_RENDER); }
   void SetRequestedRenderModeToRayCast() { this->SetRequestedRenderMode(RAYCAST_RENDER); }
   void SetRequestedRenderModeToShearWarp() { this->SetRequestedRenderMode(SHEARWARP_RENDER); }
+  /** vtkSmartVolumeMapper's names: GPU is the slice mapper. */
+  void SetRequestedRenderModeToGPU() { this->SetRequestedRenderMode(SLICE_RENDER); }
+  void SetRequestedRenderModeToOSPRay() { this->SetRequestedRenderMode(OSPRAY_RENDER); }
   ///@}
+
+  ///@{
+  /**
+   * As vtkSmartVolumeMapper: the sample distance forwarded to the slice and ray cast mappers
+   * (default -1: locked to the input spacing), AutoAdjustSampleDistances (default on) for the
+   * owned mappers when InteractiveAdjustSampleDistances is off; with it on (the default) they
+   * auto-adjust exactly in interactive frames (desired update rate >= InteractiveUpdateRate).
+   * An explicit SampleDistance is used as given (VTK's still frames replace it by half the mean
+   * spacing). Differs on purpose: while all three keep their defaults, the owned mappers keep
+   * their own sample distances (one voxel spacing, auto-adjusted: the picture VTK's half-spacing
+   * gives, within the opacity correction, at half the samples).
+   */
+  vtkSetMacro(SampleDistance, float);
+  vtkGetMacro(SampleDistance, float);
+  vtkSetClampMacro(AutoAdjustSampleDistances, vtkTypeBool, 0, 1);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkSetClampMacro(InteractiveAdjustSampleDistances, vtkTypeBool, 0, 1);
+  vtkGetMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  /** As vtkSmartVolumeMapper::VectorModeType. */
+  enum VectorModeType
+  {
+    DISABLED = -1,
+    MAGNITUDE = 0,
+    COMPONENT = 1
+  };
+  ///@{
+  /**
+   * As vtkSmartVolumeMapper: how multi-component scalars are reduced to one (default
+   * DISABLED). MAGNITUDE renders the Euclidean norm of the components (as a float array),
+   * COMPONENT renders VectorComponent (0..3) with the property's first transfer functions.
+   */
+  void SetVectorMode(int mode);
+  vtkGetMacro(VectorMode, int);
+  vtkSetClampMacro(VectorComponent, int, 0, 3);
+  vtkGetMacro(VectorComponent, int);
+  ///@}
+
+  ///@{
+  /**
+   * As vtkSmartVolumeMapper: the GPU memory limit (forwarded to the slice mapper's
+   * SetMaxMemoryInBytes / SetMaxMemoryFraction; defaults 0 = no limit, and 0.75) and the
+   * interpolation of VTK's low-resolution resampling, which this mapper never does (stored
+   * only).
+   */
+  vtkSetMacro(MaxMemoryInBytes, vtkIdType);
+  vtkGetMacro(MaxMemoryInBytes, vtkIdType);
+  vtkSetClampMacro(MaxMemoryFraction, float, 0.1f, 1.0f);
+  vtkGetMacro(MaxMemoryFraction, float);
+  vtkSetClampMacro(InterpolationMode, int, 0, 2);
+  vtkGetMacro(InterpolationMode, int);
+  void SetInterpolationModeToNearestNeighbor() { this->SetInterpolationMode(0); }
+  void SetInterpolationModeToLinear() { this->SetInterpolationMode(1); }
+  void SetInterpolationModeToCubic() { this->SetInterpolationMode(2); }
+  ///@}
+
+  /** vtkSmartVolumeMapper's name for GetLastRenderMode. */
+  int GetLastUsedRenderMode() { return this->LastRenderMode; }
 
   ///@{
   /**
@@ -107,7 +190,7 @@ public:
   // GetSliceMapper(), GetRayCastMapper() or GetShearWarpMapper() to ask.
   /** Why the last Render chose its mode (never empty). */
   const char* GetLastChoiceReason() const { return this->LastChoiceReason.c_str(); }
-  /** "Default", "Slice", "RayCast", "ShearWarp" or "Undefined". */
+  /** "Default", "Slice", "RayCast", "ShearWarp", "OSPRay" or "Undefined". */
   static const char* GetRenderModeAsString(int mode);
 
   ///@{
@@ -132,8 +215,25 @@ protected:
   // Re-issues an owned mapper's error or warning on this mapper.
   static void Relay(vtkObject* caller, unsigned long event, void* client, void* data);
 
+  // The input the chosen mapper renders: the smart mapper's, or its VectorMode reduction.
+  void ConnectInput(vtkAccelVolumeMapper* mapper);
+  // Forwards the sample-distance settings as vtkSmartVolumeMapper does.
+  void ForwardSampleDistances(vtkRenderer* renderer, vtkAccelVolumeMapper* mapper);
+
   int RequestedRenderMode = DEFAULT_RENDER;
   double InteractiveUpdateRate = 1.0;
+  float SampleDistance = -1.0f;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  vtkTypeBool InteractiveAdjustSampleDistances = 1;
+  int VectorMode = DISABLED;
+  int VectorComponent = 0;
+  vtkIdType MaxMemoryInBytes = 0;
+  float MaxMemoryFraction = 0.75f;
+  int InterpolationMode = 2;
+  vtkSmartPointer<vtkDataSet> Reduced; // VectorMode's one-component copy of the input
+  vtkMTimeType ReducedTime = 0;
+  int ReducedMode = DISABLED;
+  int ReducedComponent = 0;
   int LastRenderMode = UNDEFINED_RENDER;
   std::string LastChoiceReason = "not rendered yet";
   std::string LastWarning;

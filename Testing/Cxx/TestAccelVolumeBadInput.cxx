@@ -87,12 +87,12 @@ bool ExpectAll()
          "single-component") &&
     ok;
   ok = Expect<MapperType>(
-         "unsigned int scalars",
+         "bit scalars",
          [](vtkVolumeMapper* mapper)
          {
            vtkNew<vtkImageData> image;
            image->SetDimensions(4, 4, 4);
-           image->AllocateScalars(VTK_UNSIGNED_INT, 1);
+           image->AllocateScalars(VTK_BIT, 1);
            mapper->SetInputData(image);
          },
          "Unsupported scalar type") &&

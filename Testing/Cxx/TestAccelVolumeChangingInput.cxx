@@ -146,12 +146,12 @@ bool Sequence(MapperKind kind)
   // Unsupported scalars, then good ones.
   vtkNew<vtkImageData> wide;
   wide->SetDimensions(8, 8, 8);
-  wide->AllocateScalars(VTK_UNSIGNED_INT, 1);
+  wide->AllocateScalars(VTK_BIT, 1);
   probe.Mapper->SetInputData(wide);
   image = probe.Render();
   ok =
-    CheckMessage(probe.Errors, "Unsupported scalar type", probe.Name("unsigned int: error")) && ok;
-  ok = CheckBackground(image, probe.Name("unsigned int: background")) && ok;
+    CheckMessage(probe.Errors, "Unsupported scalar type", probe.Name("bit: error")) && ok;
+  ok = CheckBackground(image, probe.Name("bit: background")) && ok;
   probe.Errors->Messages.clear();
   probe.Errors->Count = 0;
   ok = frame("good scalars again", [&](vtkVolumeMapper* m) { m->SetInputData(first); }) && ok;

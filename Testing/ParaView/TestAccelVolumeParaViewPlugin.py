@@ -38,9 +38,9 @@ from paraview.vtk.vtkIOImage import vtkPNGReader
 # warps a one-sample-per-slice image, hence a looser bound; smart picks slice on a GPU.
 BOUNDS = {"slice": 2.0, "raycast": 1.5, "shearwarp": 4.0, "smart": 2.0}
 MAPPERS = {  # AccelVolumeMapper entry, LastRenderMode it must report
-    "slice": ("Slice (OpenGL)", 1),
-    "raycast": ("Ray Cast (CPU)", 2),
-    "shearwarp": ("Shear-Warp (CPU)", 3),
+    "slice": ("Slice (OpenGL)", 2),
+    "raycast": ("Ray Cast (CPU)", 1),
+    "shearwarp": ("Shear-Warp (CPU)", 6),
     "smart": ("Smart", None),
 }
 BLEND_MODES = {"composite": ("Composite", 0), "mip": ("Maximum Intensity", 1)}

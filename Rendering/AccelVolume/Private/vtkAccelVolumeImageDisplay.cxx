@@ -20,7 +20,8 @@ vtkAccelVolumeImageDisplay::vtkAccelVolumeImageDisplay() = default;
 vtkAccelVolumeImageDisplay::~vtkAccelVolumeImageDisplay() = default;
 
 bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
-  int width, int height, int imageWidth, int imageHeight, const float* rgba, const int rectangle[4])
+  int width, int height, int imageWidth, int imageHeight, const float* rgba, const int rectangle[4],
+  float colourScale, float colourBias)
 {
   const int x0 = std::max(rectangle[0], 0), x1 = std::min(rectangle[1], imageWidth - 1);
   const int y0 = std::max(rectangle[2], 0), y1 = std::min(rectangle[3], imageHeight - 1);
@@ -94,6 +95,8 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
       program->SetUniform2f("imageSize", image);
       program->SetUniform2f("rectangleOrigin", rectangleOrigin);
       program->SetUniform2f("rectangleSize", rectangleSize);
+      program->SetUniformf("colourScale", colourScale);
+      program->SetUniformf("colourBias", colourBias);
       this->Array->Bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
       this->Array->Release();

@@ -1,6 +1,8 @@
 // vtkAccelVolumeMapperSupport: scene and input handling shared by the AccelVolume mappers.
 #include "vtkAccelVolumeMapperSupport.h"
 
+#include "vtkAccelVolumeInputAdapter.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -173,10 +175,9 @@ bool vtkAccelVolumeCheckInput(
     case VTK_DOUBLE:
       return true;
     default:
-      // 64-bit and unsigned 32-bit integers do not fit the float / normalised encodings exactly.
       message << "Unsupported scalar type " << scalars->GetDataTypeAsString()
-              << " (use char, signed or unsigned char, short, unsigned short, int, float or "
-                 "double, e.g. through vtkImageCast)";
+              << " (the mappers render char, signed or unsigned char, short, unsigned short, "
+                 "int, unsigned int, long, long long, float or double, e.g. through vtkImageCast)";
       error = message.str();
       return false;
   }
@@ -449,23 +450,10 @@ void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
   }
 }
 
-bool vtkAccelVolumeFetchInput(
-  vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error)
+bool vtkAccelVolumeFetchInput(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter& adapter,
+  vtkImageData*& input, vtkDataArray*& scalars, std::string& error)
 {
-  input = nullptr;
-  scalars = nullptr;
-  if (mapper->GetNumberOfInputConnections(0) > 0)
-  {
-    mapper->GetInputAlgorithm()->Update();
-    input = vtkImageData::SafeDownCast(mapper->GetInput());
-  }
-  int cellFlag = 0;
-  if (input)
-  {
-    scalars = vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(),
-      mapper->GetArrayAccessMode(), mapper->GetArrayId(), mapper->GetArrayName(), cellFlag);
-  }
-  return vtkAccelVolumeCheckInput(input, scalars, cellFlag, error);
+  return adapter.Fetch(mapper, input, scalars, error);
 }
 
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type)
@@ -585,8 +573,8 @@ void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* propert
   }
 }
 
-vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtkRenderer* renderer,
-  vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property)
+vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
+  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window)
@@ -596,7 +584,7 @@ vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtk
     return nullptr;
   }
   std::string error;
-  if (!vtkAccelVolumeFetchInput(mapper, input, scalars, error) ||
+  if (!vtkAccelVolumeFetchInput(mapper, adapter, input, scalars, error) ||
     !vtkAccelVolumeCheckGeometry(mapper, error))
   {
     vtkErrorWithObjectMacro(mapper, << error);

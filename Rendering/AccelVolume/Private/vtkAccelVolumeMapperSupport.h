@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+class vtkAccelVolumeInputAdapter;
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkPlaneCollection;
@@ -34,9 +35,10 @@ bool vtkAccelVolumeCheckInput(
   vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error);
 
 // Updates the mapper's input and picks the scalars it renders (the mapper's scalar mode and
-// array); then vtkAccelVolumeCheckInput. False with a user-facing message.
-bool vtkAccelVolumeFetchInput(
-  vtkVolumeMapper* mapper, vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
+// array), adapted by `adapter` (cell scalars, other integer types, rectilinear grids); then
+// vtkAccelVolumeCheckInput. False with a user-facing message.
+bool vtkAccelVolumeFetchInput(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter& adapter,
+  vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
 
 // Core's ParallelFor on vtkSMPTools, one work item per range (the CPU mappers' tiles and bands
 // are heavy items).
@@ -45,8 +47,8 @@ accelvolume::ParallelFor vtkAccelVolumeSMPParallelFor();
 // The checks a CPU mapper's Render starts with: an OpenGL window to show the image in, a
 // renderable input (vtkAccelVolumeFetchInput) and a volume property. Null, after a
 // vtkErrorMacro on the mapper, when one is missing.
-vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper, vtkRenderer* renderer,
-  vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
+vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
+  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
 
 // The core's view of VTK scalars (no copy); false for a type the mappers do not render.
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);

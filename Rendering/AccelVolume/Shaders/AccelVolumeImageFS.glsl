@@ -10,6 +10,8 @@ uniform vec2 viewportSize;
 uniform vec2 imageSize;        // rays per row / column of the whole image
 uniform vec2 rectangleOrigin;  // the rectangle's first pixel in the image
 uniform vec2 rectangleSize;
+uniform float colourScale;     // FinalColorWindow / Level: rgb * scale + bias * alpha
+uniform float colourBias;
 
 void main()
 {
@@ -33,6 +35,10 @@ void main()
   if (colour.a <= 0.0 && colour.r <= 0.0 && colour.g <= 0.0 && colour.b <= 0.0)
   {
     discard;
+  }
+  if (colourScale != 1.0 || colourBias != 0.0)
+  {
+    colour.rgb = clamp(colour.rgb * colourScale + colourBias * colour.a, 0.0, colour.a);
   }
   gl_FragData[0] = colour;
 }
