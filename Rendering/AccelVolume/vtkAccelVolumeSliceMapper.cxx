@@ -670,6 +670,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     static_cast<float>((self->AverageIPScalarRange[0] - range[0]) / rangeWidth);
   frame.AverageRange[1] =
     static_cast<float>((self->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  self->GetFinalColorScaleAndBias(frame.ColourScale, frame.ColourBias);
   frame.Vertices = &this->Vertices;
   return true;
 }

@@ -520,6 +520,8 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   const float origin[2] = { static_cast<float>(frame.LowerLeft[0]),
     static_cast<float>(frame.LowerLeft[1]) };
   program->SetUniform2f("viewportOrigin", origin);
+  program->SetUniformf("colourScale", frame.ColourScale);
+  program->SetUniformf("colourBias", frame.ColourBias);
   resources.ResolveArray->Bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   resources.ResolveArray->Release();

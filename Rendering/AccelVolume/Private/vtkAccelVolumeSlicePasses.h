@@ -80,6 +80,8 @@ struct vtkAccelVolumeSliceFrame
   float LightColors[4][3] = {};
   float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
+  float ColourScale = 1; // FinalColorWindow / Level
+  float ColourBias = 0;
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
   // reached TerminationThreshold are closed for later slices (counted across bricks).
   bool FrontToBack = true; // composite order (back to front uses "over")

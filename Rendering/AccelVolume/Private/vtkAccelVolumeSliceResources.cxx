@@ -347,6 +347,9 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
     this->Accumulation->GetComponents() != channels)
   {
     this->Accumulation->SetContext(window);
+    // vtkTextureObject keeps the first internal format it chose: a new channel count (another
+    // blend mode) needs it forgotten, or a 4-channel target stays R32F (an all-black frame).
+    this->Accumulation->ResetFormatAndType();
     if (!this->Accumulation->Create2D(width, height, channels, VTK_FLOAT, false))
     {
       return false;

@@ -38,7 +38,8 @@ void main()
   }
   if (colourScale != 1.0 || colourBias != 0.0)
   {
-    colour.rgb = clamp(colour.rgb * colourScale + colourBias * colour.a, 0.0, colour.a);
+    colour.rgb = colour.rgb * colourScale + colourBias * colour.a; // unclamped, as VTK's
+
   }
   gl_FragData[0] = colour;
 }

@@ -7,6 +7,14 @@ uniform sampler2D accumulation;
 uniform sampler2D transferTable;
 uniform float tableSize;
 uniform vec2 viewportOrigin;
+uniform float colourScale; // FinalColorWindow / Level: rgb * scale + bias * alpha
+uniform float colourBias;
+
+void emit(vec4 premultiplied)
+{
+  premultiplied.rgb = premultiplied.rgb * colourScale + colourBias * premultiplied.a;
+  gl_FragData[0] = premultiplied;
+}
 
 vec4 lookup(float value)
 {
@@ -25,32 +33,32 @@ void main()
     discard;
   }
   vec4 colour = lookup(sums.x);
-  gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
+  emit(vec4(colour.rgb * colour.a, colour.a));
 #elif defined(ACCELVOLUME_BLEND_MINIMUM)
   if (sums.x > 1.5)
   {
     discard;
   }
   vec4 colour = lookup(sums.x);
-  gl_FragData[0] = vec4(colour.rgb * colour.a, colour.a);
+  emit(vec4(colour.rgb * colour.a, colour.a));
 #elif defined(ACCELVOLUME_BLEND_COMPOSITE)
   // Already premultiplied front-to-back colour and alpha.
   if (accumulated.a <= 0.0)
   {
     discard;
   }
-  gl_FragData[0] = accumulated;
+  emit(accumulated);
 #elif defined(ACCELVOLUME_BLEND_ADDITIVE)
   if (sums.y <= 0.0)
   {
     discard;
   }
-  gl_FragData[0] = vec4(vec3(clamp(sums.x, 0.0, 1.0)), 1.0);
+  emit(vec4(vec3(clamp(sums.x, 0.0, 1.0)), 1.0));
 #else
   if (sums.y <= 0.0)
   {
     discard;
   }
-  gl_FragData[0] = vec4(vec3(clamp(sums.x / sums.y, 0.0, 1.0)), 1.0);
+  emit(vec4(vec3(clamp(sums.x / sums.y, 0.0, 1.0)), 1.0));
 #endif
 }

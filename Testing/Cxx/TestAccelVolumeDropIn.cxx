@@ -1,0 +1,453 @@
+// Drop-in behaviour shared by every mapper (issue 16): one mapper object switched between blend
+// modes draws what a fresh mapper draws; the inputs VTK's GPU mapper takes (unsigned int and
+// 64-bit integers, cell scalars, rectilinear grids, a selected array) give the pictures of their
+// one-component point-scalar equivalents; VectorMode reduces vectors as vtkSmartVolumeMapper;
+// FinalColorWindow / Level transform the colours as VTK's mappers; VTK's enum values hold.
+#include "AccelVolumeTestUtilities.h"
+#include "vtkAccelVolumeRayCastMapper.h"
+#include "vtkAccelVolumeShearWarpMapper.h"
+#include "vtkAccelVolumeSliceMapper.h"
+#include "vtkAccelVolumeSmartMapper.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkLongLongArray.h"
+#include "vtkPointData.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkSmartVolumeMapper.h"
+#include "vtkUnsignedIntArray.h"
+
+#include <functional>
+#include <iostream>
+#include <string>
+
+namespace
+{
+using accelvolume_test::CompareImages;
+
+// VTK's values, so code written for vtkSmartVolumeMapper means the same with ours.
+static_assert(vtkAccelVolumeSmartMapper::DefaultRenderMode == vtkSmartVolumeMapper::DefaultRenderMode,
+  "DefaultRenderMode");
+static_assert(vtkAccelVolumeSmartMapper::RayCastRenderMode == vtkSmartVolumeMapper::RayCastRenderMode,
+  "RayCastRenderMode");
+static_assert(
+  vtkAccelVolumeSmartMapper::GPURenderMode == vtkSmartVolumeMapper::GPURenderMode, "GPURenderMode");
+static_assert(vtkAccelVolumeSmartMapper::UndefinedRenderMode ==
+    vtkSmartVolumeMapper::UndefinedRenderMode,
+  "UndefinedRenderMode");
+static_assert(vtkAccelVolumeSmartMapper::MAGNITUDE == vtkSmartVolumeMapper::MAGNITUDE &&
+    vtkAccelVolumeSmartMapper::COMPONENT == vtkSmartVolumeMapper::COMPONENT &&
+    vtkAccelVolumeSmartMapper::DISABLED == vtkSmartVolumeMapper::DISABLED,
+  "VectorModeType");
+static_assert(vtkAccelVolumeSliceMapper::BinaryMaskType == vtkGPUVolumeRayCastMapper::BinaryMaskType &&
+    vtkAccelVolumeSliceMapper::LabelMapMaskType == vtkGPUVolumeRayCastMapper::LabelMapMaskType,
+  "mask types");
+
+enum class Kind
+{
+  Slice,
+  RayCast,
+  ShearWarp,
+  Smart
+};
+
+const char* Name(Kind kind)
+{
+  switch (kind)
+  {
+    case Kind::Slice:
+      return "slice";
+    case Kind::RayCast:
+      return "raycast";
+    case Kind::ShearWarp:
+      return "shearwarp";
+    default:
+      return "smart";
+  }
+}
+
+vtkSmartPointer<vtkVolumeMapper> MakeMapper(Kind kind)
+{
+  switch (kind)
+  {
+    case Kind::Slice:
+      return vtkSmartPointer<vtkAccelVolumeSliceMapper>::New();
+    case Kind::RayCast:
+    {
+      auto mapper = vtkSmartPointer<vtkAccelVolumeRayCastMapper>::New();
+      mapper->SetAutoAdjustSampleDistances(0);
+      return mapper;
+    }
+    case Kind::ShearWarp:
+      return vtkSmartPointer<vtkAccelVolumeShearWarpMapper>::New();
+    default:
+    {
+      auto mapper = vtkSmartPointer<vtkAccelVolumeSmartMapper>::New();
+      mapper->SetRequestedRenderModeToRayCast();
+      mapper->GetRayCastMapper()->SetAutoAdjustSampleDistances(0);
+      return mapper;
+    }
+  }
+}
+
+// One scene: 160x160, parallel oblique view (shear-warp needs it), the phantom's ramp.
+struct Scene
+{
+  vtkSmartPointer<vtkVolumeMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  int Errors = 0;
+
+  Scene(Kind kind, vtkDataSet* input, int blend)
+  {
+    this->Mapper = MakeMapper(kind);
+    this->Mapper->SetInputData(input);
+    this->Mapper->SetBlendMode(blend);
+    this->Volume->SetMapper(this->Mapper);
+    accelvolume_test::SetRampProperty(this->Volume->GetProperty(), 40.0, 900.0, true);
+    this->Renderer->SetBackground(0.1, 0.1, 0.2);
+    this->Renderer->AddVolume(this->Volume);
+    accelvolume_test::SetupObliqueView(this->Window, this->Renderer, 160, 30, 20, false);
+  }
+
+  std::vector<float> Render()
+  {
+    this->Window->Render();
+    return accelvolume_test::ReadPixels(this->Window);
+  }
+};
+
+vtkSmartPointer<vtkImageData> Phantom()
+{
+  return accelvolume_test::MakePhantom("vessels", 40, 36, 32, 1.0, 1.0, 1.25);
+}
+
+bool Same(const std::string& what, const std::vector<float>& a, const std::vector<float>& b,
+  double maximum = 0.0)
+{
+  const auto d = CompareImages(a, b, 1.0 / 255.0);
+  const bool ok = d.maximum <= maximum + 1.0e-6;
+  if (!ok)
+  {
+    static int dumped = 0;
+    accelvolume_test::DumpImage("dropin-" + std::to_string(dumped) + "-got", a, 160, 160);
+    accelvolume_test::DumpImage("dropin-" + std::to_string(dumped++) + "-expected", b, 160, 160);
+  }
+  std::cout << (ok ? "ok    " : "FAIL  ") << what << ": max |diff| " << d.maximum << " (limit "
+            << maximum << "), mean " << d.mean << "\n";
+  return ok;
+}
+
+bool Drawn(const std::string& what, const std::vector<float>& image)
+{
+  size_t covered = 0;
+  for (size_t p = 0; p < image.size() / 3; ++p)
+  {
+    const double d = std::abs(image[3 * p] - 0.1) + std::abs(image[3 * p + 1] - 0.1) +
+      std::abs(image[3 * p + 2] - 0.2);
+    covered += d > 0.05 ? 1 : 0;
+  }
+  const bool ok = covered > image.size() / 3 / 20;
+  std::cout << (ok ? "ok    " : "FAIL  ") << what << ": " << covered << " pixels drawn\n";
+  return ok;
+}
+
+std::vector<int> BlendsOf(Kind kind)
+{
+  if (kind == Kind::ShearWarp)
+  {
+    return { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
+      vtkVolumeMapper::MINIMUM_INTENSITY_BLEND };
+  }
+  return { vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, vtkVolumeMapper::COMPOSITE_BLEND,
+    vtkVolumeMapper::ADDITIVE_BLEND, vtkVolumeMapper::MINIMUM_INTENSITY_BLEND,
+    vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, vtkVolumeMapper::COMPOSITE_BLEND,
+    vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND };
+}
+
+// One mapper object through every blend mode, each frame against a fresh mapper's.
+bool BlendSwitch(Kind kind)
+{
+  auto image = Phantom();
+  bool ok = true;
+  Scene switched(kind, image, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND);
+  for (int blend : BlendsOf(kind))
+  {
+    switched.Mapper->SetBlendMode(blend);
+    const std::vector<float> got = switched.Render();
+    Scene fresh(kind, image, blend);
+    const std::vector<float> expected = fresh.Render();
+    const std::string what = std::string(Name(kind)) + ": switched to blend " +
+      std::to_string(blend) + " vs a fresh mapper";
+    // A MinIP of this ramp is transparent: nothing to draw.
+    ok = Same(what, got, expected) &&
+      (blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND || Drawn(what, got)) && ok;
+  }
+  return ok;
+}
+
+// `make` turns the phantom into another input kind; its picture must equal the phantom's
+// (exactly: the engines see the same values) or `reference`'s when given.
+bool SamePicture(Kind kind, const std::string& what,
+  const std::function<vtkSmartPointer<vtkDataSet>(vtkImageData*)>& make,
+  const std::function<void(vtkVolumeMapper*)>& configure = nullptr,
+  vtkDataSet* reference = nullptr, double bound = 0.0)
+{
+  auto image = Phantom();
+  vtkSmartPointer<vtkDataSet> input = make(image);
+  Scene expectedScene(kind, reference ? reference : image.GetPointer(),
+    vtkVolumeMapper::COMPOSITE_BLEND);
+  Scene gotScene(kind, input, vtkVolumeMapper::COMPOSITE_BLEND);
+  if (configure)
+  {
+    configure(gotScene.Mapper);
+  }
+  // The same camera (a cell-scalar input's bounds are half a cell larger).
+  gotScene.Renderer->GetActiveCamera()->DeepCopy(expectedScene.Renderer->GetActiveCamera());
+  const std::vector<float> expected = expectedScene.Render();
+  const std::vector<float> got = gotScene.Render();
+  const std::string label = std::string(Name(kind)) + ": " + what;
+  return Same(label, got, expected, bound) && Drawn(label, got);
+}
+
+template <typename ArrayType>
+vtkSmartPointer<vtkDataSet> WithType(vtkImageData* image)
+{
+  auto copy = vtkSmartPointer<vtkImageData>::New();
+  copy->CopyStructure(image);
+  vtkNew<ArrayType> values;
+  values->DeepCopy(image->GetPointData()->GetScalars());
+  copy->GetPointData()->SetScalars(values);
+  return copy;
+}
+
+// The phantom's values as cell scalars of an image one voxel larger per axis, whose cell
+// centres are the phantom's points.
+vtkSmartPointer<vtkDataSet> AsCellScalars(vtkImageData* image)
+{
+  auto cells = vtkSmartPointer<vtkImageData>::New();
+  int dims[3];
+  image->GetDimensions(dims);
+  double spacing[3];
+  double origin[3];
+  image->GetSpacing(spacing);
+  image->GetOrigin(origin);
+  cells->SetDimensions(dims[0] + 1, dims[1] + 1, dims[2] + 1);
+  cells->SetSpacing(spacing);
+  cells->SetOrigin(
+    origin[0] - 0.5 * spacing[0], origin[1] - 0.5 * spacing[1], origin[2] - 0.5 * spacing[2]);
+  cells->GetCellData()->SetScalars(image->GetPointData()->GetScalars());
+  return cells;
+}
+
+vtkSmartPointer<vtkDataSet> AsRectilinear(vtkImageData* image, bool even)
+{
+  auto grid = vtkSmartPointer<vtkRectilinearGrid>::New();
+  int dims[3];
+  image->GetDimensions(dims);
+  grid->SetDimensions(dims);
+  vtkNew<vtkDoubleArray> axes[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int i = 0; i < dims[a]; ++i)
+    {
+      const double wobble = !even && a == 0 && i == 3 ? 0.4 : 0.0;
+      axes[a]->InsertNextValue(image->GetOrigin()[a] + image->GetSpacing()[a] * i + wobble);
+    }
+  }
+  grid->SetXCoordinates(axes[0]);
+  grid->SetYCoordinates(axes[1]);
+  grid->SetZCoordinates(axes[2]);
+  grid->GetPointData()->SetScalars(image->GetPointData()->GetScalars());
+  return grid;
+}
+
+// A named second array that is not the active scalars (the active ones are zero).
+vtkSmartPointer<vtkDataSet> AsSelectedArray(vtkImageData* image)
+{
+  auto copy = vtkSmartPointer<vtkImageData>::New();
+  copy->CopyStructure(image);
+  vtkNew<vtkFloatArray> zeros;
+  zeros->SetName("zeros");
+  zeros->SetNumberOfTuples(image->GetNumberOfPoints());
+  zeros->FillComponent(0, 0.0);
+  copy->GetPointData()->SetScalars(zeros);
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  vtkSmartPointer<vtkDataArray> named;
+  named.TakeReference(values->NewInstance());
+  named->DeepCopy(values);
+  named->SetName("density");
+  copy->GetPointData()->AddArray(named);
+  return copy;
+}
+
+// Three-component vectors whose magnitude (or component 1) is the phantom's value.
+vtkSmartPointer<vtkDataSet> AsVectors(vtkImageData* image)
+{
+  auto copy = vtkSmartPointer<vtkImageData>::New();
+  copy->CopyStructure(image);
+  vtkNew<vtkFloatArray> vectors;
+  vectors->SetNumberOfComponents(3);
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  vectors->SetNumberOfTuples(values->GetNumberOfTuples());
+  for (vtkIdType t = 0; t < values->GetNumberOfTuples(); ++t)
+  {
+    const double v = values->GetComponent(t, 0);
+    vectors->SetTuple3(t, 0.6 * v, 0.8 * v, 0.0);
+  }
+  copy->GetPointData()->SetScalars(vectors);
+  return copy;
+}
+
+vtkSmartPointer<vtkImageData> Scaled(vtkImageData* image, double factor)
+{
+  auto copy = vtkSmartPointer<vtkImageData>::New();
+  copy->CopyStructure(image);
+  vtkNew<vtkFloatArray> values;
+  vtkDataArray* source = image->GetPointData()->GetScalars();
+  values->SetNumberOfTuples(source->GetNumberOfTuples());
+  for (vtkIdType t = 0; t < source->GetNumberOfTuples(); ++t)
+  {
+    values->SetValue(t, static_cast<float>(factor * source->GetComponent(t, 0)));
+  }
+  copy->GetPointData()->SetScalars(values);
+  return copy;
+}
+
+bool InputKinds(Kind kind)
+{
+  bool ok = true;
+  // Sampled as floats: the float copy's picture.
+  auto image = Phantom();
+  auto floats = WithType<vtkFloatArray>(
+    vtkImageData::SafeDownCast(WithType<vtkUnsignedIntArray>(image)));
+  ok = SamePicture(kind, "unsigned int scalars", WithType<vtkUnsignedIntArray>, nullptr, floats) &&
+    ok;
+  ok = SamePicture(kind, "long long scalars", WithType<vtkLongLongArray>, nullptr, floats) && ok;
+  ok = SamePicture(kind, "cell scalars", AsCellScalars,
+         [](vtkVolumeMapper* mapper) { mapper->SetScalarModeToUseCellData(); }) &&
+    ok;
+  ok = SamePicture(kind, "evenly spaced vtkRectilinearGrid",
+         [](vtkImageData* image) { return AsRectilinear(image, true); }) &&
+    ok;
+  ok = SamePicture(kind, "selected point array", AsSelectedArray,
+         [](vtkVolumeMapper* mapper)
+         {
+           mapper->SetScalarModeToUsePointFieldData();
+           mapper->SelectScalarArray("density");
+         }) &&
+    ok;
+  return ok;
+}
+
+bool UnevenRectilinearIsAnError()
+{
+  Scene scene(Kind::RayCast, AsRectilinear(Phantom(), false), vtkVolumeMapper::COMPOSITE_BLEND);
+  vtkNew<vtkCallbackCommand> count;
+  int errors = 0;
+  count->SetClientData(&errors);
+  count->SetCallback([](vtkObject*, unsigned long, void* client, void*)
+    { ++*static_cast<int*>(client); });
+  scene.Mapper->AddObserver(vtkCommand::ErrorEvent, count);
+  scene.Render();
+  const bool ok = errors > 0;
+  std::cout << (ok ? "ok    " : "FAIL  ") << "uneven vtkRectilinearGrid: " << errors
+            << " error(s)\n";
+  return ok;
+}
+
+bool VectorModes()
+{
+  bool ok = true;
+  auto configure = [](int mode, int component)
+  {
+    return [mode, component](vtkVolumeMapper* mapper)
+    {
+      auto* smart = vtkAccelVolumeSmartMapper::SafeDownCast(mapper);
+      smart->SetVectorMode(mode);
+      smart->SetVectorComponent(component);
+    };
+  };
+  auto image = Phantom();
+  // |(0.6 v, 0.8 v, 0)| = v; component 1 = 0.8 v.
+  ok = SamePicture(Kind::Smart, "VectorMode MAGNITUDE", AsVectors,
+         configure(vtkAccelVolumeSmartMapper::MAGNITUDE, 0), Scaled(image, 1.0), 1.0 / 255.0) &&
+    ok;
+  ok = SamePicture(Kind::Smart, "VectorMode COMPONENT 1", AsVectors,
+         configure(vtkAccelVolumeSmartMapper::COMPONENT, 1), Scaled(image, 0.8), 1.0 / 255.0) &&
+    ok;
+  return ok;
+}
+
+// colour' = colour / window + (0.5 - level / window) * alpha, over the background.
+bool FinalColorWindowLevel(Kind kind)
+{
+  auto image = Phantom();
+  Scene plain(kind, image, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND);
+  plain.Renderer->SetBackground(0, 0, 0);
+  const std::vector<float> before = plain.Render();
+  auto* mapper = vtkAccelVolumeMapper::SafeDownCast(plain.Mapper);
+  mapper->SetFinalColorWindow(0.5f);
+  mapper->SetFinalColorLevel(0.5f);
+  const std::vector<float> after = plain.Render();
+  // With a black background, alpha only scales: the expected value needs the volume's alpha,
+  // which a MIP of this ramp has where the colour is; check the mapping through the brightest
+  // pixels instead: v' = 2 v - 0.5 a >= 2 v - 0.5 (clamped to [0, a]).
+  size_t checked = 0;
+  size_t wrong = 0;
+  for (size_t i = 0; i < before.size(); ++i)
+  {
+    if (before[i] > 0.3f)
+    {
+      ++checked;
+      const float lowest = std::max(0.0f, std::min(1.0f, 2.0f * before[i] - 0.5f));
+      wrong += after[i] + 2.0f / 255.0f < lowest || after[i] > 2.0f * before[i] + 2.0f / 255.0f;
+    }
+  }
+  const bool ok = checked > 100 && wrong == 0;
+  std::cout << (ok ? "ok    " : "FAIL  ") << Name(kind) << ": FinalColorWindow 0.5, level 0.5: "
+            << wrong << " of " << checked << " bright channels outside the expected range\n";
+  return ok;
+}
+
+bool VTKNames()
+{
+  bool ok = true;
+  vtkNew<vtkAccelVolumeSliceMapper> slice;
+  vtkNew<vtkRenderWindow> window;
+  ok = slice->IsRenderSupported(window, nullptr) == 1 && ok;
+  slice->UseJitteringOn();
+  ok = slice->GetJittering() == 1 && slice->GetUseJittering() == 1 && ok;
+  slice->SetPartitions(2, 1, 1);
+  ok = slice->GetPartitions()[0] == 2 && ok;
+  slice->SetMaxMemoryInBytes(1 << 20);
+  ok = slice->GetGPUMemoryBudget() == static_cast<vtkIdType>(0.75 * (1 << 20)) && ok;
+  vtkNew<vtkAccelVolumeRayCastMapper> rayCast;
+  ok = rayCast->IsRenderSupported(window, nullptr) == 1 && ok;
+  vtkNew<vtkAccelVolumeSmartMapper> smart;
+  smart->SetRequestedRenderModeToGPU();
+  ok = smart->GetRequestedRenderMode() == vtkSmartVolumeMapper::GPURenderMode && ok;
+  ok = smart->GetLastUsedRenderMode() == vtkSmartVolumeMapper::UndefinedRenderMode && ok;
+  std::cout << (ok ? "ok    " : "FAIL  ") << "VTK names and values\n";
+  return ok;
+}
+}
+
+int TestAccelVolumeDropIn(int, char*[])
+{
+  bool ok = VTKNames();
+  for (Kind kind : { Kind::Slice, Kind::RayCast, Kind::ShearWarp, Kind::Smart })
+  {
+    ok = BlendSwitch(kind) && ok;
+    ok = InputKinds(kind) && ok;
+    ok = FinalColorWindowLevel(kind) && ok;
+  }
+  ok = UnevenRectilinearIsAnError() && ok;
+  ok = VectorModes() && ok;
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
