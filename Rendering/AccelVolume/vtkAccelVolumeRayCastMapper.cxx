@@ -139,6 +139,7 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "AdditiveLengthWeighted: " << this->AdditiveLengthWeighted << "\n";
   os << indent << "LastNumberOfRays: " << this->LastNumberOfRays << "\n";
   os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
@@ -290,7 +291,9 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   settings.earlyTermination = self->EarlyRayTermination != 0;
   settings.terminationThreshold = self->EarlyRayTerminationThreshold;
   settings.additiveUnitDistance =
-    self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : in.VoxelSpacing;
+    !self->AdditiveLengthWeighted
+    ? settings.sampleDistance // VTK's per-sample sum
+    : (self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : in.VoxelSpacing);
   settings.averageRange[0] = self->AverageIPScalarRange[0];
   settings.averageRange[1] = self->AverageIPScalarRange[1];
   settings.octreeLeafSize = self->OctreeLeafSize;

@@ -156,7 +156,15 @@ public:
   ///@}
 
   ///@{
-  /** Raysum unit length in world units (0 = the smallest voxel spacing, the default). */
+  /**
+   * ADDITIVE_BLEND (raysum). Off (the default): the sum of opacity(s) * s over the samples, as
+   * VTK's mappers compute it. On: the ray-length integral of opacity(s) * s in units of
+   * AdditiveUnitDistance (0, the default, = the smallest voxel spacing), the same whatever the
+   * sample distance.
+   */
+  vtkSetMacro(AdditiveLengthWeighted, vtkTypeBool);
+  vtkGetMacro(AdditiveLengthWeighted, vtkTypeBool);
+  vtkBooleanMacro(AdditiveLengthWeighted, vtkTypeBool);
   vtkSetClampMacro(AdditiveUnitDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(AdditiveUnitDistance, double);
   ///@}
@@ -208,6 +216,7 @@ protected:
   vtkTypeBool AutoAdjustSampleDistances = 1;
   int NumberOfThreads = 0;
   double AdditiveUnitDistance = 0.0;
+  vtkTypeBool AdditiveLengthWeighted = 0;
 
   vtkTypeInt64 LastNumberOfRays = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;

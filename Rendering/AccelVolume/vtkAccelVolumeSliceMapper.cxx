@@ -305,6 +305,7 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "AdditiveLengthWeighted: " << this->AdditiveLengthWeighted << "\n";
   os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
   os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
@@ -663,7 +664,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   }
   this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
   const double unit =
-    self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : view.VoxelSpacing;
+    !self->AdditiveLengthWeighted
+    ? view.Spacing // VTK's per-sample sum
+    : (self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : view.VoxelSpacing);
   frame.AdditiveScale = static_cast<float>(1.0 / unit);
   const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
   frame.AverageRange[0] =

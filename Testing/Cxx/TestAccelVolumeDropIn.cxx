@@ -415,6 +415,81 @@ bool FinalColorWindowLevel(Kind kind)
   return ok;
 }
 
+// Jitter is noise, as VTK's: seen through a volume that ramps along the view direction, the
+// change jitter makes is proportional to each pixel's offset, so its correlation between nearby
+// pixels is that of the offsets: near 0 for noise, large at some offset for a regular pattern.
+bool JitterIsNoise()
+{
+  auto ramp = vtkSmartPointer<vtkImageData>::New();
+  ramp->SetDimensions(32, 32, 32);
+  ramp->AllocateScalars(VTK_FLOAT, 1);
+  auto* values = static_cast<float*>(ramp->GetScalarPointer());
+  for (int k = 0; k < 32; ++k)
+  {
+    for (int j = 0; j < 32 * 32; ++j)
+    {
+      values[k * 32 * 32 + j] = static_cast<float>(10 * k);
+    }
+  }
+  vtkNew<vtkAccelVolumeSliceMapper> mapper;
+  mapper->SetInputData(ramp);
+  mapper->SetAutoAdjustSampleDistances(0);
+  mapper->SetSampleDistance(2.0);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  accelvolume_test::SetRampProperty(volume->GetProperty(), 0.0, 2000.0);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddVolume(volume);
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(96, 96);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->ParallelProjectionOn();
+  renderer->GetActiveCamera()->SetParallelScale(10.0); // the box fills the window
+  window->Render();
+  const std::vector<float> before = accelvolume_test::ReadPixels(window);
+  mapper->UseJitteringOn();
+  window->Render();
+  const std::vector<float> after = accelvolume_test::ReadPixels(window);
+  const int size = 96;
+  std::vector<double> change(static_cast<size_t>(size) * size);
+  double mean = 0;
+  for (size_t p = 0; p < change.size(); ++p)
+  {
+    change[p] = after[3 * p] - before[3 * p];
+    mean += change[p];
+  }
+  mean /= static_cast<double>(change.size());
+  double variance = 0;
+  for (double& c : change)
+  {
+    c -= mean;
+    variance += c * c;
+  }
+  double worst = 0;
+  for (int dy = 0; dy <= 4; ++dy)
+  {
+    for (int dx = dy == 0 ? 1 : -4; dx <= 4; ++dx)
+    {
+      double sum = 0;
+      for (int y = 0; y + dy < size; ++y)
+      {
+        for (int x = std::max(0, -dx); x < size && x + dx < size; ++x)
+        {
+          sum += change[static_cast<size_t>(y) * size + x] *
+            change[static_cast<size_t>(y + dy) * size + x + dx];
+        }
+      }
+      worst = std::max(worst, std::abs(sum) / std::max(variance, 1.0e-12));
+    }
+  }
+  const bool ok = variance > 1.0e-6 && worst < 0.15;
+  std::cout << (ok ? "ok    " : "FAIL  ") << "slice: jitter change variance " << variance
+            << ", largest correlation between pixels up to 4 apart " << worst << " (limit 0.15)\n";
+  return ok;
+}
+
 bool VTKNames()
 {
   bool ok = true;
@@ -449,5 +524,6 @@ int TestAccelVolumeDropIn(int, char*[])
   }
   ok = UnevenRectilinearIsAnError() && ok;
   ok = VectorModes() && ok;
+  ok = JitterIsNoise() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
