@@ -44,7 +44,6 @@ void ConfigureSlice(
   slice->SetGPUMemoryBudget(static_cast<vtkIdType>(options.gpuBudgetMiB * 1024 * 1024));
   slice->SetMaximumBrickSize(options.maxBrick);
   slice->SetAdditiveUnitDistance(result.raysumUnit);
-  slice->SetAdditiveLengthWeighted(result.raysumUnit > 0);
 }
 
 void ConfigureRayCast(
@@ -57,7 +56,6 @@ void ConfigureRayCast(
   rayCast->SetImageSampleDistance(options.imageSampleDistance);
   rayCast->SetEarlyRayTermination(options.earlyRayTermination);
   rayCast->SetAdditiveUnitDistance(result.raysumUnit);
-  rayCast->SetAdditiveLengthWeighted(result.raysumUnit > 0);
   rayCast->SetNumberOfThreads(options.threads);
   // --leap and --cell-leap default to the mapper's own defaults (distance map, off).
   if (options.haveCellLeap)

@@ -139,7 +139,6 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
-  os << indent << "AdditiveLengthWeighted: " << this->AdditiveLengthWeighted << "\n";
   os << indent << "LastNumberOfRays: " << this->LastNumberOfRays << "\n";
   os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
@@ -189,7 +188,7 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   input->GetExtent(extent);
   in.LockedSampleDistance = self->SpacingAdjustedSampleDistance(spacing, extent);
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
-  this->Inputs.UpdateTransfer(property, in.Range, composite, in.VoxelSpacing, in.Transfer, in.High);
+  this->Inputs.UpdateTransfer(property, in.Range, composite, input, in.Transfer, in.High);
   return true;
 }
 
@@ -291,9 +290,9 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   settings.earlyTermination = self->EarlyRayTermination != 0;
   settings.terminationThreshold = self->EarlyRayTerminationThreshold;
   settings.additiveUnitDistance =
-    !self->AdditiveLengthWeighted
-    ? settings.sampleDistance // VTK's per-sample sum
-    : (self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : in.VoxelSpacing);
+    self->AdditiveUnitDistance > 0
+    ? self->AdditiveUnitDistance
+    : std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)); // VTK's unit
   settings.averageRange[0] = self->AverageIPScalarRange[0];
   settings.averageRange[1] = self->AverageIPScalarRange[1];
   settings.octreeLeafSize = self->OctreeLeafSize;
@@ -306,7 +305,8 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   {
     // Gradient opacity needs the normal matrix too (gradients in world units).
     vtkAccelVolumeCPULighting(
-      renderer, property, in.IndexToWorld, renderer->GetActiveCamera(), shade, in.Lighting);
+      renderer, property, in.IndexToWorld, in.View.dims, renderer->GetActiveCamera(), shade,
+      in.Lighting);
   }
 }
 

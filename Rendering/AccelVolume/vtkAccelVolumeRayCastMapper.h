@@ -157,14 +157,10 @@ public:
 
   ///@{
   /**
-   * ADDITIVE_BLEND (raysum). Off (the default): the sum of opacity(s) * s over the samples, as
-   * VTK's mappers compute it. On: the ray-length integral of opacity(s) * s in units of
-   * AdditiveUnitDistance (0, the default, = the smallest voxel spacing), the same whatever the
-   * sample distance.
+   * ADDITIVE_BLEND (raysum): the ray-length integral of opacity(s) * s over a unit length: 0
+   * (the default) = the property's ScalarOpacityUnitDistance, as VTK's GPU mapper (its
+   * per-sample sum scales each opacity by sample distance / unit distance); > 0: that length.
    */
-  vtkSetMacro(AdditiveLengthWeighted, vtkTypeBool);
-  vtkGetMacro(AdditiveLengthWeighted, vtkTypeBool);
-  vtkBooleanMacro(AdditiveLengthWeighted, vtkTypeBool);
   vtkSetClampMacro(AdditiveUnitDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(AdditiveUnitDistance, double);
   ///@}
@@ -216,7 +212,6 @@ protected:
   vtkTypeBool AutoAdjustSampleDistances = 1;
   int NumberOfThreads = 0;
   double AdditiveUnitDistance = 0.0;
-  vtkTypeBool AdditiveLengthWeighted = 0;
 
   vtkTypeInt64 LastNumberOfRays = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;

@@ -272,7 +272,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
   const double voxelSpacing = vtkAccelVolumeSmallestSpacing(indexToWorld, dims);
 
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
-  this->Inputs.UpdateTransfer(property, in.range, composite, voxelSpacing, in.transfer, in.high);
+  this->Inputs.UpdateTransfer(property, in.range, composite, input, in.transfer, in.high);
 
   renderer->GetTiledSizeAndOrigin(&in.width, &in.height, in.lowerLeft, in.lowerLeft + 1);
   if (in.width < 1 || in.height < 1)
@@ -283,7 +283,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
 
   if (composite && property->GetShade(0) != 0)
   {
-    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, camera, true, in.lighting);
+    vtkAccelVolumeCPULighting(renderer, property, indexToWorld, dims, camera, true, in.lighting);
   }
 
   // The cores this process may use (an MPI launcher may bind each rank to one): more threads

@@ -51,18 +51,42 @@ bool IsSupportedBlend(int blendMode)
     blendMode == vtkVolumeMapper::COMPOSITE_BLEND;
 }
 
-// Composite shading inputs: VTK's lighting coefficients, up to 4 lights as eye-space
-// directions (headlights and camera lights live in camera coordinates already), and the matrix
-// taking an index-space gradient to eye space (the inverse transpose of index -> eye).
-void FillShading(vtkAccelVolumeSliceFrame& frame, vtkRenderer* renderer,
-  vtkVolumeProperty* property, vtkMatrix4x4* indexToEye, vtkMatrix4x4* view)
+// Composite shading inputs: VTK's light model in eye space (at most MaximumLights lights: more
+// are reported and dropped) and the matrix taking an index-space gradient to eye space (the
+// inverse transpose of index -> eye).
+void FillShading(vtkAccelVolumeSliceMapper* self, vtkAccelVolumeSliceFrame& frame,
+  vtkRenderer* renderer, vtkVolumeProperty* property, vtkMatrix4x4* indexToEye, vtkMatrix4x4* view)
 {
   vtkAccelVolumeLights lights;
   vtkAccelVolumeGetLights(renderer, property, indexToEye, view, lights);
-  std::copy(lights.Lighting, lights.Lighting + 4, frame.Lighting);
-  frame.LightCount = lights.Count;
-  std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &frame.LightDirections[0][0]);
-  std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &frame.LightColors[0][0]);
+  const accelvolume::LightModel& model = lights.Model;
+  frame.Lighting[0] = model.ambient;
+  frame.Lighting[1] = model.diffuse;
+  frame.Lighting[2] = model.specular;
+  frame.Lighting[3] = model.specularPower;
+  frame.TwoSidedLighting = model.twoSided;
+  frame.HeadlightOnly = model.headlightOnly;
+  constexpr int Maximum = vtkAccelVolumeSliceFrame::MaximumLights;
+  const int count = static_cast<int>(std::min<size_t>(model.lights.size(), Maximum));
+  if (model.lights.size() > static_cast<size_t>(Maximum))
+  {
+    vtkWarningWithObjectMacro(self, "The slice mapper shades with the first "
+        << Maximum << " of the renderer's " << model.lights.size() << " lights");
+  }
+  frame.LightCount = count;
+  for (int i = 0; i < count; ++i)
+  {
+    const accelvolume::SceneLight& light = model.lights[i];
+    frame.LightPositional[i] = light.positional ? 1 : 0;
+    std::copy(light.axis, light.axis + 3, frame.LightAxis[i]);
+    std::copy(light.position, light.position + 3, frame.LightPosition[i]);
+    std::copy(light.ambient, light.ambient + 3, frame.LightAmbient[i]);
+    std::copy(light.diffuse, light.diffuse + 3, frame.LightDiffuse[i]);
+    std::copy(light.specular, light.specular + 3, frame.LightSpecular[i]);
+    std::copy(light.attenuation, light.attenuation + 3, frame.LightAttenuation[i]);
+    frame.LightCosCone[i] = light.cosCone;
+    frame.LightExponent[i] = light.exponent;
+  }
   // GLSL mat3 is column-major: column c goes to elements 3c .. 3c+2.
   for (int c = 0; c < 3; ++c)
   {
@@ -305,7 +329,6 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
-  os << indent << "AdditiveLengthWeighted: " << this->AdditiveLengthWeighted << "\n";
   os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
   os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
   os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
@@ -649,9 +672,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
       vtkErrorWithObjectMacro(self, "Cannot use the 2D transfer function: " << tableError);
       return false;
     }
-    // The table's y axis spans [0, the steepest central difference the data allow].
+    // The table's y axis spans VTK's gradient magnitudes: [0, a quarter of the data range].
     frame.Gradient2DMaximum =
-      static_cast<float>((range[1] > range[0] ? range[1] - range[0] : 1.0) / view.VoxelSpacing);
+      static_cast<float>(0.25 * (range[1] > range[0] ? range[1] - range[0] : 1.0));
   }
   frame.SkipTransparentSamples = composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT);
   frame.SkipEmptyLeaves = skipEmptyLeaves;
@@ -664,9 +687,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   }
   this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
   const double unit =
-    !self->AdditiveLengthWeighted
-    ? view.Spacing // VTK's per-sample sum
-    : (self->AdditiveUnitDistance > 0 ? self->AdditiveUnitDistance : view.VoxelSpacing);
+    self->AdditiveUnitDistance > 0
+    ? self->AdditiveUnitDistance
+    : std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)); // VTK's unit
   frame.AdditiveScale = static_cast<float>(1.0 / unit);
   const double rangeWidth = range[1] > range[0] ? range[1] - range[0] : 1.0;
   frame.AverageRange[0] =
@@ -691,7 +714,13 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
-    FillShading(frame, renderer, property, view.IndexToEye, view.View);
+    FillShading(self, frame, renderer, property, view.IndexToEye, view.View);
+    double axisScale[3];
+    vtkAccelVolumeGradientAxisScale(input, axisScale);
+    for (int a = 0; a < 3; ++a)
+    {
+      frame.GradientAxisScale[a] = static_cast<float>(axisScale[a]);
+    }
     constexpr double GradientTextureBudget = 1024.0 * 1024.0 * 1024.0; // bytes
     const int* dims = view.Dimensions;
     const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
@@ -707,10 +736,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   }
   if (frame.GradientOpacity)
   {
-    // The table spans the function's own domain, or the steepest plausible gradient.
-    double domain[2];
-    property->GetGradientOpacity(0)->GetRange(domain);
-    const double maximum = domain[1] > 0 ? domain[1] : frame.ScalarRangeWidth / view.VoxelSpacing;
+    // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type).
+    const double maximum = 0.25 * frame.ScalarRangeWidth;
     frame.GradientTableMaximum = static_cast<float>(maximum);
     this->Resources.UpdateGradientOpacityTable(window, property, maximum);
   }

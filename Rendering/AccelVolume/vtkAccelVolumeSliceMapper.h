@@ -11,10 +11,10 @@
  * max / min / additive blending; a resolve pass then colours that value the way
  * vtkGPUVolumeRayCastMapper does for the same blend mode and blends it over the scene:
  * - MAXIMUM / MINIMUM_INTENSITY_BLEND: colour and scalar opacity of the extreme value.
- * - ADDITIVE_BLEND (raysum): VTK's sum of opacity(s) * s over the samples along the ray, s
- *   normalised to the data range, shown grey and clamped to [0, 1]; or, with
- *   AdditiveLengthWeighted, (1/unit) * the integral of the same along the ray (each sample
- *   weighted by the ray length it stands for), which does not depend on the slice count.
+ * - ADDITIVE_BLEND (raysum): (1/unit) * the integral of opacity(s) * s along the ray, s
+ *   normalised to the data range, shown grey and clamped to [0, 1], unit = the property's
+ *   ScalarOpacityUnitDistance as VTK (or AdditiveUnitDistance). Samples are weighted by the ray
+ *   length they stand for, so the result does not depend on the slice count.
  * - AVERAGE_INTENSITY_BLEND: ray-length-weighted mean of opacity(s) * s over samples inside
  *   AverageIPScalarRange, shown grey.
  * - COMPOSITE_BLEND: front-to-back (or back-to-front) compositing of colour and scalar
@@ -394,15 +394,13 @@ public:
 
   ///@{
   /**
-   * ADDITIVE_BLEND (raysum). Off (the default): the sum of opacity(s) * s over the samples,
-   * as vtkGPUVolumeRayCastMapper computes it (brighter with more samples per ray). On: the
-   * ray-length integral of opacity(s) * s in units of AdditiveUnitDistance (0, the default, =
-   * the smallest voxel spacing), the same whatever the slice spacing; cut faces re-rendered
-   * with BoundaryRerendering then keep the integral exact for linear data.
+   * ADDITIVE_BLEND (raysum): the ray-length integral of opacity(s) * s divided by a unit
+   * length. 0 (the default): the property's ScalarOpacityUnitDistance, which is what
+   * vtkGPUVolumeRayCastMapper's per-sample sum amounts to (it scales each sample's opacity by
+   * sample distance / unit distance). > 0: that world length. Samples are weighted by the ray
+   * length they stand for, so the result does not depend on the slice spacing; cut faces
+   * re-rendered with BoundaryRerendering keep the integral exact for linear data.
    */
-  vtkSetMacro(AdditiveLengthWeighted, vtkTypeBool);
-  vtkGetMacro(AdditiveLengthWeighted, vtkTypeBool);
-  vtkBooleanMacro(AdditiveLengthWeighted, vtkTypeBool);
   vtkSetClampMacro(AdditiveUnitDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(AdditiveUnitDistance, double);
   ///@}
@@ -446,7 +444,6 @@ protected:
   double LastTransparentLeafFraction = -1.0;
   double LastProxyAreaFraction = 1.0;
   double AdditiveUnitDistance = 0.0;
-  vtkTypeBool AdditiveLengthWeighted = 0;
   double InteractiveSlowdownLimit = 4.0;
 
   vtkTypeBool LockSampleDistanceToInputSpacing = 0;

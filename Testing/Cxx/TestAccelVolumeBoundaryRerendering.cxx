@@ -26,7 +26,6 @@ Result Render(int blend, int slices, bool rerender, bool wantReference)
   mapper->SetBlendMode(blend);
   mapper->SetNumberOfSlices(slices);
   mapper->SetBoundaryRerendering(rerender);
-  mapper->SetAdditiveLengthWeighted(1);
   mapper->SetAdditiveUnitDistance(12.0);
   mapper->CroppingOn();
   mapper->SetCroppingRegionPlanes(7.3, 37.9, 5.6, 41.2, 9.1, 40.4);

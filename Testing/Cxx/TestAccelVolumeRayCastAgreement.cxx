@@ -88,8 +88,7 @@ bool AgainstReference()
     {
       settings.regions.push_back({ { 4, 3, 4 }, { 44, 36, 42 / 1.25 } });
     }
-    // VTK's raysum is a per-sample sum: the integral over the sample distance.
-    settings.additiveUnit = 0.1;
+    settings.additiveUnit = 2.0; // the raysum unit: the property's ScalarOpacityUnitDistance
     std::vector<float> reference;
     auto mapper = RayCaster(0.1);
     const std::vector<float> ours = RenderWith(mapper, image, c, &reference, &settings);

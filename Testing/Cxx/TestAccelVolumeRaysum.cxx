@@ -4,7 +4,6 @@
 int TestAccelVolumeRaysum(int argc, char* argv[])
 {
   accelvolume_test::Scene scene("blobs", vtkVolumeMapper::ADDITIVE_BLEND);
-  scene.Mapper->SetAdditiveLengthWeighted(1);
   scene.Mapper->SetAdditiveUnitDistance(20.0);
   return scene.Regress(argc, argv);
 }

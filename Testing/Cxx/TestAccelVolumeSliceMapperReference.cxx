@@ -30,7 +30,6 @@ bool RunCase(const Case& c)
   mapper->SetBlendMode(c.Blend);
   mapper->SetAutoAdjustSampleDistances(0);
   mapper->SetSampleDistance(0.25);
-  mapper->SetAdditiveLengthWeighted(1);
   mapper->SetAdditiveUnitDistance(10.0);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);

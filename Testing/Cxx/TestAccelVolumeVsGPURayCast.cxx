@@ -70,9 +70,9 @@ int TestAccelVolumeVsGPURayCast(int, char*[])
   for (const Case& c : cases)
   {
     auto image = accelvolume_test::MakePhantom(c.Phantom, 48, 40, 36, 1.0, 1.0, 1.25);
-    // Raysum runs with both mappers' defaults: VTK sums one sample per voxel spacing, ours
-    // integrates over that same unit (AdditiveUnitDistance 0), so the pictures agree. The other
-    // modes sample every half voxel in both.
+    // Raysum runs with both mappers' defaults: VTK sums opacity * value * sample distance /
+    // ScalarOpacityUnitDistance, ours integrates over that same unit (AdditiveUnitDistance 0),
+    // so the pictures agree. The other modes sample every half voxel in both.
     vtkNew<vtkGPUVolumeRayCastMapper> vtkMapper;
     vtkNew<vtkAccelVolumeSliceMapper> ours;
     if (c.Blend != vtkVolumeMapper::ADDITIVE_BLEND)

@@ -167,9 +167,7 @@ inline ViewSetup MakeCamera(const Scene& scene, double azimuth, double elevation
 
   RayCastLighting& l = camera.lighting;
   l.shade = shade;
-  l.lightCount = 1;
-  l.directions[0][2] = 1;
-  l.colours[0][0] = l.colours[0][1] = l.colours[0][2] = 1;
+  l.model.lights.emplace_back(); // white, shining along -z
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
     {

@@ -242,9 +242,7 @@ TEST(RayCastEngine, LeapingIsPixelIdenticalOnRandomVolumesAndTransferFunctions)
     if (shaded)
     {
       lighting.shade = true;
-      lighting.lightCount = 1;
-      lighting.directions[0][2] = 1;
-      lighting.colours[0][0] = lighting.colours[0][1] = lighting.colours[0][2] = 1;
+      lighting.model.lights.emplace_back(); // white, shining along -z
     }
     const Blend blend = trial % 4 == 3 ? Blend::Additive : Blend::Composite;
     RayCastSettings settings = BaseSettings(dims, blend);

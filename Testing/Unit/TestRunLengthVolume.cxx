@@ -103,10 +103,9 @@ bool Classify(const RandomVolume<T>& volume, const CompositeClassification& c, c
   if (!c.gradientOpacity.empty())
   {
     double m2 = 0;
-    for (int r = 0; r < 3; ++r)
+    for (int a = 0; a < 3; ++a)
     {
-      const double w = c.gradientToWorld[r][0] * g[0] + c.gradientToWorld[r][1] * g[1] +
-        c.gradientToWorld[r][2] * g[2];
+      const double w = c.gradientAxisScale[a] * g[a];
       m2 += w * w;
     }
     const std::size_t last = c.gradientOpacity.size() - 1;
@@ -159,11 +158,10 @@ void CompositeTrial(std::mt19937& random, double low, double high, Totals& total
       value = random() % 4 == 0 ? 0.0f : static_cast<float>(random() % 1000) / 800.0f;
     }
     c.gradientOpacityMaximum = (high - low) * (0.05 + 0.5 * (random() % 100) / 100.0);
-    for (int r = 0; r < 3; ++r)
+    for (int a = 0; a < 3; ++a)
     {
-      c.gradientToWorld[r][r] = 0.3 + (random() % 100) / 40.0;
+      c.gradientAxisScale[a] = 0.3 + (random() % 100) / 40.0;
     }
-    c.gradientToWorld[0][1] = 0.2;
   }
   const int axis = static_cast<int>(random() % 3);
   const bool dense = random() % 3 == 0;

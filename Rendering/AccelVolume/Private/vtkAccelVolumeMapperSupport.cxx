@@ -384,52 +384,101 @@ double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[
 void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
   vtkMatrix4x4* indexToEye, vtkMatrix4x4* view, vtkAccelVolumeLights& lights)
 {
-  lights.Lighting[0] = static_cast<float>(property->GetAmbient(0));
-  lights.Lighting[1] = static_cast<float>(property->GetDiffuse(0));
-  lights.Lighting[2] = static_cast<float>(property->GetSpecular(0));
-  lights.Lighting[3] = static_cast<float>(property->GetSpecularPower(0));
-  lights.Count = 0;
+  accelvolume::LightModel& model = lights.Model;
+  model.ambient = static_cast<float>(property->GetAmbient(0));
+  model.diffuse = static_cast<float>(property->GetDiffuse(0));
+  model.specular = static_cast<float>(property->GetSpecular(0));
+  model.specularPower = static_cast<float>(property->GetSpecularPower(0));
+  model.twoSided = renderer->GetTwoSidedLighting() != 0;
+  model.lights.clear();
+  model.anyPositional = false;
   vtkLightCollection* collection = renderer->GetLights();
   vtkCollectionSimpleIterator iterator;
   collection->InitTraversal(iterator);
+  bool singleHeadlight = true;
   while (vtkLight* light = collection->GetNextLight(iterator))
   {
-    if (!light->GetSwitch() || lights.Count >= 4)
+    if (!light->GetSwitch())
     {
       continue;
     }
-    double position[3];
-    double focal[3];
-    light->GetPosition(position);
-    light->GetFocalPoint(focal);
-    double direction[3] = { position[0] - focal[0], position[1] - focal[1],
-      position[2] - focal[2] };
-    if (light->LightTypeIsHeadlight())
-    {
-      direction[0] = direction[1] = 0.0;
-      direction[2] = 1.0;
-    }
-    else if (light->LightTypeIsSceneLight())
-    {
-      double eye[3] = { 0, 0, 0 };
-      for (int r = 0; r < 3; ++r)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          eye[r] += view->GetElement(r, c) * direction[c];
-        }
-      }
-      std::copy(eye, eye + 3, direction);
-    }
-    vtkMath::Normalize(direction);
+    singleHeadlight = model.lights.empty() && light->LightTypeIsHeadlight() &&
+      light->GetIntensity() == 1.0;
+    accelvolume::SceneLight scene;
+    const double intensity = light->GetIntensity();
     double colour[3];
+    light->GetAmbientColor(colour);
+    for (int c = 0; c < 3; ++c)
+    {
+      scene.ambient[c] = static_cast<float>(colour[c] * intensity);
+    }
     light->GetDiffuseColor(colour);
     for (int c = 0; c < 3; ++c)
     {
-      lights.Directions[lights.Count][c] = static_cast<float>(direction[c]);
-      lights.Colors[lights.Count][c] = static_cast<float>(colour[c] * light->GetIntensity());
+      scene.diffuse[c] = static_cast<float>(colour[c] * intensity);
     }
-    ++lights.Count;
+    light->GetSpecularColor(colour);
+    for (int c = 0; c < 3; ++c)
+    {
+      scene.specular[c] = static_cast<float>(colour[c] * intensity);
+    }
+    // World placement (the renderer has moved headlights and camera lights already), then eye.
+    const double* position = light->GetTransformedPosition();
+    const double* focal = light->GetTransformedFocalPoint();
+    double axis[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
+    double eyeAxis[3] = { 0, 0, 0 };
+    double eyePosition[3] = { 0, 0, 0 };
+    for (int r = 0; r < 3; ++r)
+    {
+      eyePosition[r] = view->GetElement(r, 3);
+      for (int c = 0; c < 3; ++c)
+      {
+        eyeAxis[r] += view->GetElement(r, c) * axis[c];
+        eyePosition[r] += view->GetElement(r, c) * position[c];
+      }
+    }
+    if (vtkMath::Normalize(eyeAxis) == 0.0)
+    {
+      eyeAxis[0] = eyeAxis[1] = 0.0;
+      eyeAxis[2] = -1.0;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      scene.axis[c] = static_cast<float>(eyeAxis[c]);
+      scene.position[c] = static_cast<float>(eyePosition[c]);
+    }
+    scene.positional = light->GetPositional() != 0;
+    if (scene.positional)
+    {
+      const double* attenuation = light->GetAttenuationValues();
+      for (int c = 0; c < 3; ++c)
+      {
+        scene.attenuation[c] = static_cast<float>(attenuation[c]);
+      }
+      if (light->GetConeAngle() <= 90.0)
+      {
+        scene.cosCone =
+          static_cast<float>(std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle())));
+        scene.exponent = static_cast<float>(light->GetExponent());
+      }
+    }
+    model.lights.push_back(scene);
+  }
+  // VTK's single default headlight shines from the camera itself, and its ambient term ignores
+  // the light's ambient colour.
+  model.headlightOnly = singleHeadlight && model.lights.size() == 1;
+  if (model.headlightOnly)
+  {
+    accelvolume::SceneLight& head = model.lights.front();
+    head.positional = true;
+    std::fill(head.position, head.position + 3, 0.0f);
+    std::fill(head.attenuation, head.attenuation + 3, 0.0f);
+    head.attenuation[0] = 1.0f;
+    head.cosCone = -2.0f;
+  }
+  for (const accelvolume::SceneLight& light : model.lights)
+  {
+    model.anyPositional = model.anyPositional || light.positional;
   }
   double linear[3][3];
   for (int r = 0; r < 3; ++r)
@@ -520,8 +569,19 @@ vtkDataArray* vtkAccelVolumeCPUInputs::GetScalars() const
   return this->Finite ? this->Finite.GetPointer() : this->Scalars;
 }
 
+void vtkAccelVolumeGradientAxisScale(vtkImageData* input, double scale[3])
+{
+  double spacing[3];
+  input->GetSpacing(spacing);
+  const double mean = (std::abs(spacing[0]) + std::abs(spacing[1]) + std::abs(spacing[2])) / 3.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    scale[a] = std::abs(spacing[a]) > 0 && mean > 0 ? mean / std::abs(spacing[a]) : 1.0;
+  }
+}
+
 void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const double range[2],
-  bool composite, double voxelSpacing, accelvolume::RayCastTransfer& transfer, double& high)
+  bool composite, vtkImageData* input, accelvolume::RayCastTransfer& transfer, double& high)
 {
   high = range[1] > range[0] ? range[1] : range[0] + 1.0;
   transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
@@ -529,9 +589,9 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
   transfer.gradientOpacity.clear();
   if (composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
   {
-    double domain[2];
-    property->GetGradientOpacity(0)->GetRange(domain);
-    transfer.gradientOpacityMaximum = domain[1] > 0 ? domain[1] : (high - range[0]) / voxelSpacing;
+    // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type).
+    transfer.gradientOpacityMaximum = 0.25 * (high - range[0]);
+    vtkAccelVolumeGradientAxisScale(input, transfer.gradientAxisScale);
     transfer.gradientOpacity.resize(TableSize);
     property->GetGradientOpacity(0)->GetTable(
       0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
@@ -548,7 +608,8 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
 }
 
 void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
-  vtkMatrix4x4* indexToWorld, vtkCamera* camera, bool shade, accelvolume::RayCastLighting& lighting)
+  vtkMatrix4x4* indexToWorld, const int dims[3], vtkCamera* camera, bool shade,
+  accelvolume::RayCastLighting& lighting)
 {
   lighting.shade = shade;
   vtkMatrix4x4* viewMatrix = camera->GetViewTransformMatrix();
@@ -556,19 +617,19 @@ void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* propert
   vtkMatrix4x4::Multiply4x4(viewMatrix, indexToWorld, indexToEye);
   vtkAccelVolumeLights lights;
   vtkAccelVolumeGetLights(renderer, property, indexToEye, viewMatrix, lights);
-  lighting.ambient = lights.Lighting[0];
-  lighting.diffuse = lights.Lighting[1];
-  lighting.specular = lights.Lighting[2];
-  lighting.specularPower = lights.Lighting[3];
-  lighting.lightCount = lights.Count;
-  std::copy(&lights.Directions[0][0], &lights.Directions[0][0] + 12, &lighting.directions[0][0]);
-  std::copy(&lights.Colors[0][0], &lights.Colors[0][0] + 12, &lighting.colours[0][0]);
+  lighting.model = lights.Model;
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
     {
       lighting.normalMatrix[r][c] = lights.NormalMatrix[r][c];
       lighting.indexToEye[r][c] = indexToEye->GetElement(r, c);
+    }
+    lighting.indexToEyeOffset[r] = indexToEye->GetElement(r, 3);
+    lighting.centre[r] = indexToEye->GetElement(r, 3);
+    for (int c = 0; c < 3; ++c)
+    {
+      lighting.centre[r] += indexToEye->GetElement(r, c) * 0.5 * std::max(0, dims[c] - 1);
     }
   }
 }

@@ -5,6 +5,7 @@
 #define vtkAccelVolumeMapperSupport_h
 
 #include "common/Geometry.h"
+#include "common/Lighting.h"
 #include "common/ParallelFor.h"
 #include "skipping/MinMaxOctree.h"  // ScalarType, VolumeView
 #include "raycast/RayCastEngine.h" // RayCastTransfer, RayCastLighting
@@ -94,15 +95,13 @@ std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
 // none).
 double vtkAccelVolumeSmallestSpacing(vtkMatrix4x4* indexToWorld, const int dims[3]);
 
-// VTK's lighting coefficients and up to 4 lights as eye-space directions (headlights and camera
-// lights live in camera coordinates already) with colour times intensity, and the matrix that
-// takes an index-space gradient to eye space (inverse transpose of index -> eye), row-major.
+// VTK's light model in eye space (every switched-on light of the renderer, as VTK's GPU mapper
+// sees them after the renderer placed its headlights and camera lights; the property's
+// coefficients; the renderer's two-sided lighting), and the matrix that takes an index-space
+// gradient to eye space (inverse transpose of index -> eye), row-major.
 struct vtkAccelVolumeLights
 {
-  float Lighting[4] = { 0, 0, 0, 1 }; // ambient, diffuse, specular, specular power
-  int Count = 0;
-  float Directions[4][3] = {};
-  float Colors[4][3] = {};
+  accelvolume::LightModel Model;
   double NormalMatrix[3][3] = {};
 };
 void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
@@ -123,10 +122,11 @@ public:
   // The scalars the engines render: that finite copy, or the input's scalars.
   vtkDataArray* GetScalars() const;
   // Fills transfer for [range[0], high] (high: range[1], or range[0] + 1 for a constant volume),
-  // with gradient opacity when the composite property uses it (domain: the function's own, or
-  // the steepest gradient over the smallest voxel spacing); bumps TransferVersion on change.
+  // with gradient opacity when the composite property uses it, in VTK's GPU mapper's units
+  // (vtkAccelVolumeGradientAxisScale of the input; table over [0, (high - range[0]) / 4]);
+  // bumps TransferVersion on change.
   void UpdateTransfer(vtkVolumeProperty* property, const double range[2], bool composite,
-    double voxelSpacing, accelvolume::RayCastTransfer& transfer, double& high);
+    vtkImageData* input, accelvolume::RayCastTransfer& transfer, double& high);
 
   std::uint64_t VolumeVersion = 0;
   std::uint64_t TransferVersion = 0;
@@ -141,8 +141,13 @@ private:
   double TableRange[2] = { 0, 0 };
 };
 
+// Gradient magnitude in VTK's GPU mapper's units: per index axis, the factor taking the data
+// value's central difference per index step to VTK's (mean spacing / spacing of that axis).
+void vtkAccelVolumeGradientAxisScale(vtkImageData* input, double scale[3]);
+
 // VTK's lights and lighting coefficients in eye space for the CPU engines (shade: Phong on).
 void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
-  vtkMatrix4x4* indexToWorld, vtkCamera* camera, bool shade, accelvolume::RayCastLighting& lighting);
+  vtkMatrix4x4* indexToWorld, const int dims[3], vtkCamera* camera, bool shade,
+  accelvolume::RayCastLighting& lighting);
 
 #endif

@@ -208,9 +208,20 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniformf("scalarRangeWidth", frame.ScalarRangeWidth);
     program->SetUniformi("gradientOpacityTable", resources.GradientOpacityTable->GetTextureUnit());
     program->SetUniformf("gradientTableMaximum", frame.GradientTableMaximum);
+    program->SetUniform3f("gradientAxisScale", frame.GradientAxisScale);
+    constexpr int Lights = vtkAccelVolumeSliceFrame::MaximumLights;
     program->SetUniformi("lightCount", frame.LightCount);
-    program->SetUniform3fv("lightDirections", 4, frame.LightDirections);
-    program->SetUniform3fv("lightColors", 4, frame.LightColors);
+    program->SetUniform1iv("lightPositional", Lights, frame.LightPositional);
+    program->SetUniform3fv("lightAxis", Lights, frame.LightAxis);
+    program->SetUniform3fv("lightPosition", Lights, frame.LightPosition);
+    program->SetUniform3fv("lightAmbient", Lights, frame.LightAmbient);
+    program->SetUniform3fv("lightDiffuse", Lights, frame.LightDiffuse);
+    program->SetUniform3fv("lightSpecular", Lights, frame.LightSpecular);
+    program->SetUniform3fv("lightAttenuation", Lights, frame.LightAttenuation);
+    program->SetUniform1fv("lightCosCone", Lights, frame.LightCosCone);
+    program->SetUniform1fv("lightExponent", Lights, frame.LightExponent);
+    program->SetUniformi("twoSidedLighting", frame.TwoSidedLighting ? 1 : 0);
+    program->SetUniformi("headlightOnly", frame.HeadlightOnly ? 1 : 0);
     program->SetUniform4f("lighting", frame.Lighting);
   }
   program->SetUniform2f("averageRange", frame.AverageRange);

@@ -75,9 +75,22 @@ struct vtkAccelVolumeSliceFrame
   float NormalMatrix[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // row-major, index gradient -> eye
   float ScalarRangeWidth = 1;
   float GradientTableMaximum = 1;
+  // Per index axis, index-step differences -> VTK's gradient magnitude (mean / axis spacing).
+  float GradientAxisScale[3] = { 1, 1, 1 };
+  // VTK's light model (common/Lighting.h), eye space.
+  static constexpr int MaximumLights = 16;
   int LightCount = 0;
-  float LightDirections[4][3] = {};
-  float LightColors[4][3] = {};
+  int LightPositional[MaximumLights] = {};
+  float LightAxis[MaximumLights][3] = {};
+  float LightPosition[MaximumLights][3] = {};
+  float LightAmbient[MaximumLights][3] = {};
+  float LightDiffuse[MaximumLights][3] = {};
+  float LightSpecular[MaximumLights][3] = {};
+  float LightAttenuation[MaximumLights][3] = {};
+  float LightCosCone[MaximumLights] = {};
+  float LightExponent[MaximumLights] = {};
+  bool TwoSidedLighting = true;
+  bool HeadlightOnly = false;
   float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
   float ColourScale = 1; // FinalColorWindow / Level

@@ -54,9 +54,21 @@ uniform mat3 normalMatrix;          // index-space gradient -> eye-space gradien
 uniform float scalarRangeWidth;     // data units per normalized unit
 uniform sampler2D gradientOpacityTable; // r: opacity over [0, gradientTableMaximum]
 uniform float gradientTableMaximum;
+// VTK's gradient magnitude: index-step differences times mean spacing / axis spacing.
+uniform vec3 gradientAxisScale;
+// VTK's light model (Rendering/Core/common/Lighting.h), eye space, colours times intensity.
 uniform int lightCount;
-uniform vec3 lightDirections[4];    // eye space, towards the light
-uniform vec3 lightColors[4];        // colour times intensity
+uniform int lightPositional[16];
+uniform vec3 lightAxis[16];         // the way each light shines
+uniform vec3 lightPosition[16];
+uniform vec3 lightAmbient[16];
+uniform vec3 lightDiffuse[16];
+uniform vec3 lightSpecular[16];
+uniform vec3 lightAttenuation[16];  // constant, linear, quadratic
+uniform float lightCosCone[16];     // spot lights: cos(cone angle); < -1: no cone
+uniform float lightExponent[16];
+uniform int twoSidedLighting;
+uniform int headlightOnly;          // VTK's single headlight: ambient term = ambient * colour
 uniform vec4 lighting;              // ambient, diffuse, specular, specular power
 // Composite empty-space skipping (ACCELVOLUME_SKIP_OCTREE, ACCELVOLUME_SKIP_TRANSPARENT):
 uniform sampler3D emptyLeaves;      // 1 where the octree leaf is transparent (leaf grid)
@@ -289,7 +301,7 @@ void main()
 #endif
 #if ACCELVOLUME_TF2D
   // Value x gradient-magnitude classification (the paper's 2D transfer function).
-  float magnitude2D = length(eyeGradient) * scalarRangeWidth / gradient2DMaximum;
+  float magnitude2D = length(indexGradient * gradientAxisScale) * scalarRangeWidth / gradient2DMaximum;
   classified =
     texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
 #if ACCELVOLUME_SKIP_TRANSPARENT
@@ -300,33 +312,65 @@ void main()
 #endif
 #endif
 #if ACCELVOLUME_GRADIENT_OPACITY
-  // Gradient magnitude in data units per world unit, looked up like VTK's gradient opacity.
-  float magnitude = length(eyeGradient) * scalarRangeWidth;
+  // Gradient magnitude as VTK's GPU mapper computes it (data units per mean voxel step).
+  float magnitude = length(indexGradient * gradientAxisScale) * scalarRangeWidth;
   float g = (clamp(magnitude / gradientTableMaximum, 0.0, 1.0) * 1023.0 + 0.5) / 1024.0;
   classified.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
 #endif
 #if ACCELVOLUME_SHADE
-  // Phong with VTK's coefficients and lights (two-sided, lights as directions).
+  // VTK's light model: per light ambient, diffuse (N.L) and Blinn-Phong specular (N.H) colours,
+  // positional lights attenuated, spot lights within their cone.
   float gradientLength = length(eyeGradient);
-  vec3 shaded = lighting.x * classified.rgb;
-  if (gradientLength > 1.0e-8)
+  vec3 ambientSum = vec3(0.0);
+  vec3 diffuseSum = vec3(0.0);
+  vec3 specularSum = vec3(0.0);
+  vec3 normal = gradientLength > 1.0e-8 ? -eyeGradient / gradientLength : vec3(0.0);
+  vec3 toViewer = -rayDirection;
+  for (int i = 0; i < lightCount; ++i)
   {
-    vec3 normal = -eyeGradient / gradientLength;
-    vec3 toViewer = -rayDirection;
-    for (int i = 0; i < lightCount; ++i)
+    ambientSum += lightAmbient[i];
+    if (gradientLength <= 1.0e-8)
     {
-      float nDotL = dot(normal, lightDirections[i]);
-      vec3 facing = nDotL < 0.0 ? -normal : normal;
-      nDotL = abs(nDotL);
-      shaded += lighting.y * nDotL * classified.rgb * lightColors[i];
-      vec3 reflected = 2.0 * nDotL * facing - lightDirections[i];
-      float rDotV = dot(reflected, toViewer);
-      if (rDotV > 0.0)
+      continue;
+    }
+    vec3 toLight = -lightAxis[i];
+    float attenuation = 1.0;
+    if (lightPositional[i] != 0)
+    {
+      vec3 d = lightPosition[i] - eyePosition;
+      float distance = length(d);
+      toLight = distance > 0.0 ? d / distance : toLight;
+      vec3 a = lightAttenuation[i];
+      float denominator = a.x + a.y * distance + a.z * distance * distance;
+      attenuation = denominator > 0.0 ? 1.0 / denominator : 1.0;
+      if (lightCosCone[i] >= -1.0)
       {
-        shaded += lighting.z * pow(rDotV, lighting.w) * lightColors[i];
+        float spot = -dot(toLight, lightAxis[i]);
+        attenuation = spot >= lightCosCone[i] ? attenuation * pow(max(spot, 0.0), lightExponent[i])
+                                              : 0.0;
+      }
+    }
+    float nDotL = dot(normal, toLight);
+    nDotL = twoSidedLighting != 0 ? abs(nDotL) : nDotL;
+    if (nDotL > 0.0)
+    {
+      diffuseSum += attenuation * nDotL * lightDiffuse[i];
+    }
+    vec3 halfVector = toLight + toViewer;
+    float halfLength = length(halfVector);
+    if (halfLength > 0.0)
+    {
+      float nDotH = dot(normal, halfVector) / halfLength;
+      nDotH = twoSidedLighting != 0 ? abs(nDotH) : nDotH;
+      if (nDotH > 0.0)
+      {
+        specularSum += attenuation * pow(min(nDotH, 1.0), lighting.w) * lightSpecular[i];
       }
     }
   }
+  vec3 ambientFactor = headlightOnly != 0 ? vec3(1.0) : ambientSum;
+  vec3 shaded = classified.rgb * (lighting.x * ambientFactor + lighting.y * diffuseSum) +
+    lighting.z * specularSum;
   classified.rgb = min(shaded, vec3(1.0));
 #endif
   float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);

@@ -350,6 +350,7 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
     {
       frame.normalMatrix[r][c] = static_cast<float>(lighting.normalMatrix[r][c] * gradientUnits);
     }
+    frame.gradientAxisScale[r] = static_cast<float>(transfer.gradientAxisScale[r] * gradientUnits);
   }
   // pow(x, power) over x in [0, 1], linearly interpolated (errors ~1e-5 for power 10).
   constexpr int SpecularTableSize = 2048;
@@ -357,7 +358,7 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   for (int i = 0; i < SpecularTableSize; ++i)
   {
     this->SpecularTable[i] = static_cast<float>(
-      std::pow(static_cast<double>(i) / (SpecularTableSize - 1), lighting.specularPower));
+      std::pow(static_cast<double>(i) / (SpecularTableSize - 1), lighting.model.specularPower));
   }
   frame.specularTable = this->SpecularTable.data();
   frame.specularTableSize = SpecularTableSize;

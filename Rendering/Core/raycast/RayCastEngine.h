@@ -23,6 +23,7 @@
 #include "common/Progress.h"
 #include "common/Affine.h"
 #include "common/Camera.h"
+#include "common/Lighting.h"
 
 #include <cstdint>
 #include <memory>
@@ -44,23 +45,27 @@ struct RayCastTransfer
   // 4 N floats: colour and scalar opacity over [rangeMin, rangeMax] of the raw scalars, linearly
   // interpolated (OpacityTable::Lookup convention). N >= 2.
   std::vector<float> rgba;
-  // Gradient opacity over [0, gradientOpacityMaximum] data units per world unit; empty: off.
+  // Gradient opacity over [0, gradientOpacityMaximum] of the gradient magnitude VTK's GPU mapper
+  // uses: |(dv/di_a * gradientAxisScale[a])_a|, dv/di_a the central difference of the data value
+  // per index step along axis a (VTK: gradientAxisScale[a] = mean spacing / spacing[a]); empty: off.
   std::vector<float> gradientOpacity;
   double gradientOpacityMaximum = 1.0;
+  double gradientAxisScale[3] = { 1, 1, 1 };
   double opacityUnitDistance = 1.0; // vtkVolumeProperty::ScalarOpacityUnitDistance
 };
 
 struct RayCastLighting
 {
   bool shade = false;
-  float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
-  int lightCount = 0;
-  float directions[4][3] = {}; // eye space, towards the light
-  float colours[4][3] = {};    // colour times intensity
+  LightModel model; // coefficients and eye-space lights
   // index-space gradient -> eye space (inverse transpose of index -> eye), row-major
   double normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
   // index-space direction -> eye space (linear part of index -> eye), row-major
   double indexToEye[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  double indexToEyeOffset[3] = { 0, 0, 0 };
+  // Eye space: the volume's centre, where shear-warp's per-normal shading evaluates positional
+  // lights.
+  double centre[3] = { 0, 0, 0 };
 };
 
 struct RayCastView

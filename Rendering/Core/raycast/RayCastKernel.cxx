@@ -424,13 +424,14 @@ private:
         if (needGradient)
         {
           float eyeGradient[3];
-          this->Gradient(p, cell, eyeGradient);
+          float indexGradient[3];
+          this->Gradient(p, cell, eyeGradient, indexGradient);
           if (gradientOpacity)
           {
-            const float magnitude =
-              std::sqrt(eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
-                eyeGradient[2] * eyeGradient[2]) *
-              frame.rangeWidth;
+            const float* scale = frame.gradientAxisScale;
+            const float gx = indexGradient[0] * scale[0], gy = indexGradient[1] * scale[1],
+                        gz = indexGradient[2] * scale[2];
+            const float magnitude = std::sqrt(gx * gx + gy * gy + gz * gz) * frame.rangeWidth;
             const float tableAlpha =
               Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
             a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
@@ -441,7 +442,7 @@ private:
           }
           if (lighting.shade)
           {
-            this->Shade(pixel, eyeGradient, rgb);
+            this->Shade(pixel, p, eyeGradient, rgb);
           }
         }
         this->LastContributed = true;
@@ -583,9 +584,10 @@ private:
   // texture holds), in normalised units, taken to eye space. With precomputed per-voxel
   // differences this is one trilinear interpolation of them (equal inside the volume, as
   // interpolation is linear); without, six extra samples.
-  void Gradient(const double p[3], const SampleCell& cell, float eyeGradient[3]) const
+  // The eye-space gradient and the index-space one it comes from (in the gradients' units).
+  void Gradient(
+    const double p[3], const SampleCell& cell, float eyeGradient[3], float g[3]) const
   {
-    float g[3];
     if (const std::int16_t* gradients = this->Frame.gradients)
     {
       // Interpolated per-voxel differences; their scale is folded into the normal matrix.
@@ -637,10 +639,13 @@ private:
   }
 
   // Phong with VTK's coefficients, two-sided, lights as directions (the slice mapper's shader).
-  void Shade(const PixelRay& pixel, const float eyeGradient[3], float rgb[3]) const
+  // VTK's light model (common/Lighting.h) at index point p.
+  void Shade(
+    const PixelRay& pixel, const double p[3], const float eyeGradient[3], float rgb[3]) const
   {
     const RayCastLighting& l = *this->Frame.lighting;
-    float shaded[3] = { l.ambient * rgb[0], l.ambient * rgb[1], l.ambient * rgb[2] };
+    float factor[3];
+    float highlight[3];
     const float squared = eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
       eyeGradient[2] * eyeGradient[2];
     if (squared > 1.0e-16f)
@@ -648,36 +653,32 @@ private:
       const float inverse = -1.0f / std::sqrt(squared);
       const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
         eyeGradient[2] * inverse };
-      const float* toViewer = pixel.toViewer;
-      const float* table = this->Frame.specularTable;
-      const float last = static_cast<float>(this->Frame.specularTableSize - 1);
-      for (int i = 0; i < l.lightCount; ++i)
+      float eye[3] = { 0, 0, 0 };
+      if (l.model.anyPositional)
       {
-        const float* light = l.directions[i];
-        float nDotL = normal[0] * light[0] + normal[1] * light[1] + normal[2] * light[2];
-        const float twice = 2.0f * nDotL; // = 2 |n.l| times the facing normal's sign
-        nDotL = std::abs(nDotL);
-        float rDotV = 0;
-        for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
         {
-          rDotV += (twice * normal[c] - light[c]) * toViewer[c];
-        }
-        float specular = 0;
-        if (rDotV > 0)
-        {
-          const float u = std::min(rDotV, 1.0f) * last;
-          const int k = std::min(static_cast<int>(u), this->Frame.specularTableSize - 2);
-          specular = l.specular * Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-        }
-        for (int c = 0; c < 3; ++c)
-        {
-          shaded[c] += (l.diffuse * nDotL * rgb[c] + specular) * l.colours[i][c];
+          eye[r] = static_cast<float>(l.indexToEye[r][0] * p[0] + l.indexToEye[r][1] * p[1] +
+            l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r]);
         }
       }
+      const float* table = this->Frame.specularTable;
+      const int size = this->Frame.specularTableSize;
+      const auto power = [table, size](float x)
+      {
+        const float u = x * static_cast<float>(size - 1);
+        const int k = std::min(static_cast<int>(u), size - 2);
+        return Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+      };
+      LightingTerms(l.model, normal, eye, pixel.toViewer, power, factor, highlight);
+    }
+    else
+    {
+      AmbientTerms(l.model, factor, highlight);
     }
     for (int c = 0; c < 3; ++c)
     {
-      rgb[c] = std::min(shaded[c], 1.0f);
+      rgb[c] = std::min(rgb[c] * factor[c] + highlight[c], 1.0f);
     }
   }
 

@@ -28,6 +28,9 @@ struct KernelFrame
   const float* gradientOpacity = nullptr;
   int gradientOpacitySize = 0;
   float gradientOpacityMaximum = 1;
+  // Per index axis: turns Gradient()'s index-space difference into RayCastTransfer's
+  // gradient-opacity magnitude (its gradientAxisScale times the gradients' units).
+  float gradientAxisScale[3] = { 1, 1, 1 };
   float opacityExponent = 1; // sample distance / opacity unit distance
   const RayCastLighting* lighting = nullptr;
   // Optional per-voxel central differences (x, y, z interleaved, raw units times

@@ -270,13 +270,13 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
         }
         if (gradientOpacity)
         {
-          double world[3];
-          for (int r = 0; r < 3; ++r)
+          double scaled[3];
+          for (int a = 0; a < 3; ++a)
           {
-            world[r] = c.gradientToWorld[r][0] * g[0] + c.gradientToWorld[r][1] * g[1] +
-              c.gradientToWorld[r][2] * g[2];
+            scaled[a] = c.gradientAxisScale[a] * g[a];
           }
-          const double m = std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]);
+          const double m =
+            std::sqrt(scaled[0] * scaled[0] + scaled[1] * scaled[1] + scaled[2] * scaled[2]);
           const std::size_t last = c.gradientOpacity.size() - 1;
           const double gu = std::min(m * gradientScale, double(last));
           const std::size_t ge = std::min(static_cast<std::size_t>(gu), last - 1);

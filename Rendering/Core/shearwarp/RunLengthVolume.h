@@ -85,12 +85,11 @@ struct CompositeClassification
   // 4 N floats: colour and opacity over [rangeMin, rangeMax], interpolated linearly like
   // OpacityTable::Lookup (the ray caster's convention). N >= 2.
   std::vector<float> rgba;
-  // Gradient opacity over [0, gradientOpacityMaximum] data units per world unit; empty: off.
+  // Gradient opacity over [0, gradientOpacityMaximum] of |gradientAxisScale (*) g|, g the data
+  // value's central difference per index step (RayCastTransfer's convention); empty: off.
   std::vector<float> gradientOpacity;
   double gradientOpacityMaximum = 1;
-  // Index-space gradient -> world-space gradient (inverse transpose of the index -> world
-  // linear map), row-major: gives the magnitude gradient opacity needs.
-  double gradientToWorld[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  double gradientAxisScale[3] = { 1, 1, 1 };
   bool normals = true; // quantize gradient directions (index space) for shading
 };
 

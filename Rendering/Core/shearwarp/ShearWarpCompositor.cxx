@@ -81,8 +81,9 @@ inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float
   }
   else if (t.shade)
   {
-    float factor[3] = { t.ambient, t.ambient, t.ambient };
-    float specular[3] = { 0, 0, 0 };
+    float factor[3];
+    float specular[3];
+    AmbientTerms(t.lighting, factor, specular);
     if (voxel->normal != NoNormal)
     {
       float g[3];
@@ -615,11 +616,7 @@ void Band(const RunLengthVolume<typename Policy::Voxel>& encoded, const ShearWar
 
 void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], float specular[3])
 {
-  for (int c = 0; c < 3; ++c)
-  {
-    factor[c] = t.ambient;
-    specular[c] = 0;
-  }
+  AmbientTerms(t.lighting, factor, specular);
   float n[3];
   for (int r = 0; r < 3; ++r)
   {
@@ -634,19 +631,10 @@ void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], flo
   {
     value /= -length;
   }
-  for (int i = 0; i < t.lightCount; ++i)
-  {
-    const float* l = t.lightDirections[i];
-    const float nDotL = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-    const float rDotV = 2.0f * nDotL * n[2] - l[2];
-    const float highlight =
-      rDotV > 0 ? t.specular * std::pow(std::min(rDotV, 1.0f), t.specularPower) : 0.0f;
-    for (int c = 0; c < 3; ++c)
-    {
-      factor[c] += t.diffuse * std::abs(nDotL) * t.lightColours[i][c];
-      specular[c] += highlight * t.lightColours[i][c];
-    }
-  }
+  const float toViewer[3] = { 0, 0, 1 };
+  const float power = t.lighting.specularPower;
+  LightingTerms(t.lighting, n, t.lightingPoint, toViewer,
+    [power](float x) { return std::pow(x, power); }, factor, specular);
 }
 
 void BuildShadingTable(CompositeTables& t)
@@ -655,17 +643,20 @@ void BuildShadingTable(CompositeTables& t)
   // parallel view, so the specular term is fixed per normal too. White lights (VTK's default)
   // need one factor and one highlight per normal, not three.
   bool white = true;
-  for (int i = 0; i < t.lightCount; ++i)
+  for (const SceneLight& light : t.lighting.lights)
   {
-    white = white && t.lightColours[i][0] == t.lightColours[i][1] &&
-      t.lightColours[i][0] == t.lightColours[i][2];
+    for (const float* colour : { light.ambient, light.diffuse, light.specular })
+    {
+      white = white && colour[0] == colour[1] && colour[0] == colour[2];
+    }
   }
   t.shadingStride = white ? 2 : 6;
   t.shading.assign(static_cast<std::size_t>(t.shadingStride) * (NormalCodes + 1), 0.0f);
   for (int code = 0; code <= NormalCodes; ++code)
   {
-    float factor[3] = { t.ambient, t.ambient, t.ambient };
-    float specular[3] = { 0, 0, 0 };
+    float factor[3];
+    float specular[3];
+    AmbientTerms(t.lighting, factor, specular);
     if (code < NormalCodes) // the last row is NoNormal: ambient only
     {
       float g[3];

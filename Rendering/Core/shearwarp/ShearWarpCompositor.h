@@ -9,6 +9,7 @@
 #ifndef accelvolume_ShearWarpCompositor_h
 #define accelvolume_ShearWarpCompositor_h
 
+#include "common/Lighting.h"
 #include "shearwarp/RunLengthVolume.h"
 #include "shearwarp/ShearWarpFactorization.h"
 
@@ -33,11 +34,8 @@ struct CompositeTables
   int shadingStride = 6;
   // Per-voxel Phong: eye-space lights, the index-gradient -> eye normal matrix (row-major) and
   // the material, as RayCastLighting.
-  float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
-  int lightCount = 0;
-  float lightDirections[4][3] = {};
-  float lightColours[4][3] = {};
-  float halfVectors[4][3] = {};
+  LightModel lighting;
+  float lightingPoint[3] = { 0, 0, 0 }; // eye space: where positional lights are evaluated
   float normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
   bool earlyTermination = true;
   float terminationThreshold = 0.99f;
@@ -45,9 +43,9 @@ struct CompositeTables
   bool terminationLinks = true;
 };
 
-// Phong with VTK's coefficients, two-sided, for an index-space gradient direction g (eye space
-// through normalMatrix; parallel view, so the view vector is +z): the factor on the voxel colour
-// (ambient + diffuse) and the specular term, per channel. The ray caster's model.
+// VTK's light model (common/Lighting.h) for an index-space gradient direction g (eye space
+// through normalMatrix; parallel view, so the view vector is +z; positional lights evaluated at
+// lightingPoint): the factor on the voxel colour and the specular term, per channel.
 void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3], float specular[3]);
 
 // Lacroute's shading table over the quantized normals (tables.shading and shadingStride).

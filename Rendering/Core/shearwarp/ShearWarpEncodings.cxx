@@ -49,29 +49,8 @@ bool MakeCompositeClassification(double rangeMin, double rangeMax, const RayCast
   classification.gradientOpacity = transfer.gradientOpacity;
   classification.gradientOpacityMaximum = transfer.gradientOpacityMaximum;
   classification.normals = lighting.shade;
-  // World gradient = inverse transpose of the index -> world linear map times the index one.
-  Affine indexToWorld = Affine::Identity();
-  for (int r = 0; r < 3; ++r)
-  {
-    std::copy(view.indexToWorld[r], view.indexToWorld[r] + 3, indexToWorld.m[r]);
-  }
-  Affine worldToIndex;
-  try
-  {
-    worldToIndex = indexToWorld.Inverse();
-  }
-  catch (const std::domain_error&)
-  {
-    error = "shear-warp: the index-to-world map is singular";
-    return false;
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      classification.gradientToWorld[r][c] = worldToIndex.m[c][r];
-    }
-  }
+  std::copy(transfer.gradientAxisScale, transfer.gradientAxisScale + 3,
+    classification.gradientAxisScale);
   return true;
 }
 

@@ -83,18 +83,11 @@ void SetShading(
 {
   t.shade = lighting.shade;
   t.phong = settings.shading == ShearWarpShading::Phong;
-  t.ambient = lighting.ambient;
-  t.diffuse = lighting.diffuse;
-  t.specular = lighting.specular;
-  t.specularPower = lighting.specularPower;
-  t.lightCount = std::min(lighting.lightCount, 4);
-  for (int i = 0; i < 4; ++i)
+  t.lighting = lighting.model;
+  // Positional lights at the volume's centre: the shading table is per normal, not per voxel.
+  for (int r = 0; r < 3; ++r)
   {
-    for (int c = 0; c < 3; ++c)
-    {
-      t.lightDirections[i][c] = lighting.directions[i][c];
-      t.lightColours[i][c] = lighting.colours[i][c];
-    }
+    t.lightingPoint[r] = static_cast<float>(lighting.centre[r]);
   }
   for (int r = 0; r < 3; ++r)
   {
