@@ -3,6 +3,7 @@
 
 #include "vtkAccelVolumeObjectFactory.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLState.h"
 #include "vtkRendererCollection.h"
 #include "vtk_glew.h"
@@ -498,6 +499,20 @@ void* vtkAccelVolumeHeadlessRenderWindow::GetGenericContext()
   }
 #endif
   return nullptr;
+}
+
+int vtkAccelVolumeHeadlessRenderWindow::GetColorBufferSizes(int* rgba)
+{
+  int total = this->Superclass::GetColorBufferSizes(rgba);
+  vtkOpenGLFramebufferObject* framebuffer = this->GetRenderFramebuffer();
+  if (rgba && total == 0 && this->Initialized && framebuffer && framebuffer->GetFBOIndex() != 0)
+  {
+    this->GetState()->PushDrawFramebufferBinding();
+    framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    total = this->Superclass::GetColorBufferSizes(rgba);
+    this->GetState()->PopDrawFramebufferBinding();
+  }
+  return total;
 }
 
 int vtkAccelVolumeHeadlessRenderWindow::SupportsOpenGL()

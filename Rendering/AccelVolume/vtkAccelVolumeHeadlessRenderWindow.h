@@ -101,6 +101,12 @@ public:
   void SetSize(int size[2]) override { this->SetSize(size[0], size[1]); }
   void* GetGenericContext() override;
   int SupportsOpenGL() override;
+  /**
+   * The colour bits of the framebuffer VTK renders into. A surfaceless EGL or OSMesa default
+   * framebuffer has no colour attachment, so VTK's query reported 0 bits and
+   * vtkHardwareSelector (picking) refused the window; the render framebuffer is asked instead.
+   */
+  int GetColorBufferSizes(int* rgba) override;
   vtkTypeBool IsDirect() override { return 1; }
   ///@}
 

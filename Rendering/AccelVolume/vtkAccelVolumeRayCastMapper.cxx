@@ -408,8 +408,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   float colourScale = 1.0f;
   float colourBias = 0.0f;
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
+  float selectionColour[3];
+  const int selectionMode = vtkAccelVolumeSelectionMode(renderer, selectionColour);
   if (!internals.Display.Draw(window, in.LowerLeft, in.Width, in.Height, in.ImageWidth,
-        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias))
+        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias, selectionMode,
+        selectionColour))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

@@ -530,9 +530,12 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   float colourScale = 1.0f;
   float colourBias = 0.0f;
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
+  float selectionColour[3];
+  const int selectionMode = vtkAccelVolumeSelectionMode(renderer, selectionColour);
   if (rank == 0 &&
     !internals.Display.Draw(window, in.lowerLeft, in.width, in.height, in.width, in.height,
-      internals.Image.data(), out.rectangle, colourScale, colourBias))
+      internals.Image.data(), out.rectangle, colourScale, colourBias, selectionMode,
+      selectionColour))
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }

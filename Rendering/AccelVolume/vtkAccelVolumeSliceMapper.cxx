@@ -697,6 +697,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.AverageRange[1] =
     static_cast<float>((self->AverageIPScalarRange[1] - range[0]) / rangeWidth);
   self->GetFinalColorScaleAndBias(frame.ColourScale, frame.ColourBias);
+  frame.SelectionMode = vtkAccelVolumeSelectionMode(renderer, frame.SelectionColour);
   frame.Vertices = &this->Vertices;
   return true;
 }

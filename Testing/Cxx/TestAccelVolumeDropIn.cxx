@@ -15,9 +15,13 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkHardwareSelector.h"
+#include "vtkInformation.h"
 #include "vtkLongLongArray.h"
 #include "vtkPointData.h"
 #include "vtkRectilinearGrid.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSmartVolumeMapper.h"
 #include "vtkUnsignedIntArray.h"
 
@@ -490,6 +494,31 @@ bool JitterIsNoise()
   return ok;
 }
 
+// vtkHardwareSelector over the volume finds the volume prop (VTK's GPU mapper supports the
+// actor pass with cell picking), and the next frame still shows the volume as before.
+bool Picking(Kind kind)
+{
+  auto image = Phantom();
+  Scene scene(kind, image, vtkVolumeMapper::COMPOSITE_BLEND);
+  const std::vector<float> before = scene.Render();
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  selector->SetArea(60, 60, 100, 100);
+  vtkSmartPointer<vtkSelection> selection;
+  selection.TakeReference(selector->Select());
+  bool found = false;
+  for (unsigned int n = 0; selection && n < selection->GetNumberOfNodes(); ++n)
+  {
+    vtkSelectionNode* node = selection->GetNode(n);
+    found = found || node->GetProperties()->Get(vtkSelectionNode::PROP()) == scene.Volume.Get();
+  }
+  const std::vector<float> after = scene.Render();
+  const std::string what = std::string(Name(kind)) + ": hardware selection";
+  std::cout << (found ? "ok    " : "FAIL  ") << what << " finds the volume prop\n";
+  return found && Same(what + ", next frame", after, before);
+}
+
 bool VTKNames()
 {
   bool ok = true;
@@ -521,6 +550,7 @@ int TestAccelVolumeDropIn(int, char*[])
     ok = BlendSwitch(kind) && ok;
     ok = InputKinds(kind) && ok;
     ok = FinalColorWindowLevel(kind) && ok;
+    ok = Picking(kind) && ok;
   }
   ok = UnevenRectilinearIsAnError() && ok;
   ok = VectorModes() && ok;

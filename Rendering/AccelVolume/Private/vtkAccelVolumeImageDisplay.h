@@ -22,10 +22,12 @@ public:
   // stretched over the viewport (lowerLeft, width x height); only image pixels
   // rectangle = [x0, x1] x [y0, y1] (inclusive) are uploaded and drawn, the rest being
   // transparent. Colours are shown as rgb * colourScale + colourBias * alpha (FinalColorWindow /
-  // Level). False if GL fails.
+  // Level); selectionMode (vtkAccelVolumeSelectionMode) replaces them for vtkHardwareSelector.
+  // False if GL fails.
   bool Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height,
     int imageWidth, int imageHeight, const float* rgba, const int rectangle[4],
-    float colourScale = 1.0f, float colourBias = 0.0f);
+    float colourScale = 1.0f, float colourBias = 0.0f, int selectionMode = 0,
+    const float selectionColour[3] = nullptr);
 
   // The viewport's window depth in [0, 1] (rows from the bottom), width * height values.
   static bool ReadDepth(

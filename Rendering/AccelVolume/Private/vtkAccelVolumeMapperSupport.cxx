@@ -7,6 +7,7 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -605,6 +606,26 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
     this->TableRange[1] = high;
     ++this->TransferVersion;
   }
+}
+
+int vtkAccelVolumeSelectionMode(vtkRenderer* renderer, float colour[3])
+{
+  colour[0] = colour[1] = colour[2] = 0.0f;
+  vtkHardwareSelector* selector = renderer ? renderer->GetSelector() : nullptr;
+  if (!selector)
+  {
+    return 0;
+  }
+  const int pass = selector->GetCurrentPass();
+  if (pass == vtkHardwareSelector::ACTOR_PASS || pass == vtkHardwareSelector::PROCESS_PASS)
+  {
+    // The selector turns the renderer's current prop id into this pass's colour.
+    selector->BeginRenderProp();
+    selector->GetPropColorValue(colour);
+    selector->EndRenderProp();
+    return 1;
+  }
+  return 2;
 }
 
 void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,

@@ -145,6 +145,11 @@ private:
 // value's central difference per index step to VTK's (mean spacing / spacing of that axis).
 void vtkAccelVolumeGradientAxisScale(vtkImageData* input, double scale[3]);
 
+// What a vtkHardwareSelector pass asks of a volume (as VTK's GPU mapper): 0 = no selection,
+// render; 1 = the actor / process pass: `colour` (the selector's prop colour) where the volume is
+// seen; 2 = an attribute-id pass: nothing (voxel ids are not reported).
+int vtkAccelVolumeSelectionMode(vtkRenderer* renderer, float colour[3]);
+
 // VTK's lights and lighting coefficients in eye space for the CPU engines (shade: Phong on).
 void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* property,
   vtkMatrix4x4* indexToWorld, const int dims[3], vtkCamera* camera, bool shade,

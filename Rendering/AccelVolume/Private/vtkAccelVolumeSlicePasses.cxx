@@ -533,6 +533,8 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   program->SetUniform2f("viewportOrigin", origin);
   program->SetUniformf("colourScale", frame.ColourScale);
   program->SetUniformf("colourBias", frame.ColourBias);
+  program->SetUniformi("selectionMode", frame.SelectionMode);
+  program->SetUniform3f("selectionColour", frame.SelectionColour);
   resources.ResolveArray->Bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   resources.ResolveArray->Release();

@@ -95,6 +95,8 @@ struct vtkAccelVolumeSliceFrame
   float AverageRange[2] = { 0, 1 };
   float ColourScale = 1; // FinalColorWindow / Level
   float ColourBias = 0;
+  int SelectionMode = 0; // vtkAccelVolumeSelectionMode
+  float SelectionColour[3] = { 0, 0, 0 };
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
   // reached TerminationThreshold are closed for later slices (counted across bricks).
   bool FrontToBack = true; // composite order (back to front uses "over")

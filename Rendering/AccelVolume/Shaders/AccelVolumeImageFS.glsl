@@ -12,6 +12,8 @@ uniform vec2 rectangleOrigin;  // the rectangle's first pixel in the image
 uniform vec2 rectangleSize;
 uniform float colourScale;     // FinalColorWindow / Level: rgb * scale + bias * alpha
 uniform float colourBias;
+uniform int selectionMode;     // vtkHardwareSelector, as the slice mapper's resolve pass
+uniform vec3 selectionColour;
 
 void main()
 {
@@ -35,6 +37,15 @@ void main()
   if (colour.a <= 0.0 && colour.r <= 0.0 && colour.g <= 0.0 && colour.b <= 0.0)
   {
     discard;
+  }
+  if (selectionMode != 0)
+  {
+    if (selectionMode != 1 || colour.a <= 3.0 / 255.0)
+    {
+      discard;
+    }
+    gl_FragData[0] = vec4(selectionColour, 1.0);
+    return;
   }
   if (colourScale != 1.0 || colourBias != 0.0)
   {

@@ -9,9 +9,22 @@ uniform float tableSize;
 uniform vec2 viewportOrigin;
 uniform float colourScale; // FinalColorWindow / Level: rgb * scale + bias * alpha
 uniform float colourBias;
+// vtkHardwareSelector: 1 = write selectionColour where the volume is seen (actor / process
+// passes, as VTK's GPU mapper), 2 = write nothing (attribute-id passes); 0 = render.
+uniform int selectionMode;
+uniform vec3 selectionColour;
 
 void emit(vec4 premultiplied)
 {
+  if (selectionMode != 0)
+  {
+    if (selectionMode != 1 || premultiplied.a <= 3.0 / 255.0)
+    {
+      discard;
+    }
+    gl_FragData[0] = vec4(selectionColour, 1.0);
+    return;
+  }
   premultiplied.rgb = premultiplied.rgb * colourScale + colourBias * premultiplied.a;
   gl_FragData[0] = premultiplied;
 }
