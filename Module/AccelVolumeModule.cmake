@@ -42,6 +42,7 @@ set(_av_shaders
   AccelVolumeResolveFS
   AccelVolumeImageFS
   AccelVolumeTerminationFS
+  AccelVolumeDepthDownsampleFS
   AccelVolumeOctreeLeafCS
   AccelVolumeOctreeReduceCS)
 

@@ -624,8 +624,12 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.BlendMode = self->BlendMode;
   frame.Linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
-  frame.Width = view.Width;
-  frame.Height = view.Height;
+  // Image sample distance: a target that many times smaller, magnified by the resolve pass.
+  const double imageSampleDistance = std::max(1.0f, self->ImageSampleDistance);
+  frame.ViewportWidth = view.Width;
+  frame.ViewportHeight = view.Height;
+  frame.Width = std::max(1, static_cast<int>(std::ceil(view.Width / imageSampleDistance)));
+  frame.Height = std::max(1, static_cast<int>(std::ceil(view.Height / imageSampleDistance)));
   frame.LowerLeft[0] = view.LowerLeft[0];
   frame.LowerLeft[1] = view.LowerLeft[1];
   for (int c = 0; c < 3; ++c)

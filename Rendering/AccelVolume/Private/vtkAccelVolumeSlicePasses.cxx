@@ -15,6 +15,7 @@
 #include "vtkVolumeMapper.h"
 #include "vtk_glew.h"
 
+#include "AccelVolumeDepthDownsampleFS.h"
 #include "AccelVolumeResolveFS.h"
 #include "AccelVolumeResolveVS.h"
 #include "AccelVolumeSliceFS.h"
@@ -138,6 +139,12 @@ void SetSliceMapUniforms(vtkShaderProgram* program, const vtkAccelVolumeSliceFra
   program->SetUniform3f("pixelWeight", pixelWeight);
 }
 
+// An accumulation target smaller than the viewport (image sample distance above 1).
+bool Reduced(const vtkAccelVolumeSliceFrame& frame)
+{
+  return frame.Width != frame.ViewportWidth || frame.Height != frame.ViewportHeight;
+}
+
 // Inserts the variant's #defines before the output declarations (after #version).
 std::string ShaderVariant(
   const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
@@ -156,7 +163,8 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_GRADIENT_TEXTURE " + (composite && frame.GradientTexture ? "1" : "0") +
     "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
     "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") +
-    "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") + "\n";
+    "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
+    "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -512,7 +520,8 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   const vtkAccelVolumeSliceFrame& frame)
 {
   vtkOpenGLState* state = window->GetState();
-  state->vtkglViewport(frame.LowerLeft[0], frame.LowerLeft[1], frame.Width, frame.Height);
+  state->vtkglViewport(
+    frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglBlendEquation(GL_FUNC_ADD);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -531,6 +540,11 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   const float origin[2] = { static_cast<float>(frame.LowerLeft[0]),
     static_cast<float>(frame.LowerLeft[1]) };
   program->SetUniform2f("viewportOrigin", origin);
+  const float viewport[2] = { static_cast<float>(frame.ViewportWidth),
+    static_cast<float>(frame.ViewportHeight) };
+  const float target[2] = { static_cast<float>(frame.Width), static_cast<float>(frame.Height) };
+  program->SetUniform2f("viewportSize", viewport);
+  program->SetUniform2f("targetSize", target);
   program->SetUniformf("colourScale", frame.ColourScale);
   program->SetUniformf("colourBias", frame.ColourBias);
   program->SetUniformi("selectionMode", frame.SelectionMode);
@@ -540,6 +554,61 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   resources.ResolveArray->Release();
   resources.Accumulation->Deactivate();
   resources.TransferTable->Deactivate();
+  return true;
+}
+
+// The scene's depth at the target's size: copied, or (reduced target) copied at the viewport's
+// size and sampled down by a pass that writes the target's depth buffer.
+bool CopySceneDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  if (!Reduced(frame))
+  {
+    resources.SceneDepth->Activate();
+    resources.SceneDepth->CopyFromFrameBuffer(
+      frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.Width, frame.Height);
+    resources.SceneDepth->Deactivate();
+    return true;
+  }
+  if (!resources.PrepareFullDepth(window, frame.ViewportWidth, frame.ViewportHeight))
+  {
+    return false;
+  }
+  resources.SceneDepthFull->Activate();
+  resources.SceneDepthFull->CopyFromFrameBuffer(
+    frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.ViewportWidth, frame.ViewportHeight);
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
+  if (!program)
+  {
+    resources.SceneDepthFull->Deactivate();
+    return false;
+  }
+  vtkOpenGLState* state = window->GetState();
+  resources.Framebuffer->SaveCurrentBindingsAndBuffers();
+  resources.Framebuffer->Bind();
+  state->vtkglViewport(0, 0, frame.Width, frame.Height);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthFunc(GL_ALWAYS);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  program->SetUniformi("fullDepth", resources.SceneDepthFull->GetTextureUnit());
+  const float scale[2] = { static_cast<float>(frame.ViewportWidth) / frame.Width,
+    static_cast<float>(frame.ViewportHeight) / frame.Height };
+  const float size[2] = { static_cast<float>(frame.ViewportWidth),
+    static_cast<float>(frame.ViewportHeight) };
+  program->SetUniform2f("scale", scale);
+  program->SetUniform2f("fullSize", size);
+  resources.ResolveArray->Bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  resources.ResolveArray->Release();
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglDepthFunc(GL_LESS);
+  resources.Framebuffer->RestorePreviousBindingsAndBuffers();
+  resources.SceneDepthFull->Deactivate();
   return true;
 }
 }
@@ -564,11 +633,12 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.
-    resources.SceneDepth->Activate();
-    resources.SceneDepth->CopyFromFrameBuffer(
-      frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.Width, frame.Height);
-    resources.SceneDepth->Deactivate();
-    ok = Accumulate(window, resources, frame, error);
+    ok = CopySceneDepth(window, resources, frame);
+    if (!ok)
+    {
+      error = "the scene depth could not be copied";
+    }
+    ok = ok && Accumulate(window, resources, frame, error);
     if (ok && !Resolve(window, resources, frame))
     {
       error = "the resolve shader did not compile";

@@ -49,8 +49,10 @@ struct vtkAccelVolumeSliceFrame
 
   int BlendMode = 0; // vtkVolumeMapper blend mode (MIP, MinIP, additive, average)
   int SlabSamples = 1;
-  int Width = 0;
+  int Width = 0;  // accumulation target: the viewport, divided by the image sample distance
   int Height = 0;
+  int ViewportWidth = 0; // the renderer's viewport in window pixels
+  int ViewportHeight = 0;
   int LowerLeft[2] = { 0, 0 };
   float Dimensions[3] = { 1, 1, 1 };
   bool Linear = true;   // trilinear (else nearest) volume sampling

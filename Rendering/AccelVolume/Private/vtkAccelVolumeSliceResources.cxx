@@ -375,8 +375,28 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
   return true;
 }
 
+bool vtkAccelVolumeSliceResources::PrepareFullDepth(
+  vtkOpenGLRenderWindow* window, int width, int height)
+{
+  if (this->SceneDepthFull->GetHandle() &&
+    static_cast<int>(this->SceneDepthFull->GetWidth()) == width &&
+    static_cast<int>(this->SceneDepthFull->GetHeight()) == height)
+  {
+    return true;
+  }
+  this->SceneDepthFull->SetContext(window);
+  if (!this->SceneDepthFull->AllocateDepth(width, height, vtkTextureObject::Float32))
+  {
+    return false;
+  }
+  this->SceneDepthFull->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->SceneDepthFull->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return true;
+}
+
 void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
+  this->SceneDepthFull->ReleaseGraphicsResources(window);
   this->Bricks.ReleaseGraphicsResources(window);
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);

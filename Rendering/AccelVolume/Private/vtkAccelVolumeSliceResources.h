@@ -84,6 +84,8 @@ public:
    * integrating modes) and the scene depth copy to the viewport.
    */
   bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels);
+  /** Sizes the full-viewport depth copy a reduced target (image sample distance > 1) needs. */
+  bool PrepareFullDepth(vtkOpenGLRenderWindow* window, int width, int height);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -96,6 +98,7 @@ public:
   float GradientScale = 1.0f;         // decoded gradient = (rgb * 2 - 1) * GradientScale
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkTextureObject> SceneDepthFull; // viewport-sized, for a reduced target only
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   vtkNew<vtkOpenGLBufferObject> VertexBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> SliceArray;

@@ -1,18 +1,55 @@
 //VTK::System::Dec
 // Resolve pass: turns the accumulated value into a premultiplied colour the way VTK's GPU
-// ray caster does for the same blend mode, blended over the scene.
+// ray caster does for the same blend mode, blended over the scene. With an image sample
+// distance above 1 (ACCELVOLUME_REDUCED) the target is smaller than the viewport: each window
+// pixel blends the colours of its four nearest target texels bilinearly.
 //VTK::Output::Dec
 
 uniform sampler2D accumulation;
 uniform sampler2D transferTable;
 uniform float tableSize;
 uniform vec2 viewportOrigin;
+uniform vec2 viewportSize; // window pixels
+uniform vec2 targetSize;   // accumulation texels
 uniform float colourScale; // FinalColorWindow / Level: rgb * scale + bias * alpha
 uniform float colourBias;
 // vtkHardwareSelector: 1 = write selectionColour where the volume is seen (actor / process
 // passes, as VTK's GPU mapper), 2 = write nothing (attribute-id passes); 0 = render.
 uniform int selectionMode;
 uniform vec3 selectionColour;
+
+vec4 lookup(float value)
+{
+  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  return texture(transferTable, vec2(u, 0.5));
+}
+
+// The premultiplied colour of one target texel; `covered` is false where no sample landed.
+vec4 resolveTexel(ivec2 texel, out bool covered)
+{
+  vec4 accumulated = texelFetch(accumulation, texel, 0);
+  vec2 sums = accumulated.rg;
+  // MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
+#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+  covered = sums.x >= -0.5;
+  vec4 colour = lookup(sums.x);
+  return covered ? vec4(colour.rgb * colour.a, colour.a) : vec4(0.0);
+#elif defined(ACCELVOLUME_BLEND_MINIMUM)
+  covered = sums.x <= 1.5;
+  vec4 colour = lookup(sums.x);
+  return covered ? vec4(colour.rgb * colour.a, colour.a) : vec4(0.0);
+#elif defined(ACCELVOLUME_BLEND_COMPOSITE)
+  // Already premultiplied front-to-back colour and alpha.
+  covered = accumulated.a > 0.0;
+  return covered ? accumulated : vec4(0.0);
+#elif defined(ACCELVOLUME_BLEND_ADDITIVE)
+  covered = sums.y > 0.0;
+  return covered ? vec4(vec3(clamp(sums.x, 0.0, 1.0)), 1.0) : vec4(0.0);
+#else
+  covered = sums.y > 0.0;
+  return covered ? vec4(vec3(clamp(sums.x / sums.y, 0.0, 1.0)), 1.0) : vec4(0.0);
+#endif
+}
 
 void emit(vec4 premultiplied)
 {
@@ -29,49 +66,36 @@ void emit(vec4 premultiplied)
   gl_FragData[0] = premultiplied;
 }
 
-vec4 lookup(float value)
-{
-  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
-  return texture(transferTable, vec2(u, 0.5));
-}
-
 void main()
 {
-  vec4 accumulated = texelFetch(accumulation, ivec2(gl_FragCoord.xy - viewportOrigin), 0);
-  vec2 sums = accumulated.rg;
-  // MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
-#if defined(ACCELVOLUME_BLEND_MAXIMUM)
-  if (sums.x < -0.5)
+  vec2 pixel = gl_FragCoord.xy - viewportOrigin;
+  bool covered;
+#if ACCELVOLUME_REDUCED
+  // Target texel centres sit at (i + 0.5) * viewportSize / targetSize window pixels.
+  vec2 at = pixel * targetSize / viewportSize - 0.5;
+  ivec2 base = ivec2(floor(at));
+  vec2 f = at - vec2(base);
+  ivec2 last = ivec2(targetSize) - 1;
+  vec4 colour = vec4(0.0);
+  bool any = false;
+  for (int j = 0; j < 2; ++j)
   {
-    discard;
+    for (int i = 0; i < 2; ++i)
+    {
+      ivec2 texel = clamp(base + ivec2(i, j), ivec2(0), last);
+      float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      bool texelCovered;
+      colour += weight * resolveTexel(texel, texelCovered);
+      any = any || (texelCovered && weight > 0.0);
+    }
   }
-  vec4 colour = lookup(sums.x);
-  emit(vec4(colour.rgb * colour.a, colour.a));
-#elif defined(ACCELVOLUME_BLEND_MINIMUM)
-  if (sums.x > 1.5)
-  {
-    discard;
-  }
-  vec4 colour = lookup(sums.x);
-  emit(vec4(colour.rgb * colour.a, colour.a));
-#elif defined(ACCELVOLUME_BLEND_COMPOSITE)
-  // Already premultiplied front-to-back colour and alpha.
-  if (accumulated.a <= 0.0)
-  {
-    discard;
-  }
-  emit(accumulated);
-#elif defined(ACCELVOLUME_BLEND_ADDITIVE)
-  if (sums.y <= 0.0)
-  {
-    discard;
-  }
-  emit(vec4(vec3(clamp(sums.x, 0.0, 1.0)), 1.0));
+  covered = any;
 #else
-  if (sums.y <= 0.0)
+  vec4 colour = resolveTexel(ivec2(pixel), covered);
+#endif
+  if (!covered)
   {
     discard;
   }
-  emit(vec4(vec3(clamp(sums.x / sums.y, 0.0, 1.0)), 1.0));
-#endif
+  emit(colour);
 }
