@@ -551,6 +551,90 @@ bool ImageSampleDistance()
   return ok;
 }
 
+// A camera moving into a volume of tiny spacing (VTK's TestGPURayCastCameraInsideSmallSpacing:
+// 7e-6 sample distance and unit distance): the picture changes continuously as the camera
+// crosses the box face (the rays' integrand over [near, far] does), and the slice mapper and the
+// ray caster agree inside. vtkGPUVolumeRayCastMapper's picture jumps there (more blue in
+// VTK's test), which is VTK's error, not ours.
+bool CameraInsideSmallSpacing()
+{
+  const double spacing = 0.0005 / 40.0;
+  auto image = accelvolume_test::MakePhantom("blobs", 40, 40, 40, spacing, spacing, spacing);
+  auto meanColour = [&](Kind kind, double dolly, std::vector<float>* pixels)
+  {
+    Scene scene(kind, image, vtkVolumeMapper::COMPOSITE_BLEND);
+    if (auto* slice = vtkAccelVolumeSliceMapper::SafeDownCast(scene.Mapper))
+    {
+      slice->SetAutoAdjustSampleDistances(0);
+      slice->SetSampleDistance(7e-6);
+    }
+    if (auto* rayCast = vtkAccelVolumeRayCastMapper::SafeDownCast(scene.Mapper))
+    {
+      rayCast->SetSampleDistance(7e-6);
+    }
+    scene.Volume->GetProperty()->SetScalarOpacityUnitDistance(7e-6);
+    scene.Renderer->ResetCamera();
+    scene.Renderer->GetActiveCamera()->Dolly(dolly);
+    scene.Renderer->ResetCameraClippingRange();
+    std::vector<float> rgb = scene.Render();
+    double sum = 0;
+    for (float v : rgb)
+    {
+      sum += v;
+    }
+    if (pixels)
+    {
+      *pixels = rgb;
+    }
+    return sum / static_cast<double>(rgb.size());
+  };
+  // The dollies that leave the camera just outside the box and just inside it.
+  double bounds[6];
+  image->GetBounds(bounds);
+  double insideDolly = 1.0;
+  {
+    Scene probe(Kind::RayCast, image, vtkVolumeMapper::COMPOSITE_BLEND);
+    for (double dolly = 1.0; dolly < 100.0; dolly += 0.05)
+    {
+      probe.Renderer->ResetCamera();
+      probe.Renderer->GetActiveCamera()->Dolly(dolly);
+      const double* eye = probe.Renderer->GetActiveCamera()->GetPosition();
+      bool in = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        in = in && eye[a] > bounds[2 * a] && eye[a] < bounds[2 * a + 1];
+      }
+      if (in)
+      {
+        insideDolly = dolly;
+        break;
+      }
+    }
+  }
+  const double outsideDolly = insideDolly - 0.05;
+  bool ok = insideDolly > 1.0;
+  for (Kind kind : { Kind::Slice, Kind::RayCast })
+  {
+    const double outside = meanColour(kind, outsideDolly, nullptr);
+    const double inside = meanColour(kind, insideDolly, nullptr);
+    const bool continuous = std::abs(inside - outside) < 0.15 * std::max(outside, 1.0e-3);
+    std::cout << (continuous ? "ok    " : "FAIL  ") << Name(kind)
+              << ": camera crossing the face of a volume of spacing " << spacing
+              << ": mean colour " << outside << " -> " << inside << " (limit 15%)\n";
+    ok = continuous && ok;
+  }
+  std::vector<float> slice;
+  std::vector<float> rayCast;
+  meanColour(Kind::Slice, insideDolly + 0.5, &slice);
+  meanColour(Kind::RayCast, insideDolly + 0.5, &rayCast);
+  std::cout << "camera inside from dolly " << insideDolly << "\n";
+  ok = Drawn("camera inside: slice", slice) && Drawn("camera inside: ray caster", rayCast) && ok;
+  return Same("camera inside: slice vs ray caster (mean |diff| bounded)", slice, rayCast, 1.0) &&
+    accelvolume_test::Report("camera inside: slice vs ray caster",
+      CompareImages(slice, rayCast, 16.0 / 255.0), 4.0 / 255.0, 0.03) &&
+    ok;
+}
+
 bool VTKNames()
 {
   bool ok = true;
@@ -588,5 +672,6 @@ int TestAccelVolumeDropIn(int, char*[])
   ok = VectorModes() && ok;
   ok = JitterIsNoise() && ok;
   ok = ImageSampleDistance() && ok;
+  ok = CameraInsideSmallSpacing() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
