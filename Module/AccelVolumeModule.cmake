@@ -32,6 +32,7 @@ set(_av_private_sources
   vtkAccelVolumeRenderProgress
   vtkAccelVolumeScalarEncoding
   vtkAccelVolumeSliceGeometry
+  vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses
   vtkAccelVolumeSliceResources)
 

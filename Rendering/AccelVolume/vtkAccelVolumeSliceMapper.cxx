@@ -8,6 +8,7 @@
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkAccelVolumeSliceGeometry.h"
 #include "vtkAccelVolumeSlicePasses.h"
+#include "vtkAccelVolumeSliceMask.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -25,6 +26,7 @@
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
 #include "vtkTimerLog.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
@@ -141,6 +143,7 @@ class vtkAccelVolumeSliceMapper::vtkInternals
 {
 public:
   vtkAccelVolumeSliceResources Resources;
+  vtkAccelVolumeSliceMask Mask;
   vtkAccelVolumeSliceFrame Frame;
   vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
   // What the uploaded leaf texture reflects.
@@ -154,6 +157,14 @@ public:
   bool HaveNonEmptyBoxes = false;
   std::string Renderer;
   std::vector<float> Vertices;
+  // Hidden points (ghost array) as a binary mask, combined with a binary mask input.
+  vtkSmartPointer<vtkImageData> GhostMask;
+  vtkMTimeType GhostMaskTime = 0;
+  bool UsedGhostMask = false;
+
+  // The mask the frame uses: the mask input, or the input's hidden points (ghost / blanking
+  // array) as a binary mask, intersected with a binary mask input.
+  vtkImageData* EffectiveMask(vtkAccelVolumeSliceMapper* self, vtkImageData* input);
   bool ReportedError = false;
 
   // Uploads the volume and its transfer table; false (reported) when it cannot.
@@ -180,6 +191,53 @@ public:
   bool DrawPasses(
     vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError);
 };
+
+vtkImageData* vtkAccelVolumeSliceMapper::vtkInternals::EffectiveMask(
+  vtkAccelVolumeSliceMapper* self, vtkImageData* input)
+{
+  this->UsedGhostMask = false;
+  vtkUnsignedCharArray* ghosts = input->GetPointGhostArray();
+  vtkImageData* user = self->MaskInput;
+  const bool userBinary = user && self->MaskType == BinaryMaskType;
+  if (!ghosts || ghosts->GetNumberOfTuples() != input->GetNumberOfPoints() ||
+    (user && !userBinary))
+  {
+    return user; // a label map keeps its own meaning; hidden points are then drawn
+  }
+  vtkDataArray* userValues = userBinary ? user->GetPointData()->GetScalars() : nullptr;
+  const vtkMTimeType time = std::max({ ghosts->GetMTime(), input->GetMTime(),
+    userValues ? userValues->GetMTime() : 0, user ? user->GetMTime() : 0 });
+  const vtkIdType count = input->GetNumberOfPoints();
+  if (!this->GhostMask || time > this->GhostMaskTime)
+  {
+    bool anyHidden = false;
+    for (vtkIdType i = 0; i < count && !anyHidden; ++i)
+    {
+      anyHidden = (ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) != 0;
+    }
+    this->GhostMask = vtkSmartPointer<vtkImageData>::New();
+    if (anyHidden)
+    {
+      this->GhostMask->SetDimensions(input->GetDimensions());
+      this->GhostMask->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+      auto* out = static_cast<unsigned char*>(this->GhostMask->GetScalarPointer());
+      const bool userFits = userValues && userValues->GetNumberOfTuples() == count;
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        const bool visible = !(ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) &&
+          (!userFits || userValues->GetComponent(i, 0) != 0.0);
+        out[i] = visible ? 255 : 0;
+      }
+    }
+    this->GhostMaskTime = time;
+  }
+  if (this->GhostMask->GetNumberOfPoints() == 0)
+  {
+    return user;
+  }
+  this->UsedGhostMask = true;
+  return this->GhostMask;
+}
 
 vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
 
@@ -268,6 +326,12 @@ void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
     image->Initialize();
   }
   this->WarnNotApplicable("GetColorImage", "render-to-image is not available yet");
+}
+
+bool vtkAccelVolumeSliceMapper::UsesLabelMap() const
+{
+  return this->MaskInput && this->MaskType == LabelMapMaskType && this->MaskBlendFactor > 0 &&
+    this->BlendMode == COMPOSITE_BLEND;
 }
 
 void vtkAccelVolumeSliceMapper::GetReductionRatio(double ratio[3])
@@ -420,6 +484,7 @@ const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
 void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->Resources.ReleaseGraphicsResources(window);
+  this->Internals->Mask.ReleaseGraphicsResources(window);
 }
 
 bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray* scalars,
@@ -429,12 +494,6 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray*
   if (!input || !scalars || !error.empty() || !vtkAccelVolumeCheckGeometry(this, error))
   {
     vtkErrorMacro(<< error);
-    return false;
-  }
-  if (this->MaskInput)
-  {
-    vtkErrorMacro("Mask inputs (SetMaskInput) are not rendered yet; remove the mask to draw the "
-                  "unmasked volume");
     return false;
   }
   if (!IsSupportedBlend(this->BlendMode))
@@ -585,12 +644,16 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
 {
   const bool extremum =
     self->BlendMode == MAXIMUM_INTENSITY_BLEND || self->BlendMode == MINIMUM_INTENSITY_BLEND;
-  const int slabSamples = extremum ? self->SlabSamples : 1;
+  // A binary mask is tested once per fragment: plain slices.
+  const int slabSamples =
+    extremum && !self->MaskInput && !this->UsedGhostMask ? self->SlabSamples : 1;
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
   const bool transferFunction2D =
     composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
-  skipEmptyLeaves = composite && !transferFunction2D && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
+  // ... nor does it know a label map's colours (a binary mask only removes samples).
+  skipEmptyLeaves = composite && !transferFunction2D && !self->UsesLabelMap() &&
+    (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
@@ -680,7 +743,21 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     frame.Gradient2DMaximum =
       static_cast<float>(0.25 * (range[1] > range[0] ? range[1] - range[0] : 1.0));
   }
-  frame.SkipTransparentSamples = composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT);
+  frame.SkipTransparentSamples =
+    composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT) && !self->UsesLabelMap();
+  const bool ghostMask = this->GhostMask && this->GhostMask->GetNumberOfPoints() > 0 &&
+    this->UsedGhostMask;
+  frame.MaskMode = ghostMask
+    ? 1
+    : (!self->MaskInput ? 0
+                        : (self->UsesLabelMap() ? 2 : (self->MaskType == BinaryMaskType ? 1 : 0)));
+  frame.MaskBlendFactor = self->MaskBlendFactor;
+  frame.MaskTexture = this->Mask.GetTexture();
+  frame.LabelTable = this->Mask.GetLabelTable();
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.MaskMaximum[c] = static_cast<float>(std::max(0, view.Dimensions[c] - 1));
+  }
   frame.SkipEmptyLeaves = skipEmptyLeaves;
   self->LastTransparentLeafFraction =
     frame.SkipEmptyLeaves ? self->LastTransparentLeafFraction : -1.0;
@@ -799,6 +876,21 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   if (!internals.UploadVolume(this, window, input, scalars, property, range))
   {
     return;
+  }
+  vtkImageData* mask = internals.EffectiveMask(this, input);
+  if (mask)
+  {
+    std::string maskError;
+    if (!internals.Mask.Update(window, mask, input->GetDimensions(),
+          mask == this->MaskInput && this->MaskType == LabelMapMaskType, maskError))
+    {
+      vtkErrorMacro(<< maskError);
+      return;
+    }
+    if (this->UsesLabelMap())
+    {
+      internals.Mask.UpdateLabelTable(window, property, range);
+    }
   }
   progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
 

@@ -240,9 +240,15 @@ public:
 
   ///@{
   /**
-   * vtkGPUVolumeRayCastMapper's mask input, type (BinaryMaskType, LabelMapMaskType: the
-   * default) and blend factor (default 1). Not rendered yet: a frame with a mask set reports
-   * one error and draws nothing rather than the unmasked volume.
+   * As vtkGPUVolumeRayCastMapper: a mask image with the volume's dimensions, its type
+   * (BinaryMaskType, or LabelMapMaskType: the default) and the label blend factor (default 1),
+   * each sampled at the voxel nearest to a sample. Binary (nonzero = inside): samples outside
+   * are skipped in every blend mode; exact with the accelerations (a mask only removes
+   * samples). Label map (composite): a voxel with label L > 0 takes the colour and opacity of
+   * the property's SetLabelColor(L) / SetLabelScalarOpacity(L) (the property's own functions
+   * where a label has none), mixed with the unlabelled classification by MaskBlendFactor
+   * (0: the mask has no effect); octree and per-fragment skipping are off then, since labels
+   * may make transparent voxels visible.
    */
   void SetMaskInput(vtkImageData* mask);
   vtkGetObjectMacro(MaskInput, vtkImageData);
@@ -487,6 +493,8 @@ private:
     vtkVolume* volume);
   // Warns once for each VTK setting in use that this mapper does not apply.
   void WarnUnappliedSettings();
+  // A label-map mask that changes composite colours (then no opacity-based skipping applies).
+  bool UsesLabelMap() const;
   // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.
   bool UpdateEmptyLeaves(vtkOpenGLRenderWindow* window, vtkImageData* input,
     vtkVolumeProperty* property, const double range[2]);

@@ -11,6 +11,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -19,10 +20,12 @@
 #include "vtkInformation.h"
 #include "vtkLongLongArray.h"
 #include "vtkPointData.h"
+#include "vtkVolumeProperty.h"
 #include "vtkRectilinearGrid.h"
 #include "vtkSelection.h"
 #include "vtkSelectionNode.h"
 #include "vtkSmartVolumeMapper.h"
+#include "vtkUniformGrid.h"
 #include "vtkUnsignedIntArray.h"
 
 #include <functional>
@@ -635,6 +638,97 @@ bool CameraInsideSmallSpacing()
     ok;
 }
 
+// A mask over the voxels with index x < 20 (binary) or labelling x >= 20 (label map).
+vtkSmartPointer<vtkImageData> MaskOf(vtkImageData* image, bool labels)
+{
+  auto mask = vtkSmartPointer<vtkImageData>::New();
+  mask->CopyStructure(image);
+  mask->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  int dims[3];
+  image->GetDimensions(dims);
+  auto* values = static_cast<unsigned char*>(mask->GetScalarPointer());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    const bool left = i % dims[0] < 20;
+    values[i] = labels ? (left ? 0 : 1) : (left ? 255 : 0);
+  }
+  return mask;
+}
+
+// Masks on the slice mapper: a binary mask keeps the samples whose nearest voxel is inside, so a
+// mask of x < 20 draws what cropping at x = 19.5 draws; a label map recolours its labelled voxels
+// by the blend factor, and blend factor 0 changes nothing.
+bool Masks()
+{
+  bool ok = true;
+  auto image = Phantom();
+  for (int blend : { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND })
+  {
+    Scene masked(Kind::Slice, image, blend);
+    auto* maskedMapper = vtkAccelVolumeSliceMapper::SafeDownCast(masked.Mapper);
+    maskedMapper->SetMaskInput(MaskOf(image, false));
+    maskedMapper->SetMaskTypeToBinary();
+    maskedMapper->BoundaryRerenderingOff();
+    Scene cropped(Kind::Slice, image, blend);
+    auto* croppedMapper = vtkAccelVolumeSliceMapper::SafeDownCast(cropped.Mapper);
+    croppedMapper->BoundaryRerenderingOff();
+    croppedMapper->CroppingOn();
+    croppedMapper->SetCroppingRegionPlanes(0, 19.5, -1, 100, -1, 100);
+    croppedMapper->SetCroppingRegionFlagsToSubVolume();
+    const auto d = CompareImages(masked.Render(), cropped.Render(), 8.0 / 255.0);
+    const bool same = d.fractionAbove < 0.002;
+    std::cout << (same ? "ok    " : "FAIL  ") << "slice: binary mask x < 20 vs cropping at 19.5, blend "
+              << blend << ": fraction over 8 levels " << d.fractionAbove << " (limit 0.002)\n";
+    ok = same && ok;
+  }
+  {
+    // Blanking (vtkUniformGrid::BlankPoint, a ghost array's HIDDENPOINT) hides those voxels as
+    // a binary mask does.
+    auto blanked = vtkSmartPointer<vtkUniformGrid>::New();
+    blanked->ShallowCopy(image);
+    int dims[3];
+    image->GetDimensions(dims);
+    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+    {
+      if (i % dims[0] >= 20)
+      {
+        blanked->BlankPoint(i);
+      }
+    }
+    Scene hidden(Kind::Slice, blanked, vtkVolumeMapper::COMPOSITE_BLEND);
+    Scene masked(Kind::Slice, image, vtkVolumeMapper::COMPOSITE_BLEND);
+    auto* maskedMapper = vtkAccelVolumeSliceMapper::SafeDownCast(masked.Mapper);
+    maskedMapper->SetMaskInput(MaskOf(image, false));
+    maskedMapper->SetMaskTypeToBinary();
+    ok = Same("slice: blanked points vs the same binary mask", hidden.Render(), masked.Render()) &&
+      ok;
+  }
+  Scene plain(Kind::Slice, image, vtkVolumeMapper::COMPOSITE_BLEND);
+  const std::vector<float> unmasked = plain.Render();
+  vtkNew<vtkColorTransferFunction> green;
+  green->AddRGBPoint(0, 0, 1, 0);
+  green->AddRGBPoint(1000, 0, 1, 0);
+  plain.Volume->GetProperty()->SetLabelColor(1, green);
+  auto* mapper = vtkAccelVolumeSliceMapper::SafeDownCast(plain.Mapper);
+  mapper->SetMaskInput(MaskOf(image, true));
+  mapper->SetMaskTypeToLabelMap();
+  mapper->SetMaskBlendFactor(0.0f);
+  ok = Same("slice: label map, blend factor 0 vs no mask", plain.Render(), unmasked) && ok;
+  mapper->SetMaskBlendFactor(1.0f);
+  const std::vector<float> labelled = plain.Render();
+  double greener = 0;
+  double redder = 0;
+  for (size_t p = 0; p < labelled.size() / 3; ++p)
+  {
+    greener += labelled[3 * p + 1] - unmasked[3 * p + 1];
+    redder += labelled[3 * p] - unmasked[3 * p];
+  }
+  const bool recoloured = greener > 50.0 && redder < 0.0;
+  std::cout << (recoloured ? "ok    " : "FAIL  ") << "slice: label map, blend factor 1: green "
+            << greener << " more, red " << redder << "\n";
+  return recoloured && ok;
+}
+
 bool VTKNames()
 {
   bool ok = true;
@@ -673,5 +767,6 @@ int TestAccelVolumeDropIn(int, char*[])
   ok = JitterIsNoise() && ok;
   ok = ImageSampleDistance() && ok;
   ok = CameraInsideSmallSpacing() && ok;
+  ok = Masks() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

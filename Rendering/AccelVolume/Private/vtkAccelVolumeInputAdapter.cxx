@@ -11,6 +11,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkPointData.h"
 #include "vtkRectilinearGrid.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolumeMapper.h"
 
 #include <cmath>
@@ -199,6 +200,22 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
     }
     this->Adapted->GetPointData()->Initialize();
     this->Adapted->GetPointData()->SetScalars(this->Converted);
+    // Blanking travels with the scalars: hidden cells of cell scalars become hidden points.
+    if (vtkUnsignedCharArray* ghosts =
+          cellFlag ? input->GetCellGhostArray() : input->GetPointGhostArray())
+    {
+      vtkNew<vtkUnsignedCharArray> hidden;
+      hidden->SetName(vtkDataSetAttributes::GhostArrayName());
+      hidden->SetNumberOfTuples(ghosts->GetNumberOfTuples());
+      const unsigned char hiddenBit =
+        cellFlag ? vtkDataSetAttributes::HIDDENCELL : vtkDataSetAttributes::HIDDENPOINT;
+      for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples(); ++i)
+      {
+        hidden->SetValue(
+          i, (ghosts->GetValue(i) & hiddenBit) ? vtkDataSetAttributes::HIDDENPOINT : 0);
+      }
+      this->Adapted->GetPointData()->AddArray(hidden);
+    }
     this->Adapted->Modified();
     this->Source = input;
     this->SourceArray = scalars;

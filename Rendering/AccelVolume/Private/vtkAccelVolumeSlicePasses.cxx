@@ -164,7 +164,9 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
     "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
-    "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") + "\n";
+    "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
+    "\n#define ACCELVOLUME_MASK " +
+    std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -233,6 +235,16 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniform4f("lighting", frame.Lighting);
   }
   program->SetUniform2f("averageRange", frame.AverageRange);
+  if (frame.MaskMode != 0)
+  {
+    program->SetUniformi("maskTexture", frame.MaskTexture->GetTextureUnit());
+    program->SetUniform3f("maskMaximum", frame.MaskMaximum);
+    if (frame.MaskMode == 2)
+    {
+      program->SetUniformi("labelTable", frame.LabelTable->GetTextureUnit());
+      program->SetUniformf("maskBlendFactor", frame.MaskBlendFactor);
+    }
+  }
 }
 
 // Marks pixels whose front-to-back alpha reached the threshold: depth 0 there, so the early
@@ -489,6 +501,14 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.Gradients->Activate();
   }
+  if (frame.MaskMode != 0)
+  {
+    frame.MaskTexture->Activate();
+    if (frame.MaskMode == 2)
+    {
+      frame.LabelTable->Activate();
+    }
+  }
   // Per brick, slices then faces: every blend here but composite's is order-independent, and
   // composite has no faces.
   const bool ok = DrawBricks(window, resources, frame, error);
@@ -509,6 +529,14 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (frame.GradientTexture)
   {
     resources.Gradients->Deactivate();
+  }
+  if (frame.MaskMode != 0)
+  {
+    frame.MaskTexture->Deactivate();
+    if (frame.MaskMode == 2)
+    {
+      frame.LabelTable->Deactivate();
+    }
   }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;

@@ -14,6 +14,7 @@
 class vtkAccelVolumeSliceResources;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
+class vtkTextureObject;
 
 // Everything one frame's passes need, computed by the mapper.
 struct vtkAccelVolumeSliceFrame
@@ -97,6 +98,12 @@ struct vtkAccelVolumeSliceFrame
   float AverageRange[2] = { 0, 1 };
   float ColourScale = 1; // FinalColorWindow / Level
   float ColourBias = 0;
+  // Mask input: 0 none, 1 binary, 2 label map (composite only); its texture and label table.
+  int MaskMode = 0;
+  float MaskBlendFactor = 1;
+  float MaskMaximum[3] = { 0, 0, 0 };
+  vtkTextureObject* MaskTexture = nullptr;
+  vtkTextureObject* LabelTable = nullptr;
   int SelectionMode = 0; // vtkAccelVolumeSelectionMode
   float SelectionColour[3] = { 0, 0, 0 };
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha

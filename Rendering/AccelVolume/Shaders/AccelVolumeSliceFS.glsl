@@ -70,6 +70,11 @@ uniform float lightExponent[16];
 uniform int twoSidedLighting;
 uniform int headlightOnly;          // VTK's single headlight: ambient term = ambient * colour
 uniform vec4 lighting;              // ambient, diffuse, specular, specular power
+// Mask input (ACCELVOLUME_MASK 1: binary, 2: label map), nearest per voxel, as VTK's GPU mapper.
+uniform sampler3D maskTexture;      // R8: binary 0 / 1, or the label / 255
+uniform vec3 maskMaximum;           // largest voxel index per axis
+uniform sampler2D labelTable;       // rgba over (scalar, label), labels 0..255 as rows
+uniform float maskBlendFactor;
 // Composite empty-space skipping (ACCELVOLUME_SKIP_OCTREE, ACCELVOLUME_SKIP_TRANSPARENT):
 uniform sampler3D emptyLeaves;      // 1 where the octree leaf is transparent (leaf grid)
 uniform float leafSize;
@@ -164,6 +169,14 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
   return vec2(enter, exit);
 }
 
+#if ACCELVOLUME_MASK
+// The mask value of the voxel nearest to an index point: 0 / 1 (binary) or the label.
+float maskAt(vec3 point)
+{
+  return texelFetch(maskTexture, ivec3(clamp(floor(point + 0.5), vec3(0.0), maskMaximum)), 0).r;
+}
+#endif
+
 void main()
 {
 #if ACCELVOLUME_BOUNDARY_FACE
@@ -188,6 +201,13 @@ void main()
 #if ACCELVOLUME_BRICKED
   // Each sample point belongs to one brick; the slices of its neighbours reach half a voxel in.
   if (any(lessThan(indexPosition, ownedLower)) || any(greaterThanEqual(indexPosition, ownedUpper)))
+  {
+    discard;
+  }
+#endif
+#if ACCELVOLUME_MASK == 1
+  // Binary mask: samples outside it are skipped, whatever the blend mode.
+  if (maskAt(indexPosition) <= 0.0)
   {
     discard;
   }
@@ -273,6 +293,18 @@ void main()
   vec4 classified = vec4(0.0);
 #else
   vec4 classified = classify(normalizedScalarAt(samplePosition));
+#endif
+#if ACCELVOLUME_MASK == 2
+  // Label map: a labelled voxel takes its label's colour and opacity, blended with the
+  // property's by maskBlendFactor (vtkGPUVolumeRayCastMapper's rule).
+  float label = floor(maskAt(indexPosition) * 255.0 + 0.5);
+  if (label > 0.0 && maskBlendFactor > 0.0)
+  {
+    float u = (clamp(normalizedScalarAt(samplePosition), 0.0, 1.0) * (tableSize - 1.0) + 0.5) /
+      tableSize;
+    vec4 labelled = texture(labelTable, vec2(u, (label + 0.5) / 256.0));
+    classified = mix(classified, labelled, maskBlendFactor);
+  }
 #endif
 #if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
   // Per-fragment skipping: a transparent sample needs no gradient and no lighting.

@@ -1,0 +1,124 @@
+// The slice mapper's mask texture and label-map colour table.
+#include "vtkAccelVolumeSliceMask.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkTextureObject.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+vtkAccelVolumeSliceMask::vtkAccelVolumeSliceMask() = default;
+
+vtkAccelVolumeSliceMask::~vtkAccelVolumeSliceMask() = default;
+
+bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData* mask,
+  const int dims[3], bool labelMap, std::string& error)
+{
+  int maskDims[3];
+  mask->GetDimensions(maskDims);
+  vtkDataArray* values = mask->GetPointData()->GetScalars();
+  if (!std::equal(maskDims, maskDims + 3, dims))
+  {
+    std::ostringstream message;
+    message << "The mask input's dimensions (" << maskDims[0] << "x" << maskDims[1] << "x"
+            << maskDims[2] << ") differ from the volume's (" << dims[0] << "x" << dims[1] << "x"
+            << dims[2] << ")";
+    error = message.str();
+    return false;
+  }
+  if (!values || values->GetNumberOfComponents() != 1 ||
+    values->GetNumberOfTuples() != mask->GetNumberOfPoints())
+  {
+    error = "The mask input needs one-component point scalars, one per voxel";
+    return false;
+  }
+  const unsigned long time = std::max(mask->GetMTime(), values->GetMTime());
+  if (this->Texture->GetHandle() && this->Uploaded == mask && this->UploadTime == time &&
+    this->UploadedLabelMap == labelMap)
+  {
+    return true;
+  }
+  const vtkIdType count = values->GetNumberOfTuples();
+  std::vector<unsigned char> bytes(static_cast<size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const double v = values->GetComponent(i, 0);
+    bytes[static_cast<size_t>(i)] = labelMap
+      ? static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::floor(v + 0.5))))
+      : static_cast<unsigned char>(v != 0.0 && !std::isnan(v) ? 255 : 0);
+  }
+  this->Texture->SetContext(window);
+  this->Texture->ResetFormatAndType();
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (!this->Texture->Create3DFromRaw(dims[0], dims[1], dims[2], 1, VTK_UNSIGNED_CHAR, bytes.data()))
+  {
+    error = "The mask texture could not be created";
+    return false;
+  }
+  this->Texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  this->Uploaded = mask;
+  this->UploadTime = time;
+  this->UploadedLabelMap = labelMap;
+  return true;
+}
+
+void vtkAccelVolumeSliceMask::UpdateLabelTable(
+  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2])
+{
+  const unsigned long time = std::max({ property->GetMTime(),
+    property->GetLabelColorMTime().GetMTime(), property->GetLabelScalarOpacityMTime().GetMTime() });
+  if (this->LabelTable->GetHandle() && this->TableProperty == property && this->TableTime == time &&
+    range[0] == this->TableRange[0] && range[1] == this->TableRange[1])
+  {
+    return;
+  }
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  std::vector<float> table(static_cast<size_t>(TableSize) * Labels * 4, 0.0f);
+  std::vector<float> colour(3 * TableSize);
+  std::vector<float> opacity(TableSize);
+  for (int label = 1; label < Labels; ++label)
+  {
+    vtkColorTransferFunction* colours = property->GetLabelColor(label);
+    colours = colours ? colours : property->GetRGBTransferFunction(0);
+    vtkPiecewiseFunction* opacities = property->GetLabelScalarOpacity(label);
+    opacities = opacities ? opacities : property->GetScalarOpacity(0);
+    colours->GetTable(range[0], high, TableSize, colour.data());
+    opacities->GetTable(range[0], high, TableSize, opacity.data());
+    float* row = &table[static_cast<size_t>(label) * TableSize * 4];
+    for (int i = 0; i < TableSize; ++i)
+    {
+      std::copy(&colour[3 * i], &colour[3 * i] + 3, row + 4 * i);
+      row[4 * i + 3] = opacity[i];
+    }
+  }
+  this->LabelTable->SetContext(window);
+  this->LabelTable->Create2DFromRaw(TableSize, Labels, 4, VTK_FLOAT, table.data());
+  this->LabelTable->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->LabelTable->SetWrapT(vtkTextureObject::ClampToEdge);
+  // Linear like the 1D table; rows are read at their centres, so labels never mix.
+  this->LabelTable->SetMinificationFilter(vtkTextureObject::Linear);
+  this->LabelTable->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->TableProperty = property;
+  this->TableTime = time;
+  this->TableRange[0] = range[0];
+  this->TableRange[1] = range[1];
+}
+
+void vtkAccelVolumeSliceMask::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Texture->ReleaseGraphicsResources(window);
+  this->LabelTable->ReleaseGraphicsResources(window);
+  this->Uploaded = nullptr;
+  this->TableProperty = nullptr;
+}

@@ -1,0 +1,55 @@
+// vtkAccelVolumeSliceMask: the slice mapper's mask input on the GPU (private to the module): a
+// nearest-sampled R8 3D texture over the volume's voxels and, for label maps, a 2D colour table
+// over (scalar, label) built as vtkGPUVolumeRayCastMapper builds it (a label without its own
+// colour or opacity function uses the property's).
+#ifndef vtkAccelVolumeSliceMask_h
+#define vtkAccelVolumeSliceMask_h
+
+#include "vtkNew.h" // For vtkNew
+
+#include <string>
+
+class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkVolumeProperty;
+class vtkWindow;
+
+class vtkAccelVolumeSliceMask
+{
+public:
+  vtkAccelVolumeSliceMask();
+  ~vtkAccelVolumeSliceMask();
+
+  static constexpr int TableSize = 1024; // scalar entries per label row, as the 1D tables
+  static constexpr int Labels = 256;     // rows: label values 0..255
+
+  /**
+   * Uploads `mask` (dimensions `dims`, one component; binary: nonzero = inside, label map:
+   * values clamped to 0..255) when it or the type changed. False with a user-facing message.
+   */
+  bool Update(vtkOpenGLRenderWindow* window, vtkImageData* mask, const int dims[3], bool labelMap,
+    std::string& error);
+  /** The label map's table over `range` when the property's functions changed. */
+  void UpdateLabelTable(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
+
+  vtkTextureObject* GetTexture() { return this->Texture; }
+  vtkTextureObject* GetLabelTable() { return this->LabelTable; }
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+private:
+  vtkAccelVolumeSliceMask(const vtkAccelVolumeSliceMask&) = delete;
+  void operator=(const vtkAccelVolumeSliceMask&) = delete;
+
+  vtkNew<vtkTextureObject> Texture;
+  vtkNew<vtkTextureObject> LabelTable;
+  vtkImageData* Uploaded = nullptr;
+  unsigned long UploadTime = 0;
+  bool UploadedLabelMap = false;
+  vtkVolumeProperty* TableProperty = nullptr;
+  unsigned long TableTime = 0;
+  double TableRange[2] = { 0, 0 };
+};
+
+#endif
