@@ -157,6 +157,9 @@ public:
   bool HaveNonEmptyBoxes = false;
   std::string Renderer;
   std::vector<float> Vertices;
+  // RenderToImage's last images (RGBA8 colour; float window depth, 1 = nothing).
+  vtkNew<vtkImageData> ColourImage;
+  vtkNew<vtkImageData> DepthImage;
   // Hidden points (ghost array) as a binary mask, combined with a binary mask input.
   vtkSmartPointer<vtkImageData> GhostMask;
   vtkMTimeType GhostMaskTime = 0;
@@ -312,20 +315,46 @@ vtkContourValues* vtkAccelVolumeSliceMapper::GetDepthPassContourValues()
 
 void vtkAccelVolumeSliceMapper::GetDepthImage(vtkImageData* image)
 {
-  if (image)
+  if (!image)
+  {
+    return;
+  }
+  vtkImageData* depth = this->Internals->DepthImage;
+  if (depth->GetNumberOfPoints() == 0)
   {
     image->Initialize();
+    return;
   }
-  this->WarnNotApplicable("GetDepthImage", "render-to-image is not available yet");
+  // VTK's DepthImageScalarType: float window depth, or scaled to the integer type's range.
+  if (this->DepthImageScalarType != VTK_UNSIGNED_CHAR &&
+    this->DepthImageScalarType != VTK_UNSIGNED_SHORT)
+  {
+    image->DeepCopy(depth);
+    return;
+  }
+  image->SetDimensions(depth->GetDimensions());
+  image->AllocateScalars(this->DepthImageScalarType, 1);
+  const auto* in = static_cast<const float*>(depth->GetScalarPointer());
+  const double scale = this->DepthImageScalarType == VTK_UNSIGNED_CHAR ? 255.0 : 65535.0;
+  vtkDataArray* out = image->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < depth->GetNumberOfPoints(); ++i)
+  {
+    out->SetComponent(i, 0, std::floor(std::min(1.0f, std::max(0.0f, in[i])) * scale + 0.5));
+  }
 }
 
 void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
 {
-  if (image)
+  if (!image)
+  {
+    return;
+  }
+  if (this->Internals->ColourImage->GetNumberOfPoints() == 0)
   {
     image->Initialize();
+    return;
   }
-  this->WarnNotApplicable("GetColorImage", "render-to-image is not available yet");
+  image->DeepCopy(this->Internals->ColourImage);
 }
 
 bool vtkAccelVolumeSliceMapper::UsesLabelMap() const
@@ -352,9 +381,10 @@ int vtkAccelVolumeSliceMapper::IsRenderSupported(
 
 void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
 {
-  if (this->RenderToImage)
+  if (this->RenderToImage && this->ClampDepthToBackface)
   {
-    this->WarnNotApplicable("RenderToImage", "not available yet; the volume is drawn into the scene");
+    this->WarnNotApplicable(
+      "ClampDepthToBackface", "the depth image holds 1 where no sample contributes");
   }
   if (this->UseDepthPass)
   {
@@ -687,8 +717,10 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.BlendMode = self->BlendMode;
   frame.Linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
-  // Image sample distance: a target that many times smaller, magnified by the resolve pass.
-  const double imageSampleDistance = std::max(1.0f, self->ImageSampleDistance);
+  // Image sample distance: a target that many times smaller, magnified by the resolve pass
+  // (render-to-image keeps full resolution: its depth image is per window pixel).
+  const double imageSampleDistance =
+    self->RenderToImage ? 1.0 : std::max(1.0f, self->ImageSampleDistance);
   frame.ViewportWidth = view.Width;
   frame.ViewportHeight = view.Height;
   frame.Width = std::max(1, static_cast<int>(std::ceil(view.Width / imageSampleDistance)));
@@ -779,6 +811,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     static_cast<float>((self->AverageIPScalarRange[1] - range[0]) / rangeWidth);
   self->GetFinalColorScaleAndBias(frame.ColourScale, frame.ColourBias);
   frame.SelectionMode = vtkAccelVolumeSelectionMode(renderer, frame.SelectionColour);
+  frame.RenderToImage = self->RenderToImage != 0 && frame.SelectionMode == 0;
+  frame.ColourImage = this->ColourImage;
+  frame.DepthImage = this->DepthImage;
   frame.Vertices = &this->Vertices;
   return true;
 }

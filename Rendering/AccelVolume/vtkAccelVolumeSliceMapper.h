@@ -267,10 +267,13 @@ public:
 
   ///@{
   /**
-   * vtkGPUVolumeRayCastMapper's render-to-image mode (default off), depth image type (default
-   * VTK_FLOAT) and ClampDepthToBackface (default off). Not available yet: turning it on warns
-   * once and the volume is drawn into the scene as usual; GetColorImage / GetDepthImage then
-   * leave their argument empty.
+   * As vtkGPUVolumeRayCastMapper's render-to-image mode (default off): the volume is not
+   * drawn into the scene; GetColorImage gives the last frame's premultiplied RGBA (unsigned
+   * char, viewport size) and GetDepthImage the window depth of the nearest contributing sample
+   * per pixel (1 where none), as float or scaled to DepthImageScalarType (unsigned char /
+   * short). Opaque geometry already drawn still stops the rays. ClampDepthToBackface is kept
+   * for the API (warns once: the depth image holds 1 where nothing contributes); the image
+   * sample distance is 1 in this mode.
    */
   vtkSetMacro(RenderToImage, vtkTypeBool);
   vtkGetMacro(RenderToImage, vtkTypeBool);

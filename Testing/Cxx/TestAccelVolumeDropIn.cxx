@@ -729,6 +729,54 @@ bool Masks()
   return recoloured && ok;
 }
 
+// RenderToImage: the scene keeps only its background; the colour image over the background is
+// the normal frame (8-bit rounding), and the depth image is below 1 exactly where the volume
+// contributes.
+bool RenderToImage()
+{
+  auto image = Phantom();
+  Scene normal(Kind::Slice, image, vtkVolumeMapper::COMPOSITE_BLEND);
+  const std::vector<float> expected = normal.Render();
+  Scene rtt(Kind::Slice, image, vtkVolumeMapper::COMPOSITE_BLEND);
+  auto* mapper = vtkAccelVolumeSliceMapper::SafeDownCast(rtt.Mapper);
+  mapper->RenderToImageOn();
+  const std::vector<float> window = rtt.Render();
+  vtkNew<vtkImageData> colour;
+  vtkNew<vtkImageData> depth;
+  mapper->GetColorImage(colour);
+  mapper->GetDepthImage(depth);
+  bool ok = colour->GetNumberOfPoints() == 160 * 160 && depth->GetNumberOfPoints() == 160 * 160 &&
+    colour->GetNumberOfScalarComponents() == 4;
+  if (!ok)
+  {
+    std::cout << "FAIL  slice: render-to-image gave no images\n";
+    return false;
+  }
+  double worstOver = 0;
+  size_t wrongDepth = 0;
+  size_t backgroundOff = 0;
+  const double background[3] = { 0.1, 0.1, 0.2 };
+  const auto* rgba = static_cast<const unsigned char*>(colour->GetScalarPointer());
+  const auto* z = static_cast<const float*>(depth->GetScalarPointer());
+  for (size_t p = 0; p < expected.size() / 3; ++p)
+  {
+    const double alpha = rgba[4 * p + 3] / 255.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double over = rgba[4 * p + c] / 255.0 + (1.0 - alpha) * background[c];
+      worstOver = std::max(worstOver, std::abs(over - expected[3 * p + c]));
+      backgroundOff += std::abs(window[3 * p + c] - background[c]) > 1.0 / 255.0 ? 1 : 0;
+    }
+    wrongDepth += (alpha > 2.0 / 255.0 && !(z[p] < 1.0f)) || (rgba[4 * p + 3] == 0 && z[p] < 1.0f);
+  }
+  ok = worstOver <= 3.0 / 255.0 && wrongDepth == 0 && backgroundOff == 0;
+  std::cout << (ok ? "ok    " : "FAIL  ") << "slice: render-to-image: colour over background vs "
+            << "normal frame max " << worstOver << " (limit " << 3.0 / 255.0 << "), "
+            << wrongDepth << " pixels with a wrong depth, " << backgroundOff
+            << " window channels off the background\n";
+  return ok;
+}
+
 bool VTKNames()
 {
   bool ok = true;
@@ -768,5 +816,6 @@ int TestAccelVolumeDropIn(int, char*[])
   ok = ImageSampleDistance() && ok;
   ok = CameraInsideSmallSpacing() && ok;
   ok = Masks() && ok;
+  ok = RenderToImage() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

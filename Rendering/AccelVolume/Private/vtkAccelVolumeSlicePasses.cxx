@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeSlicePasses.h"
 
 #include "vtkAccelVolumeSliceResources.h"
+#include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenGLBufferObject.h"
@@ -165,6 +166,7 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
     "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
+    "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
@@ -439,7 +441,14 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   vtkOpenGLState* state = window->GetState();
   resources.Framebuffer->SaveCurrentBindingsAndBuffers();
   resources.Framebuffer->Bind();
-  resources.Framebuffer->ActivateDrawBuffer(0);
+  if (frame.RenderToImage)
+  {
+    resources.Framebuffer->ActivateDrawBuffers(2);
+  }
+  else
+  {
+    resources.Framebuffer->ActivateDrawBuffer(0);
+  }
   state->vtkglViewport(0, 0, frame.Width, frame.Height);
   state->vtkglDisable(GL_SCISSOR_TEST);
   // The scene depth is the target's depth buffer: fragments behind opaque geometry fail early.
@@ -480,6 +489,21 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   else
   {
     state->vtkglBlendFunc(GL_ONE, GL_ONE);
+  }
+  // RenderToImage: attachment 1 keeps the nearest contributing depth (MIN blending), cleared
+  // to the far plane; its per-buffer blend state is put back after the passes.
+  GLint savedEquation = GL_FUNC_ADD;
+  GLint savedSource = GL_ONE;
+  GLint savedDestination = GL_ZERO;
+  if (frame.RenderToImage)
+  {
+    const GLfloat far[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+    glClearBufferfv(GL_COLOR, 1, far);
+    glGetIntegeri_v(GL_BLEND_EQUATION_RGB, 1, &savedEquation);
+    glGetIntegeri_v(GL_BLEND_SRC_RGB, 1, &savedSource);
+    glGetIntegeri_v(GL_BLEND_DST_RGB, 1, &savedDestination);
+    glBlendEquationi(1, GL_MIN);
+    glBlendFunci(1, GL_ONE, GL_ONE);
   }
 
   resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
@@ -538,6 +562,21 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
       frame.LabelTable->Deactivate();
     }
   }
+  if (frame.RenderToImage)
+  {
+    if (ok && frame.DepthImage)
+    {
+      frame.DepthImage->SetDimensions(frame.Width, frame.Height, 1);
+      frame.DepthImage->AllocateScalars(VTK_FLOAT, 1);
+      glReadBuffer(GL_COLOR_ATTACHMENT1);
+      state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, frame.Width, frame.Height, GL_RED, GL_FLOAT,
+        frame.DepthImage->GetScalarPointer());
+      glReadBuffer(GL_COLOR_ATTACHMENT0);
+    }
+    glBlendEquationi(1, static_cast<GLenum>(savedEquation));
+    glBlendFunci(1, static_cast<GLenum>(savedSource), static_cast<GLenum>(savedDestination));
+  }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;
 }
@@ -545,11 +584,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
 // Pass 2: colour the accumulated value as VTK's GPU ray caster does and blend it
 // (premultiplied) over the scene.
 bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame)
+  const vtkAccelVolumeSliceFrame& frame, const int lowerLeft[2])
 {
   vtkOpenGLState* state = window->GetState();
-  state->vtkglViewport(
-    frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
+  state->vtkglViewport(lowerLeft[0], lowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglBlendEquation(GL_FUNC_ADD);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -565,8 +603,7 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
   program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
   program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
-  const float origin[2] = { static_cast<float>(frame.LowerLeft[0]),
-    static_cast<float>(frame.LowerLeft[1]) };
+  const float origin[2] = { static_cast<float>(lowerLeft[0]), static_cast<float>(lowerLeft[1]) };
   program->SetUniform2f("viewportOrigin", origin);
   const float viewport[2] = { static_cast<float>(frame.ViewportWidth),
     static_cast<float>(frame.ViewportHeight) };
@@ -583,6 +620,35 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   resources.Accumulation->Deactivate();
   resources.TransferTable->Deactivate();
   return true;
+}
+
+// RenderToImage: the resolve into the image framebuffer (cleared to transparent), read back.
+bool ResolveToImage(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame)
+{
+  vtkOpenGLState* state = window->GetState();
+  resources.ImageFramebuffer->SaveCurrentBindingsAndBuffers();
+  resources.ImageFramebuffer->Bind();
+  resources.ImageFramebuffer->ActivateDrawBuffer(0);
+  state->vtkglViewport(0, 0, frame.ViewportWidth, frame.ViewportHeight);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  state->vtkglEnable(GL_BLEND);
+  const int origin[2] = { 0, 0 };
+  bool ok = Resolve(window, resources, frame, origin);
+  if (ok && frame.ColourImage)
+  {
+    frame.ColourImage->SetDimensions(frame.ViewportWidth, frame.ViewportHeight, 1);
+    frame.ColourImage->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+    resources.ImageFramebuffer->ActivateReadBuffer(0);
+    state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, frame.ViewportWidth, frame.ViewportHeight, GL_RGBA, GL_UNSIGNED_BYTE,
+      frame.ColourImage->GetScalarPointer());
+  }
+  resources.ImageFramebuffer->RestorePreviousBindingsAndBuffers();
+  return ok;
 }
 
 // The scene's depth at the target's size: copied, or (reduced target) copied at the viewport's
@@ -657,7 +723,8 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
   const int channels = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
-  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels);
+  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels) &&
+    resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage);
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.
@@ -667,7 +734,15 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
       error = "the scene depth could not be copied";
     }
     ok = ok && Accumulate(window, resources, frame, error);
-    if (ok && !Resolve(window, resources, frame))
+    if (ok && frame.RenderToImage)
+    {
+      ok = ResolveToImage(window, resources, frame);
+      if (!ok)
+      {
+        error = "the render-to-image pass failed";
+      }
+    }
+    else if (ok && !Resolve(window, resources, frame, frame.LowerLeft))
     {
       error = "the resolve shader did not compile";
       ok = false;

@@ -13,6 +13,7 @@
 
 class vtkAccelVolumeSliceResources;
 class vtkMatrix4x4;
+class vtkImageData;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 
@@ -104,6 +105,11 @@ struct vtkAccelVolumeSliceFrame
   float MaskMaximum[3] = { 0, 0, 0 };
   vtkTextureObject* MaskTexture = nullptr;
   vtkTextureObject* LabelTable = nullptr;
+  // RenderToImage: resolve into the resources' image target instead of the scene, and keep the
+  // nearest contributing sample's depth; the images are read back into these (when set).
+  bool RenderToImage = false;
+  vtkImageData* ColourImage = nullptr;
+  vtkImageData* DepthImage = nullptr; // float window depth, 1 where nothing contributes
   int SelectionMode = 0; // vtkAccelVolumeSelectionMode
   float SelectionColour[3] = { 0, 0, 0 };
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha

@@ -375,6 +375,47 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
   return true;
 }
 
+bool vtkAccelVolumeSliceResources::PrepareImageTargets(
+  vtkOpenGLRenderWindow* window, int width, int height, bool enable)
+{
+  this->Framebuffer->SaveCurrentBindingsAndBuffers();
+  this->Framebuffer->Bind();
+  if (!enable)
+  {
+    this->Framebuffer->RemoveColorAttachment(1);
+    this->Framebuffer->RestorePreviousBindingsAndBuffers();
+    return true;
+  }
+  bool ok = true;
+  if (!this->FirstDepth->GetHandle() || static_cast<int>(this->FirstDepth->GetWidth()) != width ||
+    static_cast<int>(this->FirstDepth->GetHeight()) != height)
+  {
+    this->FirstDepth->SetContext(window);
+    this->FirstDepth->ResetFormatAndType();
+    ok = this->FirstDepth->Create2D(width, height, 1, VTK_FLOAT, false);
+    this->FirstDepth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->FirstDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+  }
+  this->Framebuffer->RemoveColorAttachment(1);
+  this->Framebuffer->AddColorAttachment(1, this->FirstDepth);
+  this->Framebuffer->RestorePreviousBindingsAndBuffers();
+  if (ok && (!this->ImageColour->GetHandle() ||
+              static_cast<int>(this->ImageColour->GetWidth()) != width ||
+              static_cast<int>(this->ImageColour->GetHeight()) != height))
+  {
+    this->ImageColour->SetContext(window);
+    this->ImageColour->ResetFormatAndType();
+    ok = this->ImageColour->Create2D(width, height, 4, VTK_UNSIGNED_CHAR, false);
+    this->ImageFramebuffer->SetContext(window);
+    this->ImageFramebuffer->SaveCurrentBindingsAndBuffers();
+    this->ImageFramebuffer->Bind();
+    this->ImageFramebuffer->RemoveColorAttachment(0);
+    this->ImageFramebuffer->AddColorAttachment(0, this->ImageColour);
+    this->ImageFramebuffer->RestorePreviousBindingsAndBuffers();
+  }
+  return ok;
+}
+
 bool vtkAccelVolumeSliceResources::PrepareFullDepth(
   vtkOpenGLRenderWindow* window, int width, int height)
 {
@@ -397,6 +438,9 @@ bool vtkAccelVolumeSliceResources::PrepareFullDepth(
 void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->SceneDepthFull->ReleaseGraphicsResources(window);
+  this->FirstDepth->ReleaseGraphicsResources(window);
+  this->ImageColour->ReleaseGraphicsResources(window);
+  this->ImageFramebuffer->ReleaseGraphicsResources(window);
   this->Bricks.ReleaseGraphicsResources(window);
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);

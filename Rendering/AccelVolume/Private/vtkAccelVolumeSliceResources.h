@@ -86,6 +86,11 @@ public:
   bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels);
   /** Sizes the full-viewport depth copy a reduced target (image sample distance > 1) needs. */
   bool PrepareFullDepth(vtkOpenGLRenderWindow* window, int width, int height);
+  /**
+   * RenderToImage targets: the depth attachment 1 of the accumulation framebuffer (or its
+   * removal when `enable` is false) and the colour image framebuffer, both width x height.
+   */
+  bool PrepareImageTargets(vtkOpenGLRenderWindow* window, int width, int height, bool enable);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -99,6 +104,11 @@ public:
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkTextureObject> SceneDepthFull; // viewport-sized, for a reduced target only
+  // RenderToImage: the nearest contributing depth (second accumulation target, R32F), and the
+  // resolved colour (RGBA8) with its framebuffer.
+  vtkNew<vtkTextureObject> FirstDepth;
+  vtkNew<vtkTextureObject> ImageColour;
+  vtkNew<vtkOpenGLFramebufferObject> ImageFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   vtkNew<vtkOpenGLBufferObject> VertexBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> SliceArray;

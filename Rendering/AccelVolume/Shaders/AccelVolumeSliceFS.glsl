@@ -169,6 +169,14 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
   return vec2(enter, exit);
 }
 
+// Render-to-image: the window depth of the nearest contributing sample (MIN-blended second
+// target), as vtkGPUVolumeRayCastMapper's depth image.
+#if ACCELVOLUME_RENDER_TO_IMAGE
+#define ACCELVOLUME_WRITE_DEPTH(contributes) gl_FragData[1] = vec4((contributes) ? gl_FragCoord.z : 1.0)
+#else
+#define ACCELVOLUME_WRITE_DEPTH(contributes)
+#endif
+
 #if ACCELVOLUME_MASK
 // The mask value of the voxel nearest to an index point: 0 / 1 (binary) or the label.
 float maskAt(vec3 point)
@@ -217,6 +225,7 @@ void main()
   // the scene depth attached to the target, so a plain slice costs one texture fetch.
 #if ACCELVOLUME_SLAB_SAMPLES <= 1
   gl_FragData[0] = vec4(normalizedScalar(), 1.0, 0.0, 0.0);
+  ACCELVOLUME_WRITE_DEPTH(true);
 #else
   // Slab: this fragment also takes the next slabSamples - 1 slice depths along its ray, so
   // the rasteriser and the blender see a fraction of the fragments. Samples outside the
@@ -257,6 +266,7 @@ void main()
     discard;
   }
   gl_FragData[0] = vec4(extreme, 1.0, 0.0, 0.0);
+  ACCELVOLUME_WRITE_DEPTH(true);
 #endif
 #elif defined(ACCELVOLUME_BLEND_COMPOSITE)
   // Front-to-back compositing (blended "under" in the target); the opacity is corrected from
@@ -407,6 +417,7 @@ void main()
 #endif
   float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);
   gl_FragData[0] = vec4(classified.rgb * alpha, alpha);
+  ACCELVOLUME_WRITE_DEPTH(alpha > 0.0);
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
@@ -462,9 +473,11 @@ void main()
   weight = max(weight, 0.0);
 #if defined(ACCELVOLUME_BLEND_ADDITIVE)
   gl_FragData[0] = vec4(weight * opacity(value) * value * additiveScale, weight, 0.0, 0.0);
+  ACCELVOLUME_WRITE_DEPTH(true);
 #else
   float inRange = (value >= averageRange.x && value <= averageRange.y) ? 1.0 : 0.0;
   gl_FragData[0] = vec4(inRange * weight * opacity(value) * value, inRange * weight, 0.0, 0.0);
+  ACCELVOLUME_WRITE_DEPTH(true);
 #endif
 #endif
 }
