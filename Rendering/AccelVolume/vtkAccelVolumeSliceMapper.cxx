@@ -249,6 +249,7 @@ vtkAccelVolumeSliceMapper::vtkAccelVolumeSliceMapper()
 {
   // BlendMode keeps vtkVolumeMapper's default, composite, like every VTK volume mapper: a
   // drop-in replacement must draw the same picture without being told the blend mode.
+  this->InputAdapter->SetMaximumComponents(4);
 }
 
 vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper()
@@ -526,6 +527,34 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray*
     vtkErrorMacro(<< error);
     return false;
   }
+  vtkVolumeProperty* property = volume->GetProperty();
+  const int components = scalars->GetNumberOfComponents();
+  if (components > 1)
+  {
+    const bool independent = !property || property->GetIndependentComponents();
+    if (this->BlendMode != COMPOSITE_BLEND)
+    {
+      vtkErrorMacro("Scalars with " << components
+                                    << " components render with composite blending only here");
+      return false;
+    }
+    if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
+    {
+      vtkErrorMacro("2D transfer functions need one-component scalars");
+      return false;
+    }
+    if (!independent && components != 2 && components != 4)
+    {
+      vtkErrorMacro("Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not "
+        << components);
+      return false;
+    }
+    if (property && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
+    {
+      this->WarnNotApplicable("gradient opacity with multi-component scalars",
+        "the scalar opacity of each component is used alone");
+    }
+  }
   if (!IsSupportedBlend(this->BlendMode))
   {
     vtkErrorMacro("Blend mode " << this->BlendMode
@@ -551,6 +580,20 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
   vtkVolumeProperty* property, const double range[2])
 {
   std::string error;
+  if (scalars->GetNumberOfComponents() > 1)
+  {
+    if (!this->Resources.PrepareMultiComponentVolume(window, input, scalars, error))
+    {
+      vtkErrorWithObjectMacro(self, "Cannot upload the volume: " << error);
+      return false;
+    }
+    this->Resources.UpdateComponentTables(window, property, scalars->GetNumberOfComponents(),
+      property->GetIndependentComponents() != 0);
+    this->Resources.UpdateTransferTable(window, property, range); // bound by every pass
+    this->Frame.Components = scalars->GetNumberOfComponents();
+    return true;
+  }
+  this->Frame.Components = 1;
   // Partitions: bricks no larger than a block plus the voxel neighbours share.
   int brickSize = self->MaximumBrickSize;
   const int* dims = input->GetDimensions();
@@ -683,6 +726,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
   // ... nor does it know a label map's colours (a binary mask only removes samples).
   skipEmptyLeaves = composite && !transferFunction2D && !self->UsesLabelMap() &&
+    this->Frame.Components == 1 &&
     (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
@@ -777,6 +821,16 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   }
   frame.SkipTransparentSamples =
     composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT) && !self->UsesLabelMap();
+  frame.Components = scalars->GetNumberOfComponents();
+  frame.IndependentComponents = property->GetIndependentComponents() != 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    frame.ComponentWeights[c] = static_cast<float>(property->GetComponentWeight(c));
+    // Dependent components correct opacity with the last component's unit distance, as VTK.
+    const int unitComponent = frame.IndependentComponents ? c : frame.Components - 1;
+    frame.ComponentUnitDistances[c] = static_cast<float>(
+      std::max(1.0e-6, property->GetScalarOpacityUnitDistance(unitComponent)));
+  }
   const bool ghostMask = this->GhostMask && this->GhostMask->GetNumberOfPoints() > 0 &&
     this->UsedGhostMask;
   frame.MaskMode = ghostMask
@@ -826,8 +880,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.Shade = composite && property->GetShade(0) != 0;
-  frame.GradientOpacity =
-    composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  frame.GradientOpacity = composite && frame.Components == 1 && property->HasGradientOpacity(0) &&
+    !property->GetDisableGradientOpacity(0);
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
@@ -842,7 +896,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
     const int* dims = view.Dimensions;
     const double gradientBytes = 8.0 * dims[0] * dims[1] * dims[2];
     // Bricks take central differences: their texels reach one voxel past what they own.
-    frame.GradientTexture = self->PrecomputeGradients &&
+    frame.GradientTexture = self->PrecomputeGradients && frame.Components == 1 &&
       this->Resources.GetBrickLayout().Single() && gradientBytes <= GradientTextureBudget &&
       this->Resources.UpdateGradients(window, input, scalars, range);
     frame.GradientTextureScale = this->Resources.GradientScale;

@@ -395,6 +395,19 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     return automatic(wanted, reason);
   };
   int mode = RAYCAST_RENDER;
+  // Multi-component scalars that VectorMode does not reduce: only the slice mapper renders them.
+  int cellFlag = 0;
+  vtkDataArray* scalars = this->GetInput() ? vtkAbstractMapper::GetScalars(this->GetInput(),
+                                               this->ScalarMode, this->ArrayAccessMode,
+                                               this->ArrayId, this->ArrayName, cellFlag)
+                                           : nullptr;
+  if (scalars && scalars->GetNumberOfComponents() > 1 && this->VectorMode == DISABLED &&
+    sliceUsable)
+  {
+    this->LastChoiceReason = "multi-component scalars (VectorMode DISABLED): only the slice mapper "
+                             "renders them -> slice";
+    return SLICE_RENDER;
+  }
   switch (this->RequestedRenderMode)
   {
     case SLICE_RENDER:

@@ -161,11 +161,12 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
   }
   const bool passThrough = image && scalars && !cellFlag &&
     scalars == image->GetPointData()->GetScalars() && EngineType(scalars->GetDataType());
-  if (!input || !scalars || passThrough || scalars->GetNumberOfComponents() != 1 ||
+  if (!input || !scalars || passThrough ||
+    scalars->GetNumberOfComponents() > this->MaximumComponents ||
     (!EngineType(scalars->GetDataType()) && !ConvertibleType(scalars->GetDataType())))
   {
     // As it is, or a clear refusal from the common checks.
-    return vtkAccelVolumeCheckInput(image, scalars, 0, error);
+    return vtkAccelVolumeCheckInput(image, scalars, 0, error, this->MaximumComponents);
   }
   const vtkIdType expected = cellFlag ? input->GetNumberOfCells() : input->GetNumberOfPoints();
   if (scalars->GetNumberOfTuples() != expected)
@@ -224,5 +225,5 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
   }
   image = this->Adapted;
   scalars = this->Converted;
-  return vtkAccelVolumeCheckInput(image, scalars, 0, error);
+  return vtkAccelVolumeCheckInput(image, scalars, 0, error, this->MaximumComponents);
 }

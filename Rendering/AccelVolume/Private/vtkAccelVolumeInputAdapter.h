@@ -42,7 +42,11 @@ public:
   bool Adapt(vtkVolumeMapper* mapper, vtkDataSet* input, vtkImageData*& image,
     vtkDataArray*& scalars, std::string& error);
 
+  /** Most scalar components the mapper renders (default 1; the slice mapper takes 4). */
+  void SetMaximumComponents(int components) { this->MaximumComponents = components; }
+
 private:
+  int MaximumComponents = 1;
   vtkAccelVolumeInputAdapter(const vtkAccelVolumeInputAdapter&) = delete;
   void operator=(const vtkAccelVolumeInputAdapter&) = delete;
 

@@ -118,8 +118,8 @@ void ReplaceNonFinite(T* values, vtkIdType count, const double range[2])
 }
 }
 
-bool vtkAccelVolumeCheckInput(
-  vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error)
+bool vtkAccelVolumeCheckInput(vtkImageData* input, vtkDataArray* scalars, int cellFlag,
+  std::string& error, int maximumComponents)
 {
   std::ostringstream message;
   if (!input)
@@ -146,14 +146,17 @@ bool vtkAccelVolumeCheckInput(
     error = "Cell scalars are not supported; use point scalars";
     return false;
   }
-  if (scalars->GetNumberOfComponents() != 1)
+  if (scalars->GetNumberOfComponents() < 1 ||
+    scalars->GetNumberOfComponents() > maximumComponents)
   {
     // Rendering component 0 of independent components, or colour without the opacity channel,
     // would be a silently wrong picture: refuse both.
-    message << "Only single-component scalars are supported (input has "
-            << scalars->GetNumberOfComponents()
-            << " components; neither independent components nor dependent RGB(A) / LA colours "
-               "are rendered: pick one with vtkImageExtractComponents)";
+    message << (maximumComponents == 1 ? "Only single-component scalars are supported"
+                                       : "At most 4 scalar components are supported")
+            << " by this mapper (input has " << scalars->GetNumberOfComponents()
+            << " components; the slice mapper renders 2-4 components, independent or dependent, "
+               "and vtkAccelVolumeSmartMapper's VectorMode reduces vectors to one; or pick one "
+               "with vtkImageExtractComponents)";
     error = message.str();
     return false;
   }

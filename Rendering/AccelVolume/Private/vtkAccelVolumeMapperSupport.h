@@ -32,8 +32,8 @@ class vtkVolumeProperty;
 
 // Point scalars the mappers can render: one component, a supported type, matching the image.
 // False with a user-facing message otherwise (input may be null).
-bool vtkAccelVolumeCheckInput(
-  vtkImageData* input, vtkDataArray* scalars, int cellFlag, std::string& error);
+bool vtkAccelVolumeCheckInput(vtkImageData* input, vtkDataArray* scalars, int cellFlag,
+  std::string& error, int maximumComponents = 1);
 
 // Updates the mapper's input and picks the scalars it renders (the mapper's scalar mode and
 // array), adapted by `adapter` (cell scalars, other integer types, rectilinear grids); then

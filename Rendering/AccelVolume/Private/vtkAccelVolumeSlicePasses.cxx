@@ -167,6 +167,8 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
     "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
+    "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(composite ? frame.Components : 1) +
+    "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
@@ -237,6 +239,12 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniform4f("lighting", frame.Lighting);
   }
   program->SetUniform2f("averageRange", frame.AverageRange);
+  if (frame.Components > 1)
+  {
+    program->SetUniformi("componentTables", resources.ComponentTables->GetTextureUnit());
+    program->SetUniform4f("componentWeights", frame.ComponentWeights);
+    program->SetUniform4f("componentUnitDistances", frame.ComponentUnitDistances);
+  }
   if (frame.MaskMode != 0)
   {
     program->SetUniformi("maskTexture", frame.MaskTexture->GetTextureUnit());
@@ -397,8 +405,15 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   int slicesSinceMark = 0;
   for (const vtkAccelVolumeSliceFrame::BrickDraw& brick : frame.Bricks)
   {
-    vtkTextureObject* texture =
-      resources.Bricks.Acquire(window, brick.Brick, frame.Linear, error);
+    vtkTextureObject* texture = frame.Components > 1
+      ? resources.ComponentVolume.GetPointer()
+      : resources.Bricks.Acquire(window, brick.Brick, frame.Linear, error);
+    if (frame.Components > 1)
+    {
+      const int filter = frame.Linear ? vtkTextureObject::Linear : vtkTextureObject::Nearest;
+      texture->SetMinificationFilter(filter);
+      texture->SetMagnificationFilter(filter);
+    }
     if (!texture)
     {
       return false;
@@ -525,6 +540,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   {
     resources.Gradients->Activate();
   }
+  if (frame.Components > 1)
+  {
+    resources.ComponentTables->Activate();
+  }
   if (frame.MaskMode != 0)
   {
     frame.MaskTexture->Activate();
@@ -553,6 +572,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (frame.GradientTexture)
   {
     resources.Gradients->Deactivate();
+  }
+  if (frame.Components > 1)
+  {
+    resources.ComponentTables->Deactivate();
   }
   if (frame.MaskMode != 0)
   {

@@ -99,6 +99,11 @@ struct vtkAccelVolumeSliceFrame
   float AverageRange[2] = { 0, 1 };
   float ColourScale = 1; // FinalColorWindow / Level
   float ColourBias = 0;
+  // 2-4 component scalars (composite): the resources' ComponentVolume and ComponentTables.
+  int Components = 1;
+  bool IndependentComponents = true;
+  float ComponentWeights[4] = { 1, 1, 1, 1 };
+  float ComponentUnitDistances[4] = { 1, 1, 1, 1 };
   // Mask input: 0 none, 1 binary, 2 label map (composite only); its texture and label table.
   int MaskMode = 0;
   float MaskBlendFactor = 1;

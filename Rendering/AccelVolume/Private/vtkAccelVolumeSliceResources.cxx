@@ -375,6 +375,122 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
   return true;
 }
 
+bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(
+  vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, std::string& error)
+{
+  const bool contextChanged = this->Context != window;
+  if (contextChanged && this->Context)
+  {
+    this->ReleaseGraphicsResources(this->Context);
+  }
+  this->Context = window;
+  int dims[3];
+  image->GetDimensions(dims);
+  const int components = scalars->GetNumberOfComponents();
+  if (!contextChanged && this->ComponentVolume->GetHandle() && this->UploadedScalars == scalars &&
+    scalars->GetMTime() <= this->VolumeUploadTime && image->GetMTime() <= this->VolumeUploadTime)
+  {
+    return true;
+  }
+  accelvolume::BrickRequest request;
+  request.dimensions = { { dims[0], dims[1], dims[2] } };
+  const int limit = vtkTextureObject::GetMaximumTextureSize3D(window);
+  request.maximumTextureSize = limit > 0 ? limit : 2048;
+  request.bytesPerVoxel = 4 * static_cast<std::uint64_t>(components);
+  if (!accelvolume::ComputeBrickLayout(request, this->Layout, error))
+  {
+    return false;
+  }
+  if (!this->Layout.Single())
+  {
+    error = "multi-component scalars larger than GL_MAX_3D_TEXTURE_SIZE are not bricked";
+    return false;
+  }
+  const vtkIdType count = scalars->GetNumberOfTuples();
+  std::vector<float> values(static_cast<size_t>(count) * components);
+  for (int c = 0; c < components; ++c)
+  {
+    double range[2];
+    scalars->GetFiniteRange(range, c);
+    if (!(range[1] > range[0]))
+    {
+      range[1] = range[0] + 1.0;
+    }
+    this->ComponentRanges[c][0] = range[0];
+    this->ComponentRanges[c][1] = range[1];
+    const double scale = 1.0 / (range[1] - range[0]);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      const double v = scalars->GetComponent(i, c);
+      values[static_cast<size_t>(i) * components + c] =
+        std::isfinite(v) ? static_cast<float>((v - range[0]) * scale) : 0.0f;
+    }
+  }
+  this->ComponentVolume->SetContext(window);
+  this->ComponentVolume->ResetFormatAndType();
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (!this->ComponentVolume->Create3DFromRaw(
+        dims[0], dims[1], dims[2], components, VTK_FLOAT, values.data()))
+  {
+    error = "the multi-component volume texture could not be created";
+    return false;
+  }
+  this->ComponentVolume->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->ComponentVolume->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->ComponentVolume->SetWrapR(vtkTextureObject::ClampToEdge);
+  std::copy(dims, dims + 3, this->Dimensions);
+  this->ScalarScale = 1.0f;
+  this->ScalarBias = 0.0f;
+  this->UploadedScalars = scalars;
+  this->VolumeUploadTime.Modified();
+  return true;
+}
+
+void vtkAccelVolumeSliceResources::UpdateComponentTables(vtkOpenGLRenderWindow* window,
+  vtkVolumeProperty* property, int components, bool independent)
+{
+  std::vector<float> table(4 * 4 * static_cast<size_t>(TableSize), 0.0f);
+  std::vector<float> rgb(3 * static_cast<size_t>(TableSize));
+  std::vector<float> alpha(TableSize);
+  const int rows = independent ? components : 1;
+  for (int c = 0; c < rows; ++c)
+  {
+    // Dependent: colour over component 0, opacity (function 0) over the last component.
+    const int colourComponent = c;
+    const int opacityComponent = independent ? c : components - 1;
+    const double* colourRange = this->ComponentRanges[colourComponent];
+    const double* opacityRange = this->ComponentRanges[opacityComponent];
+    if (property->GetColorChannels(c) == 1)
+    {
+      property->GetGrayTransferFunction(c)->GetTable(
+        colourRange[0], colourRange[1], TableSize, alpha.data());
+      for (int i = 0; i < TableSize; ++i)
+      {
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = alpha[i];
+      }
+    }
+    else
+    {
+      property->GetRGBTransferFunction(c)->GetTable(
+        colourRange[0], colourRange[1], TableSize, rgb.data());
+    }
+    property->GetScalarOpacity(c)->GetTable(
+      opacityRange[0], opacityRange[1], TableSize, alpha.data());
+    float* row = &table[4 * static_cast<size_t>(TableSize) * c];
+    for (int i = 0; i < TableSize; ++i)
+    {
+      std::copy(&rgb[3 * i], &rgb[3 * i] + 3, row + 4 * i);
+      row[4 * i + 3] = alpha[i];
+    }
+  }
+  this->ComponentTables->SetContext(window);
+  this->ComponentTables->Create2DFromRaw(TableSize, 4, 4, VTK_FLOAT, table.data());
+  this->ComponentTables->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->ComponentTables->SetWrapT(vtkTextureObject::ClampToEdge);
+  this->ComponentTables->SetMinificationFilter(vtkTextureObject::Linear);
+  this->ComponentTables->SetMagnificationFilter(vtkTextureObject::Linear);
+}
+
 bool vtkAccelVolumeSliceResources::PrepareImageTargets(
   vtkOpenGLRenderWindow* window, int width, int height, bool enable)
 {
@@ -438,6 +554,8 @@ bool vtkAccelVolumeSliceResources::PrepareFullDepth(
 void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->SceneDepthFull->ReleaseGraphicsResources(window);
+  this->ComponentVolume->ReleaseGraphicsResources(window);
+  this->ComponentTables->ReleaseGraphicsResources(window);
   this->FirstDepth->ReleaseGraphicsResources(window);
   this->ImageColour->ReleaseGraphicsResources(window);
   this->ImageFramebuffer->ReleaseGraphicsResources(window);

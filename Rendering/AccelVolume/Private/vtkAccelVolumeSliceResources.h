@@ -45,6 +45,24 @@ public:
   bool PrepareVolume(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
     const double range[2], std::uint64_t budgetBytes, int maximumBrickSize, std::string& error);
 
+  /**
+   * 2-4 component scalars: one float texture with each component normalised to its finite
+   * range (ComponentRanges), as one brick. False with `error` set when the volume would need
+   * bricks (larger than GL_MAX_3D_TEXTURE_SIZE) or the texture cannot be created.
+   */
+  bool PrepareMultiComponentVolume(
+    vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, std::string& error);
+  /**
+   * The per-component tables of 2-4 component scalars, rows 0..3 over ComponentRanges:
+   * independent: colour and opacity of component c; dependent: row 0 holds the colour over
+   * component 0 and the opacity over the last component.
+   */
+  void UpdateComponentTables(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property,
+    int components, bool independent);
+  vtkNew<vtkTextureObject> ComponentVolume;
+  vtkNew<vtkTextureObject> ComponentTables;
+  double ComponentRanges[4][2] = {};
+
   /** The bricks of the prepared volume (one brick when it fits a texture and the budget). */
   const accelvolume::BrickLayout& GetBrickLayout() const { return this->Layout; }
 

@@ -169,6 +169,132 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
   return vec2(enter, exit);
 }
 
+#if ACCELVOLUME_SHADE
+// The colour `rgb` lit by VTK's light model for an eye-space gradient.
+vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
+{
+  // VTK's light model: per light ambient, diffuse (N.L) and Blinn-Phong specular (N.H) colours,
+  // positional lights attenuated, spot lights within their cone.
+  float gradientLength = length(eyeGradient);
+  vec3 ambientSum = vec3(0.0);
+  vec3 diffuseSum = vec3(0.0);
+  vec3 specularSum = vec3(0.0);
+  vec3 normal = gradientLength > 1.0e-8 ? -eyeGradient / gradientLength : vec3(0.0);
+  vec3 toViewer = -rayDirection;
+  for (int i = 0; i < lightCount; ++i)
+  {
+    ambientSum += lightAmbient[i];
+    if (gradientLength <= 1.0e-8)
+    {
+      continue;
+    }
+    vec3 toLight = -lightAxis[i];
+    float attenuation = 1.0;
+    if (lightPositional[i] != 0)
+    {
+      vec3 d = lightPosition[i] - eyePosition;
+      float distance = length(d);
+      toLight = distance > 0.0 ? d / distance : toLight;
+      vec3 a = lightAttenuation[i];
+      float denominator = a.x + a.y * distance + a.z * distance * distance;
+      attenuation = denominator > 0.0 ? 1.0 / denominator : 1.0;
+      if (lightCosCone[i] >= -1.0)
+      {
+        float spot = -dot(toLight, lightAxis[i]);
+        attenuation = spot >= lightCosCone[i] ? attenuation * pow(max(spot, 0.0), lightExponent[i])
+                                              : 0.0;
+      }
+    }
+    float nDotL = dot(normal, toLight);
+    nDotL = twoSidedLighting != 0 ? abs(nDotL) : nDotL;
+    if (nDotL > 0.0)
+    {
+      diffuseSum += attenuation * nDotL * lightDiffuse[i];
+    }
+    vec3 halfVector = toLight + toViewer;
+    float halfLength = length(halfVector);
+    if (halfLength > 0.0)
+    {
+      float nDotH = dot(normal, halfVector) / halfLength;
+      nDotH = twoSidedLighting != 0 ? abs(nDotH) : nDotH;
+      if (nDotH > 0.0)
+      {
+        specularSum += attenuation * pow(min(nDotH, 1.0), lighting.w) * lightSpecular[i];
+      }
+    }
+  }
+  vec3 ambientFactor = headlightOnly != 0 ? vec3(1.0) : ambientSum;
+  vec3 shaded = rgb * (lighting.x * ambientFactor + lighting.y * diffuseSum) +
+    lighting.z * specularSum;
+  return min(shaded, vec3(1.0));
+}
+#endif
+
+#if ACCELVOLUME_COMPONENTS > 1
+// Multi-component scalars, each normalised to its own data range on upload (as VTK's GPU
+// mapper): independent components classified by their own tables and combined with the
+// component weights as vtkGPUVolumeRayCastMapper does; dependent ones as luminance-alpha
+// (2: colour from component 0, opacity from component 1) or RGBA (4: colour as is, opacity
+// from component 3). Shading uses each component's gradient (dependent: component 0's, as VTK).
+uniform sampler2D componentTables;   // rows c = 0..3: rgba over component c's range
+uniform vec4 componentWeights;
+uniform vec4 componentUnitDistances;
+
+vec4 componentLookup(int c, float value)
+{
+  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  return texture(componentTables, vec2(u, (float(c) + 0.5) / 4.0));
+}
+
+vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
+{
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
+  vec4 values = texture(volumeTexture, center);
+#if ACCELVOLUME_SHADE
+  vec3 texel = 1.0 / volumeDimensions;
+  vec4 dx = 0.5 * (texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)) -
+                    texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)));
+  vec4 dy = 0.5 * (texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)) -
+                    texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)));
+  vec4 dz = 0.5 * (texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)) -
+                    texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)));
+#endif
+#if ACCELVOLUME_INDEPENDENT
+  vec3 rgbSum = vec3(0.0);
+  float totalAlpha = 0.0;
+  float alphaSquares = 0.0;
+  for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
+  {
+    vec4 colour = componentLookup(c, values[c]);
+    float alpha = 1.0 - pow(max(1.0 - colour.a, 0.0), step / componentUnitDistances[c]);
+#if ACCELVOLUME_SHADE
+    colour.rgb = shade(colour.rgb, normalMatrix * vec3(dx[c], dy[c], dz[c]), rayDirection);
+#endif
+    totalAlpha += alpha * componentWeights[c];
+    if (componentWeights[c] > 0.0)
+    {
+      rgbSum += colour.rgb * alpha * componentWeights[c];
+      alphaSquares += alpha * alpha;
+    }
+  }
+  return totalAlpha > 0.0 ? vec4(rgbSum, alphaSquares / totalAlpha) : vec4(0.0);
+#else
+#if ACCELVOLUME_COMPONENTS == 2
+  vec3 rgb = componentLookup(0, values.x).rgb;
+  float opacityValue = componentLookup(0, values.y).a;
+#else
+  vec3 rgb = values.rgb;
+  float opacityValue = componentLookup(0, values.a).a;
+#endif
+  float alpha = 1.0 - pow(max(1.0 - opacityValue, 0.0), step / componentUnitDistances.x);
+#if ACCELVOLUME_SHADE
+  rgb = shade(rgb, normalMatrix * vec3(dx.x, dy.x, dz.x), rayDirection);
+#endif
+  return vec4(rgb * alpha, alpha);
+#endif
+}
+#endif
+
 // Render-to-image: the window depth of the nearest contributing sample (MIN-blended second
 // target), as vtkGPUVolumeRayCastMapper's depth image.
 #if ACCELVOLUME_RENDER_TO_IMAGE
@@ -289,6 +415,15 @@ void main()
   float noise = float(hash & 0xffffffu) / 16777216.0;
   samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
 #endif
+#if ACCELVOLUME_COMPONENTS > 1
+  vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step);
+  if (premultiplied.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = premultiplied;
+  ACCELVOLUME_WRITE_DEPTH(true);
+#else
 #if ACCELVOLUME_SKIP_OCTREE
   // A transparent leaf (every voxel its samples read maps to opacity 0) adds nothing:
   // one nearest fetch of the leaf grid replaces the volume fetch and the shading.
@@ -360,64 +495,12 @@ void main()
   classified.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
 #endif
 #if ACCELVOLUME_SHADE
-  // VTK's light model: per light ambient, diffuse (N.L) and Blinn-Phong specular (N.H) colours,
-  // positional lights attenuated, spot lights within their cone.
-  float gradientLength = length(eyeGradient);
-  vec3 ambientSum = vec3(0.0);
-  vec3 diffuseSum = vec3(0.0);
-  vec3 specularSum = vec3(0.0);
-  vec3 normal = gradientLength > 1.0e-8 ? -eyeGradient / gradientLength : vec3(0.0);
-  vec3 toViewer = -rayDirection;
-  for (int i = 0; i < lightCount; ++i)
-  {
-    ambientSum += lightAmbient[i];
-    if (gradientLength <= 1.0e-8)
-    {
-      continue;
-    }
-    vec3 toLight = -lightAxis[i];
-    float attenuation = 1.0;
-    if (lightPositional[i] != 0)
-    {
-      vec3 d = lightPosition[i] - eyePosition;
-      float distance = length(d);
-      toLight = distance > 0.0 ? d / distance : toLight;
-      vec3 a = lightAttenuation[i];
-      float denominator = a.x + a.y * distance + a.z * distance * distance;
-      attenuation = denominator > 0.0 ? 1.0 / denominator : 1.0;
-      if (lightCosCone[i] >= -1.0)
-      {
-        float spot = -dot(toLight, lightAxis[i]);
-        attenuation = spot >= lightCosCone[i] ? attenuation * pow(max(spot, 0.0), lightExponent[i])
-                                              : 0.0;
-      }
-    }
-    float nDotL = dot(normal, toLight);
-    nDotL = twoSidedLighting != 0 ? abs(nDotL) : nDotL;
-    if (nDotL > 0.0)
-    {
-      diffuseSum += attenuation * nDotL * lightDiffuse[i];
-    }
-    vec3 halfVector = toLight + toViewer;
-    float halfLength = length(halfVector);
-    if (halfLength > 0.0)
-    {
-      float nDotH = dot(normal, halfVector) / halfLength;
-      nDotH = twoSidedLighting != 0 ? abs(nDotH) : nDotH;
-      if (nDotH > 0.0)
-      {
-        specularSum += attenuation * pow(min(nDotH, 1.0), lighting.w) * lightSpecular[i];
-      }
-    }
-  }
-  vec3 ambientFactor = headlightOnly != 0 ? vec3(1.0) : ambientSum;
-  vec3 shaded = classified.rgb * (lighting.x * ambientFactor + lighting.y * diffuseSum) +
-    lighting.z * specularSum;
-  classified.rgb = min(shaded, vec3(1.0));
+  classified.rgb = shade(classified.rgb, eyeGradient, rayDirection);
 #endif
   float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);
   gl_FragData[0] = vec4(classified.rgb * alpha, alpha);
   ACCELVOLUME_WRITE_DEPTH(alpha > 0.0);
+#endif
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
