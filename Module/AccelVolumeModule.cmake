@@ -61,6 +61,8 @@ foreach (_av_source IN LISTS _av_private_sources)
   list(APPEND _av_private_headers "${_av_vtk_dir}/Private/${_av_source}.h")
 endforeach ()
 list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctreeInternals.h")
+# vtkAccelVolumeSliceMapper's vtkGPUVolumeRayCastMapper API members, apart from its rendering.
+list(APPEND _av_sources "${_av_vtk_dir}/vtkAccelVolumeSliceMapperVTKAPI.cxx")
 
 if (NOT COMMAND vtk_encode_string)
   include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)

@@ -198,48 +198,19 @@ public:
 vtkImageData* vtkAccelVolumeSliceMapper::vtkInternals::EffectiveMask(
   vtkAccelVolumeSliceMapper* self, vtkImageData* input)
 {
-  this->UsedGhostMask = false;
-  vtkUnsignedCharArray* ghosts = input->GetPointGhostArray();
   vtkImageData* user = self->MaskInput;
   const bool userBinary = user && self->MaskType == BinaryMaskType;
-  if (!ghosts || ghosts->GetNumberOfTuples() != input->GetNumberOfPoints() ||
-    (user && !userBinary))
+  this->UsedGhostMask = false;
+  if (user && !userBinary)
   {
     return user; // a label map keeps its own meaning; hidden points are then drawn
   }
-  vtkDataArray* userValues = userBinary ? user->GetPointData()->GetScalars() : nullptr;
-  const vtkMTimeType time = std::max({ ghosts->GetMTime(), input->GetMTime(),
-    userValues ? userValues->GetMTime() : 0, user ? user->GetMTime() : 0 });
-  const vtkIdType count = input->GetNumberOfPoints();
-  if (!this->GhostMask || time > this->GhostMaskTime)
+  if (vtkAccelVolumeHiddenPointsMask(input, user, this->GhostMask, this->GhostMaskTime))
   {
-    bool anyHidden = false;
-    for (vtkIdType i = 0; i < count && !anyHidden; ++i)
-    {
-      anyHidden = (ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) != 0;
-    }
-    this->GhostMask = vtkSmartPointer<vtkImageData>::New();
-    if (anyHidden)
-    {
-      this->GhostMask->SetDimensions(input->GetDimensions());
-      this->GhostMask->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
-      auto* out = static_cast<unsigned char*>(this->GhostMask->GetScalarPointer());
-      const bool userFits = userValues && userValues->GetNumberOfTuples() == count;
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        const bool visible = !(ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) &&
-          (!userFits || userValues->GetComponent(i, 0) != 0.0);
-        out[i] = visible ? 255 : 0;
-      }
-    }
-    this->GhostMaskTime = time;
+    this->UsedGhostMask = true;
+    return this->GhostMask;
   }
-  if (this->GhostMask->GetNumberOfPoints() == 0)
-  {
-    return user;
-  }
-  this->UsedGhostMask = true;
-  return this->GhostMask;
+  return user;
 }
 
 vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
@@ -260,58 +231,6 @@ vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper()
     this->DepthPassContourValues->Delete();
   }
   this->SetTransfer2DYAxisArray(nullptr);
-}
-
-void vtkAccelVolumeSliceMapper::SetMaxMemoryInBytes(vtkIdType bytes)
-{
-  this->MaxMemoryInBytes = std::max<vtkIdType>(0, bytes);
-  this->SetGPUMemoryBudget(
-    static_cast<vtkIdType>(static_cast<double>(this->MaxMemoryInBytes) * this->MaxMemoryFraction));
-  this->Modified();
-}
-
-void vtkAccelVolumeSliceMapper::SetMaxMemoryFraction(float fraction)
-{
-  this->MaxMemoryFraction = std::min(1.0f, std::max(0.1f, fraction));
-  this->SetMaxMemoryInBytes(this->MaxMemoryInBytes);
-}
-
-void vtkAccelVolumeSliceMapper::SetPartitions(unsigned short x, unsigned short y, unsigned short z)
-{
-  const unsigned short wanted[3] = { std::max<unsigned short>(1, x),
-    std::max<unsigned short>(1, y), std::max<unsigned short>(1, z) };
-  if (!std::equal(wanted, wanted + 3, this->Partitions))
-  {
-    std::copy(wanted, wanted + 3, this->Partitions);
-    this->Modified();
-  }
-}
-
-void vtkAccelVolumeSliceMapper::SetMaskInput(vtkImageData* mask)
-{
-  if (mask == this->MaskInput)
-  {
-    return;
-  }
-  if (this->MaskInput)
-  {
-    this->MaskInput->UnRegister(this);
-  }
-  this->MaskInput = mask;
-  if (mask)
-  {
-    mask->Register(this);
-  }
-  this->Modified();
-}
-
-vtkContourValues* vtkAccelVolumeSliceMapper::GetDepthPassContourValues()
-{
-  if (!this->DepthPassContourValues)
-  {
-    this->DepthPassContourValues = vtkContourValues::New();
-  }
-  return this->DepthPassContourValues;
 }
 
 void vtkAccelVolumeSliceMapper::GetDepthImage(vtkImageData* image)
@@ -356,99 +275,6 @@ void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
     return;
   }
   image->DeepCopy(this->Internals->ColourImage);
-}
-
-bool vtkAccelVolumeSliceMapper::UsesLabelMap() const
-{
-  return this->MaskInput && this->MaskType == LabelMapMaskType && this->MaskBlendFactor > 0 &&
-    this->BlendMode == COMPOSITE_BLEND;
-}
-
-void vtkAccelVolumeSliceMapper::GetReductionRatio(double ratio[3])
-{
-  ratio[0] = ratio[1] = ratio[2] = 1.0;
-}
-
-int vtkAccelVolumeSliceMapper::IsRenderSupported(
-  vtkRenderWindow* window, vtkVolumeProperty* property)
-{
-  if (window && !vtkOpenGLRenderWindow::SafeDownCast(window))
-  {
-    return 0;
-  }
-  (void)property; // every property the mapper accepts renders with OpenGL 3.2
-  return 1;
-}
-
-void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
-{
-  if (this->RenderToImage && this->ClampDepthToBackface)
-  {
-    this->WarnNotApplicable(
-      "ClampDepthToBackface", "the depth image holds 1 where no sample contributes");
-  }
-  if (this->UseDepthPass)
-  {
-    this->WarnNotApplicable("UseDepthPass", "not available yet; the volume is drawn without it");
-  }
-  if (!this->ReportProgress)
-  {
-    this->WarnNotApplicable("ReportProgress", "progress events are always sent");
-  }
-  if (this->ColorRangeType != SCALAR || this->ScalarOpacityRangeType != SCALAR ||
-    this->GradientOpacityRangeType != SCALAR)
-  {
-    this->WarnNotApplicable("NATIVE transfer-function ranges", "the tables span the data range");
-  }
-  if (this->Transfer2DYAxisArray && *this->Transfer2DYAxisArray)
-  {
-    this->WarnNotApplicable(
-      "Transfer2DYAxisArray", "the 2D transfer function's y axis is the gradient magnitude");
-  }
-}
-
-void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
-{
-  this->Superclass::PrintSelf(os, indent);
-  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
-  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
-  os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
-  os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
-  os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
-  os << indent << "SlabSamples: " << this->SlabSamples << "\n";
-  os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
-  os << indent << "FrontToBack: " << this->FrontToBack << "\n";
-  os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";
-  os << indent << "Jittering: " << this->Jittering << "\n";
-  os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
-  os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
-  os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
-  os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
-  os << indent << "LastSliceSpacing: " << this->LastSliceSpacing << "\n";
-  os << indent << "LastNumberOfSlices: " << this->LastNumberOfSlices << "\n";
-  os << indent << "LastNumberOfProxyPolygons: " << this->LastNumberOfProxyPolygons << "\n";
-  os << indent << "LastNumberOfBoundaryFaces: " << this->LastNumberOfBoundaryFaces << "\n";
-  os << indent << "GPUMemoryBudget: " << this->GPUMemoryBudget << "\n";
-  os << indent << "MaximumBrickSize: " << this->MaximumBrickSize << "\n";
-  os << indent << "LastNumberOfBricks: " << this->LastNumberOfBricks << "\n";
-  os << indent << "LastNumberOfBricksDrawn: " << this->LastNumberOfBricksDrawn << "\n";
-  os << indent << "LastNumberOfBrickUploads: " << this->LastNumberOfBrickUploads << "\n";
-  os << indent << "LastUploadedBytes: " << this->LastUploadedBytes << "\n";
-  os << indent << "LastResidentBytes: " << this->LastResidentBytes << "\n";
-  os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
-     << "\n";
-  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
-  os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
-  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
-  os << indent << "MaxMemoryInBytes: " << this->MaxMemoryInBytes << "\n";
-  os << indent << "MaxMemoryFraction: " << this->MaxMemoryFraction << "\n";
-  os << indent << "Partitions: " << this->Partitions[0] << " " << this->Partitions[1] << " "
-     << this->Partitions[2] << "\n";
-  os << indent << "MaskInput: " << this->MaskInput << "\n";
-  os << indent << "MaskType: " << this->MaskType << "\n";
-  os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
-  os << indent << "RenderToImage: " << this->RenderToImage << "\n";
-  os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
 }
 
 bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,

@@ -9,6 +9,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
@@ -121,4 +122,42 @@ void vtkAccelVolumeSliceMask::ReleaseGraphicsResources(vtkWindow* window)
   this->LabelTable->ReleaseGraphicsResources(window);
   this->Uploaded = nullptr;
   this->TableProperty = nullptr;
+}
+
+bool vtkAccelVolumeHiddenPointsMask(vtkImageData* input, vtkImageData* user,
+  vtkSmartPointer<vtkImageData>& mask, unsigned long& time)
+{
+  vtkUnsignedCharArray* ghosts = input->GetPointGhostArray();
+  const vtkIdType count = input->GetNumberOfPoints();
+  if (!ghosts || ghosts->GetNumberOfTuples() != count)
+  {
+    return false;
+  }
+  vtkDataArray* userValues = user ? user->GetPointData()->GetScalars() : nullptr;
+  const unsigned long newest = std::max({ ghosts->GetMTime(), input->GetMTime(),
+    userValues ? userValues->GetMTime() : 0, user ? user->GetMTime() : 0 });
+  if (!mask || newest > time)
+  {
+    bool anyHidden = false;
+    for (vtkIdType i = 0; i < count && !anyHidden; ++i)
+    {
+      anyHidden = (ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) != 0;
+    }
+    mask = vtkSmartPointer<vtkImageData>::New();
+    if (anyHidden)
+    {
+      mask->SetDimensions(input->GetDimensions());
+      mask->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+      auto* out = static_cast<unsigned char*>(mask->GetScalarPointer());
+      const bool userFits = userValues && userValues->GetNumberOfTuples() == count;
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        const bool visible = !(ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) &&
+          (!userFits || userValues->GetComponent(i, 0) != 0.0);
+        out[i] = visible ? 255 : 0;
+      }
+    }
+    time = newest;
+  }
+  return mask->GetNumberOfPoints() > 0;
 }

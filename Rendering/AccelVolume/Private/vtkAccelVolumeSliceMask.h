@@ -5,7 +5,8 @@
 #ifndef vtkAccelVolumeSliceMask_h
 #define vtkAccelVolumeSliceMask_h
 
-#include "vtkNew.h" // For vtkNew
+#include "vtkNew.h"          // For vtkNew
+#include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include <string>
 
@@ -51,5 +52,13 @@ private:
   unsigned long TableTime = 0;
   double TableRange[2] = { 0, 0 };
 };
+
+/**
+ * The input's hidden points (ghost array HIDDENPOINT, as vtkUniformGrid blanking sets) as a binary
+ * mask (255 visible, 0 hidden), intersected with the binary mask `user` (may be null). Rebuilt
+ * into `mask` when the arrays changed since `time`. False when no point is hidden.
+ */
+bool vtkAccelVolumeHiddenPointsMask(vtkImageData* input, vtkImageData* user,
+  vtkSmartPointer<vtkImageData>& mask, unsigned long& time);
 
 #endif
