@@ -2,6 +2,9 @@
 
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAlgorithm.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkImageData.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkInformation.h"
 #include "vtkOpenGLRenderWindow.h"
 
@@ -37,6 +40,26 @@ void vtkAccelVolumeMapper::GetFinalColorScaleAndBias(float& scale, float& bias) 
     : this->FinalColorWindow;
   scale = 1.0f / window;
   bias = 0.5f - this->FinalColorLevel / window;
+}
+
+bool vtkAccelVolumeMapper::HasHiddenPoints(vtkImageData* image)
+{
+  vtkUnsignedCharArray* ghosts = image ? image->GetPointGhostArray() : nullptr;
+  if (!ghosts)
+  {
+    return false;
+  }
+  if (ghosts != this->HiddenPointsArray || ghosts->GetMTime() != this->HiddenPointsTime)
+  {
+    this->HiddenPointsArray = ghosts;
+    this->HiddenPointsTime = ghosts->GetMTime();
+    this->HiddenPoints = false;
+    for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples() && !this->HiddenPoints; ++i)
+    {
+      this->HiddenPoints = (ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) != 0;
+    }
+  }
+  return this->HiddenPoints;
 }
 
 void vtkAccelVolumeMapper::WarnNotApplicable(const char* member, const char* why)

@@ -34,6 +34,7 @@
 #include <string> // For std::string
 
 class vtkAccelVolumeInputAdapter;
+class vtkImageData;
 class vtkRenderWindow;
 class vtkVolumeProperty;
 
@@ -93,6 +94,8 @@ protected:
 
   // Warns once per member (for this mapper's life) that a VTK setting does not apply here.
   void WarnNotApplicable(const char* member, const char* why);
+  // True when the image's ghost array hides points (vtkUniformGrid blanking); cached per array.
+  bool HasHiddenPoints(vtkImageData* image);
 
   vtkTypeBool EarlyRayTermination = 1;
   double EarlyRayTerminationThreshold = 0.99;
@@ -108,6 +111,9 @@ private:
 
   vtkTimeStamp MissingInputReportTime;
   std::set<std::string> WarnedNotApplicable;
+  void* HiddenPointsArray = nullptr;
+  vtkMTimeType HiddenPointsTime = 0;
+  bool HiddenPoints = false;
 };
 
 #endif

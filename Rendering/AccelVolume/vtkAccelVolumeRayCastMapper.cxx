@@ -382,6 +382,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   {
     return;
   }
+  if (this->HasHiddenPoints(input))
+  {
+    this->WarnNotApplicable("blanking (hidden points of the ghost array)",
+      "the CPU mappers draw hidden points; vtkAccelVolumeSliceMapper hides them");
+  }
   RayCastFrameInputs in;
   if (!internals.PrepareInputs(this, input, scalars, property, volume, in) ||
     !internals.SetUpRays(this, renderer, window, volume, in))

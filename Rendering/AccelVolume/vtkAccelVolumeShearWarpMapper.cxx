@@ -496,6 +496,11 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, *this->InputAdapter, renderer, volume) : "");
     return;
   }
+  if (this->HasHiddenPoints(input))
+  {
+    this->WarnNotApplicable("blanking (hidden points of the ghost array)",
+      "the CPU mappers draw hidden points; vtkAccelVolumeSliceMapper hides them");
+  }
   ShearWarpFrameInputs in;
   std::string why;
   const int status =

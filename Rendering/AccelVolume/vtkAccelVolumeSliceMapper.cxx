@@ -50,7 +50,15 @@ bool IsSupportedBlend(int blendMode)
     blendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ||
     blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
     blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
-    blendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+    blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
+    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND;
+}
+
+// Iso-surfaces are drawn by the composite passes (front to back, terminated).
+bool CompositeLike(int blendMode)
+{
+  return blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
+    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND;
 }
 
 // Composite shading inputs: VTK's light model in eye space (at most MaximumLights lights: more
@@ -546,12 +554,14 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // A binary mask is tested once per fragment: plain slices.
   const int slabSamples =
     extremum && !self->MaskInput && !this->UsedGhostMask ? self->SlabSamples : 1;
-  const bool composite = self->BlendMode == COMPOSITE_BLEND;
-  const bool transferFunction2D =
-    composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  const bool composite = CompositeLike(self->BlendMode);
+  const bool transferFunction2D = self->BlendMode == COMPOSITE_BLEND &&
+    property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
   // ... nor does it know a label map's colours (a binary mask only removes samples).
-  skipEmptyLeaves = composite && !transferFunction2D && !self->UsesLabelMap() &&
+  // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.
+  skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D &&
+    !self->UsesLabelMap() &&
     this->Frame.Components == 1 &&
     (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
@@ -583,9 +593,31 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   vtkRenderer* renderer, vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
   vtkVolumeProperty* property, const double range[2], const SliceView& view, bool skipEmptyLeaves)
 {
-  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
-  frame.BlendMode = self->BlendMode;
+  frame.BlendMode = composite ? COMPOSITE_BLEND : self->BlendMode;
+  frame.IsoSurfaceCount = 0;
+  if (self->BlendMode == ISOSURFACE_BLEND)
+  {
+    // The property's iso-values normalised to the data range, ascending (VTK's order).
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    std::vector<double> iso(values->GetValues(), values->GetValues() + values->GetNumberOfContours());
+    std::sort(iso.begin(), iso.end());
+    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    for (double value : iso)
+    {
+      if (frame.IsoSurfaceCount < vtkAccelVolumeSliceFrame::MaximumIsoSurfaces)
+      {
+        frame.IsoSurfaceValues[frame.IsoSurfaceCount++] =
+          static_cast<float>((value - range[0]) / width);
+      }
+    }
+    frame.IsoSurface = true;
+  }
+  else
+  {
+    frame.IsoSurface = false;
+  }
   frame.Linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
   // Image sample distance: a target that many times smaller, magnified by the resolve pass
   // (render-to-image keeps full resolution: its depth image is per window pixel).
@@ -645,8 +677,8 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     frame.Gradient2DMaximum =
       static_cast<float>(0.25 * (range[1] > range[0] ? range[1] - range[0] : 1.0));
   }
-  frame.SkipTransparentSamples =
-    composite && (self->EmptySpaceSkipping & SKIP_FRAGMENT) && !self->UsesLabelMap();
+  frame.SkipTransparentSamples = self->BlendMode == COMPOSITE_BLEND &&
+    (self->EmptySpaceSkipping & SKIP_FRAGMENT) && !self->UsesLabelMap();
   frame.Components = scalars->GetNumberOfComponents();
   frame.IndependentComponents = property->GetIndependentComponents() != 0;
   for (int c = 0; c < 4; ++c)
@@ -703,11 +735,11 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2],
   const SliceView& view)
 {
-  const bool composite = self->BlendMode == COMPOSITE_BLEND;
+  const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.Shade = composite && property->GetShade(0) != 0;
-  frame.GradientOpacity = composite && frame.Components == 1 && property->HasGradientOpacity(0) &&
-    !property->GetDisableGradientOpacity(0);
+  frame.GradientOpacity = self->BlendMode == COMPOSITE_BLEND && frame.Components == 1 &&
+    property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {

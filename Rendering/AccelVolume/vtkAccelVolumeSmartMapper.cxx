@@ -408,6 +408,11 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
                              "renders them -> slice";
     return SLICE_RENDER;
   }
+  if (blend == ISOSURFACE_BLEND && sliceUsable)
+  {
+    this->LastChoiceReason = "isosurface blend: only the slice mapper renders it -> slice";
+    return SLICE_RENDER;
+  }
   switch (this->RequestedRenderMode)
   {
     case SLICE_RENDER:

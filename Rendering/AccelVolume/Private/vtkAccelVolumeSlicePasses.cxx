@@ -167,6 +167,7 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
     "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
+    "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
     "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(composite ? frame.Components : 1) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +
@@ -239,6 +240,15 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniform4f("lighting", frame.Lighting);
   }
   program->SetUniform2f("averageRange", frame.AverageRange);
+  if (frame.IsoSurface)
+  {
+    program->SetUniformi("isoSurfaceCount", frame.IsoSurfaceCount);
+    const float maximum[3] = { std::max(0.0f, frame.Dimensions[0] - 1),
+      std::max(0.0f, frame.Dimensions[1] - 1), std::max(0.0f, frame.Dimensions[2] - 1) };
+    program->SetUniform3f("volumeIndexMaximum", maximum);
+    program->SetUniform1fv(
+      "isoSurfaceValues", vtkAccelVolumeSliceFrame::MaximumIsoSurfaces, frame.IsoSurfaceValues);
+  }
   if (frame.Components > 1)
   {
     program->SetUniformi("componentTables", resources.ComponentTables->GetTextureUnit());

@@ -99,6 +99,12 @@ struct vtkAccelVolumeSliceFrame
   float AverageRange[2] = { 0, 1 };
   float ColourScale = 1; // FinalColorWindow / Level
   float ColourBias = 0;
+  // ISOSURFACE_BLEND (drawn as composite): the property's iso-values normalised to the data
+  // range, ascending.
+  static constexpr int MaximumIsoSurfaces = 16;
+  bool IsoSurface = false;
+  int IsoSurfaceCount = 0;
+  float IsoSurfaceValues[MaximumIsoSurfaces] = {};
   // 2-4 component scalars (composite): the resources' ComponentVolume and ComponentTables.
   int Components = 1;
   bool IndependentComponents = true;

@@ -230,6 +230,52 @@ vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
 }
 #endif
 
+#if ACCELVOLUME_ISOSURFACE
+// ISOSURFACE_BLEND as vtkGPUVolumeRayCastMapper: where the value crosses one of the
+// property's iso-values between the previous sample along the ray and this one, that value's
+// colour and (uncorrected) opacity, lit at this sample, composited front to back.
+uniform int isoSurfaceCount;
+uniform vec3 volumeIndexMaximum;    // the whole volume's largest voxel index per axis
+uniform float isoSurfaceValues[16]; // normalised, ascending
+
+vec4 isoSurfaceSample(vec3 position, vec3 previous, vec3 rayDirection)
+{
+  float value = normalizedScalarAt(position);
+  float before = normalizedScalarAt(previous);
+  float low = min(value, before);
+  float high = max(value, before);
+  vec4 accumulated = vec4(0.0);
+#if ACCELVOLUME_SHADE
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
+  vec3 texel = 1.0 / volumeDimensions;
+  vec3 indexGradient = 0.5 * scalarScale *
+    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
+        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)).r -
+        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
+        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
+  vec3 eyeGradient = normalMatrix * indexGradient;
+#endif
+  // Crossings in ray order: ascending values when the ray climbs, descending when it falls.
+  bool rising = value >= before;
+  for (int k = 0; k < isoSurfaceCount; ++k)
+  {
+    int i = rising ? k : isoSurfaceCount - 1 - k;
+    float iso = isoSurfaceValues[i];
+    if (iso > low && iso <= high)
+    {
+      vec4 colour = classify(iso);
+#if ACCELVOLUME_SHADE
+      colour.rgb = shade(colour.rgb, eyeGradient, rayDirection);
+#endif
+      accumulated += (1.0 - accumulated.a) * vec4(colour.rgb * colour.a, colour.a);
+    }
+  }
+  return accumulated;
+}
+#endif
+
 #if ACCELVOLUME_COMPONENTS > 1
 // Multi-component scalars, each normalised to its own data range on upload (as VTK's GPU
 // mapper): independent components classified by their own tables and combined with the
@@ -415,7 +461,29 @@ void main()
   float noise = float(hash & 0xffffffu) / 16777216.0;
   samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
 #endif
-#if ACCELVOLUME_COMPONENTS > 1
+#if ACCELVOLUME_ISOSURFACE
+  // The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
+  // in the volume and inside the clip planes (cropping is not tested here).
+  vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
+  bool previousInside = all(greaterThanEqual(previousPosition, vec3(0.0))) &&
+    all(lessThanEqual(previousPosition, volumeIndexMaximum));
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    previousInside = previousInside &&
+      dot(clipPlanes[i].xyz, previousPosition) + clipPlanes[i].w >= 0.0;
+  }
+  if (!previousInside)
+  {
+    discard;
+  }
+  vec4 premultiplied = isoSurfaceSample(samplePosition, previousPosition, rayDirection);
+  if (premultiplied.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = premultiplied;
+  ACCELVOLUME_WRITE_DEPTH(true);
+#elif ACCELVOLUME_COMPONENTS > 1
   vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step);
   if (premultiplied.a <= 0.0)
   {
