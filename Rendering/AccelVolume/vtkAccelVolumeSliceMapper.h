@@ -46,11 +46,18 @@
  * budget, bricks stay resident once uploaded; beyond it, the bricks the budget cannot hold
  * stream through one texture every frame (see GetLastNumberOfBrickUploads).
  *
- * Limits: one-component scalars of type char, unsigned char, short, unsigned short, int,
- * float or double (int, float and double are sampled as 32-bit floats normalised to the
- * data range; NaN samples count as the minimum). Boundary re-rendering applies to the
- * projection modes, not to composite. Bricked volumes take gradients by central differences
- * (no precomputed gradient texture) and plain slices (SlabSamples is ignored).
+ * Drop-in for vtkGPUVolumeRayCastMapper (docs/drop-in.md): its API members, VTK's light model
+ * and gradient units, masks (binary and label map), blanking, RenderToImage, picking,
+ * ISOSURFACE_BLEND (the property's iso-values, drawn by the composite passes) and 2-4 component
+ * scalars (composite: independent with per-component functions and weights, or dependent
+ * luminance-alpha / RGBA; one brick, no octree skipping or gradient opacity).
+ *
+ * Limits: scalars of any integer or floating type but bit (int, unsigned int, 64-bit integers,
+ * float and double are sampled as 32-bit floats normalised to the data range; NaN samples
+ * count as the minimum). Boundary re-rendering applies to the projection modes, not to
+ * composite. Bricked volumes take gradients by central differences (no precomputed gradient
+ * texture) and plain slices (SlabSamples is ignored). Not available: SLICE_BLEND, depth
+ * peeling of volumes, the depth pass.
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h
