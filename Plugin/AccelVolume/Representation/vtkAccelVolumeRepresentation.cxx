@@ -31,10 +31,18 @@ vtkAccelVolumeSmartMapper* vtkAccelVolumeRepresentation::GetAccelVolumeMapper()
   return this->Mapper;
 }
 
+static_assert(vtkAccelVolumeRepresentation::MAPPER_SMART == vtkAccelVolumeSmartMapper::DEFAULT_RENDER &&
+    vtkAccelVolumeRepresentation::MAPPER_SLICE == vtkAccelVolumeSmartMapper::SLICE_RENDER &&
+    vtkAccelVolumeRepresentation::MAPPER_RAYCAST == vtkAccelVolumeSmartMapper::RAYCAST_RENDER &&
+    vtkAccelVolumeRepresentation::MAPPER_SHEARWARP == vtkAccelVolumeSmartMapper::SHEARWARP_RENDER,
+  "MapperType values are the smart mapper's render modes");
+
 void vtkAccelVolumeRepresentation::SetMapperType(int type)
 {
-  type =
-    std::min(std::max(type, static_cast<int>(MAPPER_SMART)), static_cast<int>(MAPPER_SHEARWARP));
+  if (type != MAPPER_SLICE && type != MAPPER_RAYCAST && type != MAPPER_SHEARWARP)
+  {
+    type = MAPPER_SMART;
+  }
   if (type != this->MapperType)
   {
     this->MapperType = type;

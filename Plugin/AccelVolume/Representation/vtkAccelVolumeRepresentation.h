@@ -37,14 +37,14 @@ public:
   /** Values of MapperType: those of vtkAccelVolumeSmartMapper::RenderModes. */
   enum MapperTypes
   {
-    MAPPER_SMART = 0,
-    MAPPER_SLICE = 1,
-    MAPPER_RAYCAST = 2,
-    MAPPER_SHEARWARP = 3
+    MAPPER_SMART = 0,     // vtkAccelVolumeSmartMapper::DEFAULT_RENDER
+    MAPPER_SLICE = 2,     // SLICE_RENDER (VTK's GPURenderMode)
+    MAPPER_RAYCAST = 1,   // RAYCAST_RENDER (VTK's RayCastRenderMode)
+    MAPPER_SHEARWARP = 6  // SHEARWARP_RENDER
   };
 
   ///@{
-  /** The mapper that renders (default MAPPER_SMART, range MAPPER_SMART..MAPPER_SHEARWARP). */
+  /** The mapper that renders (default MAPPER_SMART; other values fall back to it). */
   void SetMapperType(int type);
   int GetMapperType() const { return this->MapperType; }
   ///@}

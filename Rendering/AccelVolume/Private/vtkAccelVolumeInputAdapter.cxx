@@ -208,8 +208,9 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
       vtkNew<vtkUnsignedCharArray> hidden;
       hidden->SetName(vtkDataSetAttributes::GhostArrayName());
       hidden->SetNumberOfTuples(ghosts->GetNumberOfTuples());
-      const unsigned char hiddenBit =
-        cellFlag ? vtkDataSetAttributes::HIDDENCELL : vtkDataSetAttributes::HIDDENPOINT;
+      const unsigned char hiddenBit = cellFlag
+        ? static_cast<unsigned char>(vtkDataSetAttributes::HIDDENCELL)
+        : static_cast<unsigned char>(vtkDataSetAttributes::HIDDENPOINT);
       for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples(); ++i)
       {
         hidden->SetValue(
