@@ -37,21 +37,30 @@ namespace
 using accelvolume_test::CompareImages;
 
 // VTK's values, so code written for vtkSmartVolumeMapper means the same with ours.
-static_assert(vtkAccelVolumeSmartMapper::DefaultRenderMode == vtkSmartVolumeMapper::DefaultRenderMode,
+constexpr bool SameValue(int ours, int vtks)
+{
+  return ours == vtks;
+}
+static_assert(SameValue(vtkAccelVolumeSmartMapper::DefaultRenderMode,
+                vtkSmartVolumeMapper::DefaultRenderMode),
   "DefaultRenderMode");
-static_assert(vtkAccelVolumeSmartMapper::RayCastRenderMode == vtkSmartVolumeMapper::RayCastRenderMode,
+static_assert(SameValue(vtkAccelVolumeSmartMapper::RayCastRenderMode,
+                vtkSmartVolumeMapper::RayCastRenderMode),
   "RayCastRenderMode");
 static_assert(
-  vtkAccelVolumeSmartMapper::GPURenderMode == vtkSmartVolumeMapper::GPURenderMode, "GPURenderMode");
-static_assert(vtkAccelVolumeSmartMapper::UndefinedRenderMode ==
-    vtkSmartVolumeMapper::UndefinedRenderMode,
+  SameValue(vtkAccelVolumeSmartMapper::GPURenderMode, vtkSmartVolumeMapper::GPURenderMode),
+  "GPURenderMode");
+static_assert(SameValue(vtkAccelVolumeSmartMapper::UndefinedRenderMode,
+                vtkSmartVolumeMapper::UndefinedRenderMode),
   "UndefinedRenderMode");
-static_assert(vtkAccelVolumeSmartMapper::MAGNITUDE == vtkSmartVolumeMapper::MAGNITUDE &&
-    vtkAccelVolumeSmartMapper::COMPONENT == vtkSmartVolumeMapper::COMPONENT &&
-    vtkAccelVolumeSmartMapper::DISABLED == vtkSmartVolumeMapper::DISABLED,
+static_assert(SameValue(vtkAccelVolumeSmartMapper::MAGNITUDE, vtkSmartVolumeMapper::MAGNITUDE) &&
+    SameValue(vtkAccelVolumeSmartMapper::COMPONENT, vtkSmartVolumeMapper::COMPONENT) &&
+    SameValue(vtkAccelVolumeSmartMapper::DISABLED, vtkSmartVolumeMapper::DISABLED),
   "VectorModeType");
-static_assert(vtkAccelVolumeSliceMapper::BinaryMaskType == vtkGPUVolumeRayCastMapper::BinaryMaskType &&
-    vtkAccelVolumeSliceMapper::LabelMapMaskType == vtkGPUVolumeRayCastMapper::LabelMapMaskType,
+static_assert(SameValue(vtkAccelVolumeSliceMapper::BinaryMaskType,
+                vtkGPUVolumeRayCastMapper::BinaryMaskType) &&
+    SameValue(vtkAccelVolumeSliceMapper::LabelMapMaskType,
+      vtkGPUVolumeRayCastMapper::LabelMapMaskType),
   "mask types");
 
 enum class Kind
