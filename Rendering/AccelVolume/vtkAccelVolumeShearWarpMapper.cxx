@@ -73,7 +73,7 @@ std::string WhyNotRenderable(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   std::string error;
-  if (!vtkAccelVolumeFetchInput(mapper, adapter, input, scalars, error))
+  if (!adapter.Fetch(mapper, input, scalars, error))
   {
     return error;
   }

@@ -166,7 +166,7 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
     (!EngineType(scalars->GetDataType()) && !ConvertibleType(scalars->GetDataType())))
   {
     // As it is, or a clear refusal from the common checks.
-    return vtkAccelVolumeCheckInput(image, scalars, 0, error, this->MaximumComponents);
+    return vtkAccelVolumeCheckInput(image, scalars, error, this->MaximumComponents);
   }
   const vtkIdType expected = cellFlag ? input->GetNumberOfCells() : input->GetNumberOfPoints();
   if (scalars->GetNumberOfTuples() != expected)
@@ -226,5 +226,5 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
   }
   image = this->Adapted;
   scalars = this->Converted;
-  return vtkAccelVolumeCheckInput(image, scalars, 0, error, this->MaximumComponents);
+  return vtkAccelVolumeCheckInput(image, scalars, error, this->MaximumComponents);
 }

@@ -118,8 +118,8 @@ void ReplaceNonFinite(T* values, vtkIdType count, const double range[2])
 }
 }
 
-bool vtkAccelVolumeCheckInput(vtkImageData* input, vtkDataArray* scalars, int cellFlag,
-  std::string& error, int maximumComponents)
+bool vtkAccelVolumeCheckInput(
+  vtkImageData* input, vtkDataArray* scalars, std::string& error, int maximumComponents)
 {
   std::ostringstream message;
   if (!input)
@@ -139,11 +139,6 @@ bool vtkAccelVolumeCheckInput(vtkImageData* input, vtkDataArray* scalars, int ce
   if (!scalars)
   {
     error = "Input has no point scalars to render";
-    return false;
-  }
-  if (cellFlag)
-  {
-    error = "Cell scalars are not supported; use point scalars";
     return false;
   }
   if (scalars->GetNumberOfComponents() < 1 ||
@@ -503,12 +498,6 @@ void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
   }
 }
 
-bool vtkAccelVolumeFetchInput(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter& adapter,
-  vtkImageData*& input, vtkDataArray*& scalars, std::string& error)
-{
-  return adapter.Fetch(mapper, input, scalars, error);
-}
-
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type)
 {
   switch (vtkType)
@@ -669,7 +658,7 @@ vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
     return nullptr;
   }
   std::string error;
-  if (!vtkAccelVolumeFetchInput(mapper, adapter, input, scalars, error) ||
+  if (!adapter.Fetch(mapper, input, scalars, error) ||
     !vtkAccelVolumeCheckGeometry(mapper, error))
   {
     vtkErrorWithObjectMacro(mapper, << error);

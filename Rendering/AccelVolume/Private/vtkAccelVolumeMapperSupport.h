@@ -30,23 +30,17 @@ class vtkTimeStamp;
 class vtkVolumeMapper;
 class vtkVolumeProperty;
 
-// Point scalars the mappers can render: one component, a supported type, matching the image.
-// False with a user-facing message otherwise (input may be null).
-bool vtkAccelVolumeCheckInput(vtkImageData* input, vtkDataArray* scalars, int cellFlag,
-  std::string& error, int maximumComponents = 1);
-
-// Updates the mapper's input and picks the scalars it renders (the mapper's scalar mode and
-// array), adapted by `adapter` (cell scalars, other integer types, rectilinear grids); then
-// vtkAccelVolumeCheckInput. False with a user-facing message.
-bool vtkAccelVolumeFetchInput(vtkVolumeMapper* mapper, vtkAccelVolumeInputAdapter& adapter,
-  vtkImageData*& input, vtkDataArray*& scalars, std::string& error);
+// Point scalars the mappers can render: 1..maximumComponents components, a supported type,
+// matching the image. False with a user-facing message otherwise (input may be null).
+bool vtkAccelVolumeCheckInput(
+  vtkImageData* input, vtkDataArray* scalars, std::string& error, int maximumComponents = 1);
 
 // Core's ParallelFor on vtkSMPTools, one work item per range (the CPU mappers' tiles and bands
 // are heavy items).
 accelvolume::ParallelFor vtkAccelVolumeSMPParallelFor();
 
 // The checks a CPU mapper's Render starts with: an OpenGL window to show the image in, a
-// renderable input (vtkAccelVolumeFetchInput) and a volume property. Null, after a
+// renderable input (vtkAccelVolumeInputAdapter::Fetch) and a volume property. Null, after a
 // vtkErrorMacro on the mapper, when one is missing.
 vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
   vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);

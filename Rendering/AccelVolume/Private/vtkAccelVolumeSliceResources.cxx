@@ -26,16 +26,22 @@
 vtkAccelVolumeSliceResources::vtkAccelVolumeSliceResources() = default;
 vtkAccelVolumeSliceResources::~vtkAccelVolumeSliceResources() = default;
 
-bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2], std::uint64_t budgetBytes,
-  int maximumBrickSize, std::string& error)
+bool vtkAccelVolumeSliceResources::UseContext(vtkOpenGLRenderWindow* window)
 {
-  const bool contextChanged = this->Context != window;
-  if (contextChanged && this->Context)
+  const bool changed = this->Context != window;
+  if (changed && this->Context)
   {
     this->ReleaseGraphicsResources(this->Context);
   }
   this->Context = window;
+  return changed;
+}
+
+bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window,
+  vtkImageData* image, vtkDataArray* scalars, const double range[2], std::uint64_t budgetBytes,
+  int maximumBrickSize, std::string& error)
+{
+  const bool contextChanged = this->UseContext(window);
   int dims[3];
   image->GetDimensions(dims);
   const bool stale = contextChanged || this->UploadedScalars != scalars ||
@@ -378,12 +384,7 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
 bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(
   vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, std::string& error)
 {
-  const bool contextChanged = this->Context != window;
-  if (contextChanged && this->Context)
-  {
-    this->ReleaseGraphicsResources(this->Context);
-  }
-  this->Context = window;
+  const bool contextChanged = this->UseContext(window);
   int dims[3];
   image->GetDimensions(dims);
   const int components = scalars->GetNumberOfComponents();
@@ -449,6 +450,21 @@ bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(
 void vtkAccelVolumeSliceResources::UpdateComponentTables(vtkOpenGLRenderWindow* window,
   vtkVolumeProperty* property, int components, bool independent)
 {
+  // Rebuilt only when the property, its functions, the layout or the ranges changed.
+  vtkMTimeType newest = property->GetMTime();
+  for (int c = 0; c < components; ++c)
+  {
+    newest = std::max({ newest, property->GetScalarOpacity(c)->GetMTime(),
+      property->GetColorChannels(c) == 1 ? property->GetGrayTransferFunction(c)->GetMTime()
+                                         : property->GetRGBTransferFunction(c)->GetMTime() });
+  }
+  const int layout = independent ? components : -components;
+  if (this->ComponentTables->GetHandle() && this->ComponentTableProperty == property &&
+    newest <= this->ComponentTableTime && layout == this->ComponentTableLayout &&
+    this->ComponentTableVolumeTime == this->VolumeUploadTime.GetMTime())
+  {
+    return;
+  }
   std::vector<float> table(4 * 4 * static_cast<size_t>(TableSize), 0.0f);
   std::vector<float> rgb(3 * static_cast<size_t>(TableSize));
   std::vector<float> alpha(TableSize);
@@ -489,6 +505,10 @@ void vtkAccelVolumeSliceResources::UpdateComponentTables(vtkOpenGLRenderWindow* 
   this->ComponentTables->SetWrapT(vtkTextureObject::ClampToEdge);
   this->ComponentTables->SetMinificationFilter(vtkTextureObject::Linear);
   this->ComponentTables->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->ComponentTableProperty = property;
+  this->ComponentTableTime = newest;
+  this->ComponentTableLayout = layout;
+  this->ComponentTableVolumeTime = this->VolumeUploadTime.GetMTime();
 }
 
 bool vtkAccelVolumeSliceResources::PrepareImageTargets(
@@ -556,6 +576,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->SceneDepthFull->ReleaseGraphicsResources(window);
   this->ComponentVolume->ReleaseGraphicsResources(window);
   this->ComponentTables->ReleaseGraphicsResources(window);
+  this->ComponentTableProperty = nullptr;
   this->FirstDepth->ReleaseGraphicsResources(window);
   this->ImageColour->ReleaseGraphicsResources(window);
   this->ImageFramebuffer->ReleaseGraphicsResources(window);

@@ -34,6 +34,9 @@ public:
   vtkAccelVolumeSliceResources();
   ~vtkAccelVolumeSliceResources();
 
+  /** Makes `window` the context; releases what another context held. True when it changed. */
+  bool UseContext(vtkOpenGLRenderWindow* window);
+
   /**
    * Encodes the scalars and lays out their bricks when the scalars, the range, the context or
    * the limits changed (a brick axis may span at most `maximumBrickSize` texels, 0 for
@@ -62,6 +65,11 @@ public:
   vtkNew<vtkTextureObject> ComponentVolume;
   vtkNew<vtkTextureObject> ComponentTables;
   double ComponentRanges[4][2] = {};
+  // What ComponentTables reflects (the ranges come with the volume upload).
+  vtkVolumeProperty* ComponentTableProperty = nullptr;
+  vtkMTimeType ComponentTableTime = 0;
+  vtkMTimeType ComponentTableVolumeTime = 0;
+  int ComponentTableLayout = 0; // components, negative when dependent
 
   /** The bricks of the prepared volume (one brick when it fits a texture and the budget). */
   const accelvolume::BrickLayout& GetBrickLayout() const { return this->Layout; }

@@ -122,6 +122,19 @@ float opacity(float value)
   return classify(value).a;
 }
 
+// Central differences one texel apart at a texture coordinate, in normalized scalar units.
+vec3 centralDifferences(vec3 center)
+{
+  vec3 texel = 1.0 / volumeDimensions;
+  return 0.5 * scalarScale *
+    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
+        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)).r -
+        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
+      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
+        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
+}
+
 // Distance along the pixel ray (world units) of the opaque geometry, or a huge value.
 float sceneDistance(vec3 rayOrigin, vec3 rayDirection)
 {
@@ -247,15 +260,7 @@ vec4 isoSurfaceSample(vec3 position, vec3 previous, vec3 rayDirection)
   vec4 accumulated = vec4(0.0);
 #if ACCELVOLUME_SHADE
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
-  vec3 texel = 1.0 / volumeDimensions;
-  vec3 indexGradient = 0.5 * scalarScale *
-    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
-        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)).r,
-      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)).r -
-        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
-      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
-        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
-  vec3 eyeGradient = normalMatrix * indexGradient;
+  vec3 eyeGradient = normalMatrix * centralDifferences(center);
 #endif
   // Crossings in ray order: ascending values when the ray climbs, descending when it falls.
   bool rising = value >= before;
@@ -532,15 +537,7 @@ void main()
   vec3 indexGradient =
     (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
 #else
-  // Central differences on the fly (one texel apart), in normalized scalar units.
-  vec3 texel = 1.0 / volumeDimensions;
-  vec3 indexGradient = 0.5 * scalarScale *
-    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)).r -
-        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)).r,
-      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0)).r -
-        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0)).r,
-      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z)).r -
-        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
+  vec3 indexGradient = centralDifferences(center);
 #endif
   vec3 eyeGradient = normalMatrix * indexGradient;
 #endif
