@@ -60,7 +60,8 @@ foreach (_av_source IN LISTS _av_private_sources)
   list(APPEND _av_sources "${_av_vtk_dir}/Private/${_av_source}.cxx")
   list(APPEND _av_private_headers "${_av_vtk_dir}/Private/${_av_source}.h")
 endforeach ()
-list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctreeInternals.h")
+list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctreeInternals.h"
+  "${_av_vtk_dir}/Private/vtkAccelVolumeSliceMapperInternals.h")
 # vtkAccelVolumeSliceMapper's vtkGPUVolumeRayCastMapper API members, apart from its rendering.
 list(APPEND _av_sources "${_av_vtk_dir}/vtkAccelVolumeSliceMapperVTKAPI.cxx")
 

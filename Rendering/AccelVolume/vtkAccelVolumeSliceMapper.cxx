@@ -1,6 +1,8 @@
 // Slice-based MIP / MinIP / raysum / average volume mapper with cut-face re-rendering.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeSliceMapperInternals.h"
+
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
@@ -119,107 +121,8 @@ accelvolume::Vec3 MakeVec3(double x, double y, double z)
 // Slices start at the reference depth (no per-frame offset).
 constexpr double SlicePhase = 0.0;
 
-// The frame's view: its size, the matrices between index, eye and clip space, the clipped
-// regions and the slices' spacing and depth.
-struct SliceView
-{
-  vtkImageData* Input = nullptr;
-  int Dimensions[3] = { 0, 0, 0 };
-  int Width = 0;
-  int Height = 0;
-  int LowerLeft[2] = { 0, 0 };
-  vtkCamera* Camera = nullptr;
-  vtkMatrix4x4* View = nullptr;
-  vtkNew<vtkMatrix4x4> IndexToWorld;
-  vtkNew<vtkMatrix4x4> Projection;
-  vtkNew<vtkMatrix4x4> IndexToEye;
-  vtkNew<vtkMatrix4x4> IndexToClip;
-  vtkNew<vtkMatrix4x4> EyeToIndex;
-  vtkNew<vtkMatrix4x4> InverseProjection;
-  accelvolume::Box VolumeBox;
-  std::vector<accelvolume::Box> Regions;
-  std::vector<accelvolume::HalfSpace> Clip;
-  accelvolume::ViewRays Rays;
-  double VoxelSpacing = 0;
-  double ReferenceDepth = 0;
-  double Spacing = 0;
-};
 }
 
-// Per-mapper state kept out of the public header.
-class vtkAccelVolumeSliceMapper::vtkInternals
-{
-public:
-  vtkAccelVolumeSliceResources Resources;
-  vtkAccelVolumeSliceMask Mask;
-  vtkAccelVolumeSliceFrame Frame;
-  vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
-  // What the uploaded leaf texture reflects.
-  vtkMTimeType LeavesScalarsTime = 0;
-  vtkMTimeType LeavesFunctionTime = 0;
-  double LeavesRange[2] = { 0, 0 };
-  int LeavesLeafSize = 0;
-  int LeafGrid[3] = { 0, 0, 0 };
-  // The octree's merged non-empty boxes for that classification (slice culling).
-  std::vector<accelvolume::Box> NonEmptyBoxes;
-  bool HaveNonEmptyBoxes = false;
-  std::string Renderer;
-  std::vector<float> Vertices;
-  // RenderToImage's last images (RGBA8 colour; float window depth, 1 = nothing).
-  vtkNew<vtkImageData> ColourImage;
-  vtkNew<vtkImageData> DepthImage;
-  // Hidden points (ghost array) as a binary mask, combined with a binary mask input.
-  vtkSmartPointer<vtkImageData> GhostMask;
-  vtkMTimeType GhostMaskTime = 0;
-  bool UsedGhostMask = false;
-
-  // The mask the frame uses: the mask input, or the input's hidden points (ghost / blanking
-  // array) as a binary mask, intersected with a binary mask input.
-  vtkImageData* EffectiveMask(vtkAccelVolumeSliceMapper* self, vtkImageData* input);
-  bool ReportedError = false;
-
-  // Uploads the volume and its transfer table; false (reported) when it cannot.
-  bool UploadVolume(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
-    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2]);
-  // The frame's matrices, regions and clip planes; false when the viewport is empty.
-  bool SetUpView(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer, vtkVolume* volume,
-    vtkImageData* input, SliceView& view);
-  // The slices' spacing and the rays' depth map.
-  void ChooseSliceSpacing(vtkAccelVolumeSliceMapper* self, vtkVolume* volume, SliceView& view);
-  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
-  void BuildProxyGeometry(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
-    vtkImageData* input, vtkVolumeProperty* property, const double range[2], const SliceView& view,
-    bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& stats);
-  // The frame's settings for the passes; false (reported) when the 2D table fails.
-  bool FillFrame(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
-    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
-    vtkVolumeProperty* property, const double range[2], const SliceView& view,
-    bool skipEmptyLeaves);
-  void FillShadingAndGradients(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
-    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
-    vtkVolumeProperty* property, const double range[2], const SliceView& view);
-  // Issues the slice passes and records the frame's brick counters.
-  bool DrawPasses(
-    vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError);
-};
-
-vtkImageData* vtkAccelVolumeSliceMapper::vtkInternals::EffectiveMask(
-  vtkAccelVolumeSliceMapper* self, vtkImageData* input)
-{
-  vtkImageData* user = self->MaskInput;
-  const bool userBinary = user && self->MaskType == BinaryMaskType;
-  this->UsedGhostMask = false;
-  if (user && !userBinary)
-  {
-    return user; // a label map keeps its own meaning; hidden points are then drawn
-  }
-  if (vtkAccelVolumeHiddenPointsMask(input, user, this->GhostMask, this->GhostMaskTime))
-  {
-    this->UsedGhostMask = true;
-    return this->GhostMask;
-  }
-  return user;
-}
 
 vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
 
@@ -239,50 +142,6 @@ vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper()
     this->DepthPassContourValues->Delete();
   }
   this->SetTransfer2DYAxisArray(nullptr);
-}
-
-void vtkAccelVolumeSliceMapper::GetDepthImage(vtkImageData* image)
-{
-  if (!image)
-  {
-    return;
-  }
-  vtkImageData* depth = this->Internals->DepthImage;
-  if (depth->GetNumberOfPoints() == 0)
-  {
-    image->Initialize();
-    return;
-  }
-  // VTK's DepthImageScalarType: float window depth, or scaled to the integer type's range.
-  if (this->DepthImageScalarType != VTK_UNSIGNED_CHAR &&
-    this->DepthImageScalarType != VTK_UNSIGNED_SHORT)
-  {
-    image->DeepCopy(depth);
-    return;
-  }
-  image->SetDimensions(depth->GetDimensions());
-  image->AllocateScalars(this->DepthImageScalarType, 1);
-  const auto* in = static_cast<const float*>(depth->GetScalarPointer());
-  const double scale = this->DepthImageScalarType == VTK_UNSIGNED_CHAR ? 255.0 : 65535.0;
-  vtkDataArray* out = image->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; i < depth->GetNumberOfPoints(); ++i)
-  {
-    out->SetComponent(i, 0, std::floor(std::min(1.0f, std::max(0.0f, in[i])) * scale + 0.5));
-  }
-}
-
-void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
-{
-  if (!image)
-  {
-    return;
-  }
-  if (this->Internals->ColourImage->GetNumberOfPoints() == 0)
-  {
-    image->Initialize();
-    return;
-  }
-  image->DeepCopy(this->Internals->ColourImage);
 }
 
 bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
@@ -451,7 +310,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMapper* self,
-  vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input, SliceView& view)
+  vtkRenderer* renderer, vtkVolume* volume, vtkImageData* input, vtkAccelVolumeSliceView& view)
 {
   view.Input = input;
   input->GetDimensions(view.Dimensions);
@@ -479,7 +338,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMappe
 }
 
 void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
-  vtkAccelVolumeSliceMapper* self, vtkVolume* volume, SliceView& view)
+  vtkAccelVolumeSliceMapper* self, vtkVolume* volume, vtkAccelVolumeSliceView& view)
 {
   const accelvolume::Box& volumeBox = view.VolumeBox;
   vtkMatrix4x4* indexToEye = view.IndexToEye;
@@ -546,7 +405,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
 
 void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeSliceMapper* self,
   vtkOpenGLRenderWindow* window, vtkImageData* input, vtkVolumeProperty* property,
-  const double range[2], const SliceView& view, bool& skipEmptyLeaves,
+  const double range[2], const vtkAccelVolumeSliceView& view, bool& skipEmptyLeaves,
   vtkAccelVolumeSliceGeometryStats& geometryStats)
 {
   const bool extremum =
@@ -591,7 +450,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,
   vtkRenderer* renderer, vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
-  vtkVolumeProperty* property, const double range[2], const SliceView& view, bool skipEmptyLeaves)
+  vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view, bool skipEmptyLeaves)
 {
   const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
@@ -733,7 +592,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
 void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
   vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2],
-  const SliceView& view)
+  const vtkAccelVolumeSliceView& view)
 {
   const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
@@ -841,7 +700,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   progress.Report(0.3); // the upload is the slow part of a first frame on a large volume
 
-  SliceView view;
+  vtkAccelVolumeSliceView view;
   if (!internals.SetUpView(this, renderer, volume, input, view))
   {
     return;

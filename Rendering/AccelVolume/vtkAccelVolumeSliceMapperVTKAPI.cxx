@@ -1,14 +1,19 @@
 // vtkAccelVolumeSliceMapper: the members that exist for vtkGPUVolumeRayCastMapper's API (memory
-// limits, partitions, masks, depth pass, reduction ratio, render support) and the warnings for
-// VTK settings it does not apply.
+// limits, partitions, masks and blanking, render-to-image images, depth pass, reduction ratio,
+// render support) and the warnings for VTK settings it does not apply.
 #include "vtkAccelVolumeSliceMapper.h"
 
+#include "vtkAccelVolumeSliceMapperInternals.h"
+
 #include "vtkContourValues.h"
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
 
 void vtkAccelVolumeSliceMapper::SetMaxMemoryInBytes(vtkIdType bytes)
 {
@@ -153,5 +158,68 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
   os << indent << "RenderToImage: " << this->RenderToImage << "\n";
   os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
+}
+
+
+vtkImageData* vtkAccelVolumeSliceMapper::vtkInternals::EffectiveMask(
+  vtkAccelVolumeSliceMapper* self, vtkImageData* input)
+{
+  vtkImageData* user = self->MaskInput;
+  const bool userBinary = user && self->MaskType == BinaryMaskType;
+  this->UsedGhostMask = false;
+  if (user && !userBinary)
+  {
+    return user; // a label map keeps its own meaning; hidden points are then drawn
+  }
+  if (vtkAccelVolumeHiddenPointsMask(input, user, this->GhostMask, this->GhostMaskTime))
+  {
+    this->UsedGhostMask = true;
+    return this->GhostMask;
+  }
+  return user;
+}
+
+void vtkAccelVolumeSliceMapper::GetDepthImage(vtkImageData* image)
+{
+  if (!image)
+  {
+    return;
+  }
+  vtkImageData* depth = this->Internals->DepthImage;
+  if (depth->GetNumberOfPoints() == 0)
+  {
+    image->Initialize();
+    return;
+  }
+  // VTK's DepthImageScalarType: float window depth, or scaled to the integer type's range.
+  if (this->DepthImageScalarType != VTK_UNSIGNED_CHAR &&
+    this->DepthImageScalarType != VTK_UNSIGNED_SHORT)
+  {
+    image->DeepCopy(depth);
+    return;
+  }
+  image->SetDimensions(depth->GetDimensions());
+  image->AllocateScalars(this->DepthImageScalarType, 1);
+  const auto* in = static_cast<const float*>(depth->GetScalarPointer());
+  const double scale = this->DepthImageScalarType == VTK_UNSIGNED_CHAR ? 255.0 : 65535.0;
+  vtkDataArray* out = image->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < depth->GetNumberOfPoints(); ++i)
+  {
+    out->SetComponent(i, 0, std::floor(std::min(1.0f, std::max(0.0f, in[i])) * scale + 0.5));
+  }
+}
+
+void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
+{
+  if (!image)
+  {
+    return;
+  }
+  if (this->Internals->ColourImage->GetNumberOfPoints() == 0)
+  {
+    image->Initialize();
+    return;
+  }
+  image->DeepCopy(this->Internals->ColourImage);
 }
 

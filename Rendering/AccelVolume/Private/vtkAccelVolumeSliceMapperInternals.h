@@ -1,0 +1,112 @@
+// vtkAccelVolumeSliceMapper's per-mapper state and per-frame view (private to the module),
+// shared by its two source files.
+#ifndef vtkAccelVolumeSliceMapperInternals_h
+#define vtkAccelVolumeSliceMapperInternals_h
+
+#include "vtkAccelVolumeMinMaxOctree.h"
+#include "vtkAccelVolumeSliceGeometry.h"
+#include "vtkAccelVolumeSliceMapper.h"
+#include "vtkAccelVolumeSliceMask.h"
+#include "vtkAccelVolumeSlicePasses.h"
+#include "vtkAccelVolumeSliceResources.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+
+#include "common/Geometry.h"
+
+#include <string>
+#include <vector>
+
+class vtkCamera;
+class vtkDataArray;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkVolume;
+class vtkVolumeProperty;
+
+// The frame's view: its size, the matrices between index, eye and clip space, the clipped
+// regions and the slices' spacing and depth.
+struct vtkAccelVolumeSliceView
+{
+  vtkImageData* Input = nullptr;
+  int Dimensions[3] = { 0, 0, 0 };
+  int Width = 0;
+  int Height = 0;
+  int LowerLeft[2] = { 0, 0 };
+  vtkCamera* Camera = nullptr;
+  vtkMatrix4x4* View = nullptr;
+  vtkNew<vtkMatrix4x4> IndexToWorld;
+  vtkNew<vtkMatrix4x4> Projection;
+  vtkNew<vtkMatrix4x4> IndexToEye;
+  vtkNew<vtkMatrix4x4> IndexToClip;
+  vtkNew<vtkMatrix4x4> EyeToIndex;
+  vtkNew<vtkMatrix4x4> InverseProjection;
+  accelvolume::Box VolumeBox;
+  std::vector<accelvolume::Box> Regions;
+  std::vector<accelvolume::HalfSpace> Clip;
+  accelvolume::ViewRays Rays;
+  double VoxelSpacing = 0;
+  double ReferenceDepth = 0;
+  double Spacing = 0;
+};
+
+// Per-mapper state kept out of the public header.
+class vtkAccelVolumeSliceMapper::vtkInternals
+{
+public:
+  vtkAccelVolumeSliceResources Resources;
+  vtkAccelVolumeSliceMask Mask;
+  vtkAccelVolumeSliceFrame Frame;
+  vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
+  // What the uploaded leaf texture reflects.
+  vtkMTimeType LeavesScalarsTime = 0;
+  vtkMTimeType LeavesFunctionTime = 0;
+  double LeavesRange[2] = { 0, 0 };
+  int LeavesLeafSize = 0;
+  int LeafGrid[3] = { 0, 0, 0 };
+  // The octree's merged non-empty boxes for that classification (slice culling).
+  std::vector<accelvolume::Box> NonEmptyBoxes;
+  bool HaveNonEmptyBoxes = false;
+  std::string Renderer;
+  std::vector<float> Vertices;
+  // RenderToImage's last images (RGBA8 colour; float window depth, 1 = nothing).
+  vtkNew<vtkImageData> ColourImage;
+  vtkNew<vtkImageData> DepthImage;
+  // Hidden points (ghost array) as a binary mask, combined with a binary mask input.
+  vtkSmartPointer<vtkImageData> GhostMask;
+  vtkMTimeType GhostMaskTime = 0;
+  bool UsedGhostMask = false;
+
+  // The mask the frame uses: the mask input, or the input's hidden points (ghost / blanking
+  // array) as a binary mask, intersected with a binary mask input.
+  vtkImageData* EffectiveMask(vtkAccelVolumeSliceMapper* self, vtkImageData* input);
+  bool ReportedError = false;
+
+  // Uploads the volume and its transfer table; false (reported) when it cannot.
+  bool UploadVolume(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2]);
+  // The frame's matrices, regions and clip planes; false when the viewport is empty.
+  bool SetUpView(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer, vtkVolume* volume,
+    vtkImageData* input, vtkAccelVolumeSliceView& view);
+  // The slices' spacing and the rays' depth map.
+  void ChooseSliceSpacing(vtkAccelVolumeSliceMapper* self, vtkVolume* volume, vtkAccelVolumeSliceView& view);
+  // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
+  void BuildProxyGeometry(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    vtkImageData* input, vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
+    bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& stats);
+  // The frame's settings for the passes; false (reported) when the 2D table fails.
+  bool FillFrame(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
+    bool skipEmptyLeaves);
+  void FillShadingAndGradients(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
+    vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view);
+  // Issues the slice passes and records the frame's brick counters.
+  bool DrawPasses(
+    vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError);
+};
+
+#endif
