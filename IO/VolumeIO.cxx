@@ -486,19 +486,10 @@ bool CheckXMLImage(vtkXMLImageDataReader* reader, const std::string& path, std::
     // Piece > PointData/CellData > DataArray (one tuple per voxel or fewer), FieldData > DataArray.
     vtkXMLDataElement* element = image->GetNestedElement(p);
     const std::string name = element->GetName() ? element->GetName() : "";
-    int extent[6];
-    Dimensions pieceDims = { 0, 0, 0 };
-    if (element->GetVectorAttribute("Extent", 6, extent) == 6)
-    {
-      voxelsOf(extent, pieceDims);
-    }
-    std::int64_t voxels = 1;
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      // A piece outside or larger than the whole extent is sized as the whole extent.
-      voxels *=
-        pieceDims[axis] >= 1 && pieceDims[axis] <= dims[axis] ? pieceDims[axis] : dims[axis];
-    }
+    // vtkXMLImageDataReader allocates every piece array over the whole extent it outputs,
+    // whatever the piece's own Extent says (a fuzzed 8-value piece in a 2x222222222x2 extent
+    // made it allocate 3.5 GB), so each array is sized by the whole extent.
+    const std::int64_t voxels = dims[0] * dims[1] * dims[2];
     for (int a = 0; a < element->GetNumberOfNestedElements(); ++a)
     {
       vtkXMLDataElement* child = element->GetNestedElement(a);
