@@ -258,8 +258,7 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::ReadSceneDepth(
   const int imageWidth = in.ImageWidth;
   const int imageHeight = in.ImageHeight;
   this->Depth.resize(static_cast<std::size_t>(width) * height);
-  if (vtkAccelVolumeImageDisplay::ReadDepth(
-        window, in.LowerLeft, width, height, this->Depth.data()))
+  if (this->Display.ReadDepth(window, in.LowerLeft, width, height, this->Depth.data()))
   {
     this->RayDepth.resize(static_cast<std::size_t>(imageWidth) * imageHeight);
     for (int j = 0; j < imageHeight; ++j)
@@ -289,8 +288,7 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   settings.cellLeap = self->CellLeaping != 0;
   settings.earlyTermination = self->EarlyRayTermination != 0;
   settings.terminationThreshold = self->EarlyRayTerminationThreshold;
-  settings.additiveUnitDistance =
-    self->AdditiveUnitDistance > 0
+  settings.additiveUnitDistance = self->AdditiveUnitDistance > 0
     ? self->AdditiveUnitDistance
     : std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)); // VTK's unit
   settings.averageRange[0] = self->AverageIPScalarRange[0];
@@ -304,9 +302,8 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   if (shade || !in.Transfer.gradientOpacity.empty())
   {
     // Gradient opacity needs the normal matrix too (gradients in world units).
-    vtkAccelVolumeCPULighting(
-      renderer, property, in.IndexToWorld, in.View.dims, renderer->GetActiveCamera(), shade,
-      in.Lighting);
+    vtkAccelVolumeCPULighting(renderer, property, in.IndexToWorld, in.View.dims,
+      renderer->GetActiveCamera(), shade, in.Lighting);
   }
 }
 
@@ -376,8 +373,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   vtkVolumeProperty* property = nullptr;
-  vtkOpenGLRenderWindow* window =
-    vtkAccelVolumeBeginCPURender(this, *this->InputAdapter, renderer, volume, input, scalars, property);
+  vtkOpenGLRenderWindow* window = vtkAccelVolumeBeginCPURender(
+    this, *this->InputAdapter, renderer, volume, input, scalars, property);
   if (!window)
   {
     return;
@@ -416,8 +413,8 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   float selectionColour[3];
   const int selectionMode = vtkAccelVolumeSelectionMode(renderer, selectionColour);
   if (!internals.Display.Draw(window, in.LowerLeft, in.Width, in.Height, in.ImageWidth,
-        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias, selectionMode,
-        selectionColour))
+        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias,
+        selectionMode, selectionColour))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

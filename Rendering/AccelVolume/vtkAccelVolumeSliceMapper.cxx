@@ -9,8 +9,8 @@
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkAccelVolumeSliceGeometry.h"
-#include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceMask.h"
+#include "vtkAccelVolumeSlicePasses.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -23,6 +23,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
@@ -53,14 +54,47 @@ bool IsSupportedBlend(int blendMode)
     blendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
     blendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND ||
     blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
-    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND;
+    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND || blendMode == vtkVolumeMapper::SLICE_BLEND;
 }
 
-// Iso-surfaces are drawn by the composite passes (front to back, terminated).
+// Iso-surfaces are drawn by the composite passes (front to back, terminated), and so is a slice
+// plane (one classified sample per pixel).
 bool CompositeLike(int blendMode)
 {
   return blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
-    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND;
+    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND || blendMode == vtkVolumeMapper::SLICE_BLEND;
+}
+
+// SLICE_BLEND: the property's slice plane (world) in index space, cut to the volume and the
+// clip planes. Empty when the plane misses them; `error` says why there is no plane at all.
+accelvolume::Polygon SlicePlanePolygon(
+  vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view, std::string& error)
+{
+  vtkPlane* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
+  if (!plane)
+  {
+    error = property->GetSliceFunction()
+      ? "SLICE_BLEND needs a vtkPlane as the property's slice function (got " +
+        std::string(property->GetSliceFunction()->GetClassName()) + ")"
+      : "SLICE_BLEND needs a slice function on the volume property (vtkPlane)";
+    return {};
+  }
+  double origin[3];
+  double normal[3];
+  plane->GetOrigin(origin);
+  plane->GetNormal(normal);
+  // world = A index + t: the plane n . (world - o) = 0 is (A^T n) . index = n . (o - t).
+  vtkMatrix4x4* m = view.IndexToWorld;
+  accelvolume::Vec3 indexNormal;
+  double value = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    indexNormal.x += m->GetElement(r, 0) * normal[r];
+    indexNormal.y += m->GetElement(r, 1) * normal[r];
+    indexNormal.z += m->GetElement(r, 2) * normal[r];
+    value += normal[r] * (origin[r] - m->GetElement(r, 3));
+  }
+  return accelvolume::PlaneRegionPolygon(indexNormal, value, view.VolumeBox, view.Clip);
 }
 
 // Composite shading inputs: VTK's light model in eye space (at most MaximumLights lights: more
@@ -82,8 +116,9 @@ void FillShading(vtkAccelVolumeSliceMapper* self, vtkAccelVolumeSliceFrame& fram
   const int count = static_cast<int>(std::min<size_t>(model.lights.size(), Maximum));
   if (model.lights.size() > static_cast<size_t>(Maximum))
   {
-    vtkWarningWithObjectMacro(self, "The slice mapper shades with the first "
-        << Maximum << " of the renderer's " << model.lights.size() << " lights");
+    vtkWarningWithObjectMacro(self,
+      "The slice mapper shades with the first " << Maximum << " of the renderer's "
+                                                << model.lights.size() << " lights");
   }
   frame.LightCount = count;
   for (int i = 0; i < count; ++i)
@@ -122,7 +157,6 @@ accelvolume::Vec3 MakeVec3(double x, double y, double z)
 constexpr double SlicePhase = 0.0;
 
 }
-
 
 vtkStandardNewMacro(vtkAccelVolumeSliceMapper);
 
@@ -211,8 +245,8 @@ void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->Internals->Mask.ReleaseGraphicsResources(window);
 }
 
-bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray* scalars,
-  const std::string& inputError, vtkVolume* volume)
+bool vtkAccelVolumeSliceMapper::ValidateInput(
+  vtkImageData* input, vtkDataArray* scalars, const std::string& inputError, vtkVolume* volume)
 {
   std::string error = inputError;
   if (!input || !scalars || !error.empty() || !vtkAccelVolumeCheckGeometry(this, error))
@@ -227,8 +261,8 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray*
     const bool independent = !property || property->GetIndependentComponents();
     if (this->BlendMode != COMPOSITE_BLEND)
     {
-      vtkErrorMacro("Scalars with " << components
-                                    << " components render with composite blending only here");
+      vtkErrorMacro(
+        "Scalars with " << components << " components render with composite blending only here");
       return false;
     }
     if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
@@ -238,8 +272,8 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(vtkImageData* input, vtkDataArray*
     }
     if (!independent && components != 2 && components != 4)
     {
-      vtkErrorMacro("Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not "
-        << components);
+      vtkErrorMacro(
+        "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not " << components);
       return false;
     }
     if (property && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
@@ -420,8 +454,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // ... nor does it know a label map's colours (a binary mask only removes samples).
   // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D &&
-    !self->UsesLabelMap() &&
-    this->Frame.Components == 1 &&
+    !self->UsesLabelMap() && this->Frame.Components == 1 &&
     (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
@@ -440,6 +473,17 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   geometry.BoundaryFaces = self->BoundaryRerendering != 0;
   geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
   geometry.Layout = &layout;
+  accelvolume::Polygon slicePlane;
+  if (self->BlendMode == SLICE_BLEND)
+  {
+    std::string planeError;
+    slicePlane = SlicePlanePolygon(property, view, planeError);
+    geometry.SlicePlane = &slicePlane;
+    if (!planeError.empty())
+    {
+      self->WarnNotApplicable("SliceFunction", planeError.c_str());
+    }
+  }
   vtkAccelVolumeBuildSliceGeometry(geometry, this->Frame, this->Vertices, geometryStats);
   if (composite)
   {
@@ -450,7 +494,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,
   vtkRenderer* renderer, vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
-  vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view, bool skipEmptyLeaves)
+  vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
+  bool skipEmptyLeaves)
 {
   const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
@@ -460,7 +505,8 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   {
     // The property's iso-values normalised to the data range, ascending (VTK's order).
     vtkContourValues* values = property->GetIsoSurfaceValues();
-    std::vector<double> iso(values->GetValues(), values->GetValues() + values->GetNumberOfContours());
+    std::vector<double> iso(
+      values->GetValues(), values->GetValues() + values->GetNumberOfContours());
     std::sort(iso.begin(), iso.end());
     const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
     for (double value : iso)
@@ -511,13 +557,16 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     &clipUniforms[0][0], &clipUniforms[0][0] + 4 * MaximumClipPlanes, &frame.ClipPlanes[0][0]);
   frame.SliceSpacing = static_cast<float>(view.Spacing);
   frame.SlicePhase = static_cast<float>(SlicePhase);
-  frame.BoundaryRerendering = self->BoundaryRerendering != 0 && !composite;
+  // A slice plane is drawn as a cut face.
+  frame.SlicePlane = self->BlendMode == SLICE_BLEND;
+  frame.BoundaryRerendering = (self->BoundaryRerendering != 0 && !composite) || frame.SlicePlane;
   frame.OpacityUnitDistance =
     static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)));
   frame.Parallel = view.Camera->GetParallelProjection() != 0;
   frame.FrontToBack = self->FrontToBack != 0;
-  frame.Jitter = self->Jittering != 0;
-  frame.EarlyTermination = composite && self->EarlyRayTermination && frame.FrontToBack;
+  frame.Jitter = self->Jittering != 0 && self->BlendMode != SLICE_BLEND;
+  frame.EarlyTermination =
+    composite && !frame.SlicePlane && self->EarlyRayTermination && frame.FrontToBack;
   frame.TerminationInterval = self->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(self->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
@@ -545,11 +594,11 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     frame.ComponentWeights[c] = static_cast<float>(property->GetComponentWeight(c));
     // Dependent components correct opacity with the last component's unit distance, as VTK.
     const int unitComponent = frame.IndependentComponents ? c : frame.Components - 1;
-    frame.ComponentUnitDistances[c] = static_cast<float>(
-      std::max(1.0e-6, property->GetScalarOpacityUnitDistance(unitComponent)));
+    frame.ComponentUnitDistances[c] =
+      static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(unitComponent)));
   }
-  const bool ghostMask = this->GhostMask && this->GhostMask->GetNumberOfPoints() > 0 &&
-    this->UsedGhostMask;
+  const bool ghostMask =
+    this->GhostMask && this->GhostMask->GetNumberOfPoints() > 0 && this->UsedGhostMask;
   frame.MaskMode = ghostMask
     ? 1
     : (!self->MaskInput ? 0
@@ -570,8 +619,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, this->LeafGrid[c] - 1));
   }
   this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
-  const double unit =
-    self->AdditiveUnitDistance > 0
+  const double unit = self->AdditiveUnitDistance > 0
     ? self->AdditiveUnitDistance
     : std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0)); // VTK's unit
   frame.AdditiveScale = static_cast<float>(1.0 / unit);

@@ -16,6 +16,7 @@
 #include "vtkLight.h"
 #include "vtkLightKit.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkPointData.h"
 #include "vtkVolumeProperty.h"
 
@@ -77,6 +78,19 @@ void Shaded(vtkVolumeProperty* property, double specular)
   property->SetDiffuse(0.8);
   property->SetSpecular(specular);
   property->SetSpecularPower(20.0);
+}
+
+// An oblique plane through the volume, every value somewhat opaque (the whole section shows).
+void SlicePlaneProperty(vtkVolumeProperty* property)
+{
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(24.0, 20.0, 22.0);
+  plane->SetNormal(1.0, 0.6, 0.4);
+  property->SetSliceFunction(plane);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.5);
+  opacity->AddPoint(1000.0, 1.0);
+  property->SetScalarOpacity(opacity);
 }
 
 void LightKit(vtkRenderer* renderer)
@@ -226,6 +240,17 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
         p->GetIsoSurfaceValues()->SetValue(1, 600.0);
       },
       4.0 / 255.0, 0.03 },
+    // SLICE_BLEND: the property's plane, one classified sample per pixel (oblique plane).
+    { "slice plane, unshaded", vtkVolumeMapper::SLICE_BLEND, 1.25, 0.5,
+      [](vtkRenderer*, vtkVolumeProperty* p) { SlicePlaneProperty(p); },
+      2.0 / 255.0, 0.01 },
+    { "slice plane, shaded (diffuse)", vtkVolumeMapper::SLICE_BLEND, 1.25, 0.5,
+      [](vtkRenderer*, vtkVolumeProperty* p)
+      {
+        Shaded(p, 0.0);
+        SlicePlaneProperty(p);
+      },
+      4.0 / 255.0, 0.06 },
     // Thin voxels: a unit of one voxel spacing would saturate; VTK's unit is the property's.
     { "raysum, z spacing 0.3", vtkVolumeMapper::ADDITIVE_BLEND, 0.3, 0.25, nullptr, 4.0 / 255.0,
       0.03 },
@@ -236,7 +261,8 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
     const std::vector<float> reference =
       RenderWith(Fixed<vtkGPUVolumeRayCastMapper>(c.SampleDistance), c);
     const std::vector<float> slice = RenderWith(Fixed<vtkAccelVolumeSliceMapper>(c.SampleDistance), c);
-    const bool rayCasterRenders = c.Blend != vtkVolumeMapper::ISOSURFACE_BLEND;
+    const bool rayCasterRenders = c.Blend != vtkVolumeMapper::ISOSURFACE_BLEND &&
+      c.Blend != vtkVolumeMapper::SLICE_BLEND;
     const std::vector<float> rayCast = rayCasterRenders
       ? RenderWith(Fixed<vtkAccelVolumeRayCastMapper>(c.SampleDistance), c)
       : reference;
@@ -248,7 +274,8 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
            accelvolume_test::CompareImages(slice, reference, 16.0 / 255.0), c.MeanLimit,
            c.FractionLimit) &&
       ok;
-    // The ray caster refuses ISOSURFACE_BLEND with a clear error (TestAccelVolumeBadInput).
+    // The ray caster refuses ISOSURFACE_BLEND and SLICE_BLEND with a clear error
+    // (TestAccelVolumeBadInput).
     ok = (!rayCasterRenders ||
            accelvolume_test::Report(("ray cast vs vtkGPUVolumeRayCastMapper, " + name).c_str(),
              accelvolume_test::CompareImages(rayCast, reference, 16.0 / 255.0), c.MeanLimit,

@@ -113,13 +113,12 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
 bool vtkAccelVolumeImageDisplay::ReadDepth(
   vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height, float* depth)
 {
-  window->GetState()->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(lowerLeft[0], lowerLeft[1], width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
-  return glGetError() == GL_NO_ERROR;
+  return this->DepthReader.Read(window, lowerLeft, width, height, depth);
 }
 
 void vtkAccelVolumeImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Image->ReleaseGraphicsResources(window);
   this->Array->ReleaseGraphicsResources();
+  this->DepthReader.ReleaseGraphicsResources(window);
 }

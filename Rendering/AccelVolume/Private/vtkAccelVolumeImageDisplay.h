@@ -3,7 +3,8 @@
 #ifndef vtkAccelVolumeImageDisplay_h
 #define vtkAccelVolumeImageDisplay_h
 
-#include "vtkNew.h" // For vtkNew
+#include "vtkAccelVolumeDepthCopy.h" // For vtkAccelVolumeDepthReader
+#include "vtkNew.h"                  // For vtkNew
 
 #include <vector> // For std::vector
 
@@ -30,7 +31,7 @@ public:
     const float selectionColour[3] = nullptr);
 
   // The viewport's window depth in [0, 1] (rows from the bottom), width * height values.
-  static bool ReadDepth(
+  bool ReadDepth(
     vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height, float* depth);
 
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -42,6 +43,7 @@ private:
   vtkNew<vtkTextureObject> Image;
   std::vector<unsigned short> Pixels;
   vtkNew<vtkOpenGLVertexArrayObject> Array;
+  vtkAccelVolumeDepthReader DepthReader;
 };
 
 #endif

@@ -186,6 +186,39 @@ void BuildProjectionBrick(const vtkAccelVolumeSliceGeometryInput& input,
     }
   }
 }
+
+// SLICE_BLEND: the plane's polygon as the brick's one cut face (no slices).
+void BuildSlicePlaneBrick(const vtkAccelVolumeSliceGeometryInput& input,
+  const accelvolume::Box* drawn, Frame::BrickDraw& draw, std::vector<float>& vertices,
+  vtkAccelVolumeSliceGeometryStats& stats)
+{
+  accelvolume::Polygon face = *input.SlicePlane;
+  if (drawn)
+  {
+    for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*drawn))
+    {
+      face = face.empty() ? face : accelvolume::ClipPolygon(face, half);
+    }
+  }
+  Frame::Cell cell;
+  cell.Lower = ToFloats(input.VolumeBox.lower);
+  cell.Upper = ToFloats(input.VolumeBox.upper);
+  cell.SliceFirst = VertexCount(vertices);
+  draw.SliceStarts.assign(2, VertexCount(vertices));
+  cell.FaceFirst = VertexCount(vertices);
+  if (!face.empty())
+  {
+    AppendProxyPolygon(face, 0.0, vertices);
+    ++stats.BoundaryFaces;
+    ++stats.ProxyPolygons;
+    stats.Slices = 1;
+  }
+  cell.FaceCount = VertexCount(vertices) - cell.FaceFirst;
+  if (cell.FaceCount > 0)
+  {
+    draw.Cells.push_back(cell);
+  }
+}
 }
 
 void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& input,
@@ -219,7 +252,11 @@ void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& in
     const accelvolume::Brick& brick = layout.bricks[index];
     Frame::BrickDraw draw = MakeBrickDraw(index, brick, bricked);
     const accelvolume::Box drawn = DrawnBox(brick, input.VolumeBox);
-    if (input.Composite)
+    if (input.SlicePlane)
+    {
+      BuildSlicePlaneBrick(input, bricked ? &drawn : nullptr, draw, vertices, stats);
+    }
+    else if (input.Composite)
     {
       if (bricked && input.NonEmpty &&
         !TouchesAny(accelvolume::BrickOwnedBox(brick, input.VolumeBox), *input.NonEmpty))

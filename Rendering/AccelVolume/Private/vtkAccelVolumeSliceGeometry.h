@@ -16,8 +16,8 @@
 
 #include "vtkAccelVolumeSlicePasses.h"
 
-#include "slicing/Bricking.h"
 #include "common/Geometry.h"
+#include "slicing/Bricking.h"
 #include "slicing/SlabProxy.h"
 
 #include <vector>
@@ -33,15 +33,18 @@ struct vtkAccelVolumeSliceGeometryInput
   double Phase = 0;
   bool Composite = false;
   bool FrontToBack = true;
-  int SlabSamples = 1;         // projection modes, one brick only
-  bool BoundaryFaces = false;  // projection modes
+  int SlabSamples = 1;                                     // projection modes, one brick only
+  bool BoundaryFaces = false;                              // projection modes
   const std::vector<accelvolume::Box>* NonEmpty = nullptr; // composite octree culling
   const accelvolume::BrickLayout* Layout = nullptr;
+  // SLICE_BLEND: the slice function's plane inside the volume (and clip planes); each brick
+  // draws it as one cut face instead of slices.
+  const accelvolume::Polygon* SlicePlane = nullptr;
 };
 
 struct vtkAccelVolumeSliceGeometryStats
 {
-  int Slices = 0;        // sample planes (slab polygons times their samples)
+  int Slices = 0; // sample planes (slab polygons times their samples)
   int ProxyPolygons = 0;
   int BoundaryFaces = 0;
   double KeptAreaFraction = 1.0; // composite: slice area left by octree culling

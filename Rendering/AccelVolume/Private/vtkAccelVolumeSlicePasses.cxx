@@ -1,6 +1,7 @@
 // The slice mapper's OpenGL passes: accumulate slices and cut faces, then resolve to colour.
 #include "vtkAccelVolumeSlicePasses.h"
 
+#include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
@@ -168,6 +169,7 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
     "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
+    "\n#define ACCELVOLUME_SLICE_PLANE " + (composite && frame.SlicePlane ? "1" : "0") +
     "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(composite ? frame.Components : 1) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +
@@ -331,8 +333,8 @@ void SetBrickUniforms(vtkShaderProgram* program, vtkTextureObject* texture,
 }
 
 // The slices (or cut faces) of one brick's cells, with `program` current.
-void DrawBrickCells(vtkShaderProgram* program, const vtkAccelVolumeSliceFrame::BrickDraw& brick,
-  bool faces)
+void DrawBrickCells(
+  vtkShaderProgram* program, const vtkAccelVolumeSliceFrame::BrickDraw& brick, bool faces)
 {
   for (const vtkAccelVolumeSliceFrame::Cell& cell : brick.Cells)
   {
@@ -357,8 +359,7 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
   int first = 0;
   while (first < sliceCount)
   {
-    const int last =
-      std::min(sliceCount, first + frame.TerminationInterval - slicesSinceMark);
+    const int last = std::min(sliceCount, first + frame.TerminationInterval - slicesSinceMark);
     glDrawArrays(
       GL_TRIANGLES, brick.SliceStarts[first], brick.SliceStarts[last] - brick.SliceStarts[first]);
     slicesSinceMark += last - first;
@@ -385,8 +386,10 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   const vtkAccelVolumeSliceFrame& frame, std::string& error)
 {
   vtkOpenGLShaderCache* cache = window->GetShaderCache();
-  const std::string sliceSource = ShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
-  vtkShaderProgram* sliceProgram = cache->ReadyShaderProgram(AccelVolumeSliceVS, sliceSource.c_str(), "");
+  const std::string sliceSource =
+    ShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
+  vtkShaderProgram* sliceProgram =
+    cache->ReadyShaderProgram(AccelVolumeSliceVS, sliceSource.c_str(), "");
   if (!sliceProgram)
   {
     error = "the slice shader did not compile";
@@ -405,8 +408,8 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     }
     SetFrameUniforms(faceProgram, resources, frame);
   }
-  const bool terminate = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND &&
-    frame.EarlyTermination;
+  const bool terminate =
+    frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND && frame.EarlyTermination;
   int slicesLeft = 0;
   for (const auto& brick : frame.Bricks)
   {
@@ -603,8 +606,8 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
       frame.DepthImage->AllocateScalars(VTK_FLOAT, 1);
       glReadBuffer(GL_COLOR_ATTACHMENT1);
       state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
-      glReadPixels(0, 0, frame.Width, frame.Height, GL_RED, GL_FLOAT,
-        frame.DepthImage->GetScalarPointer());
+      glReadPixels(
+        0, 0, frame.Width, frame.Height, GL_RED, GL_FLOAT, frame.DepthImage->GetScalarPointer());
       glReadBuffer(GL_COLOR_ATTACHMENT0);
     }
     glBlendEquationi(1, static_cast<GLenum>(savedEquation));
@@ -691,19 +694,18 @@ bool CopySceneDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources&
 {
   if (!Reduced(frame))
   {
-    resources.SceneDepth->Activate();
-    resources.SceneDepth->CopyFromFrameBuffer(
-      frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.Width, frame.Height);
-    resources.SceneDepth->Deactivate();
+    vtkAccelVolumeCopyReadDepth(window, resources.SceneDepth, resources.Framebuffer,
+      frame.LowerLeft[0], frame.LowerLeft[1], frame.Width, frame.Height);
     return true;
   }
-  if (!resources.PrepareFullDepth(window, frame.ViewportWidth, frame.ViewportHeight))
+  if (!resources.PrepareFullDepth(
+        window, frame.ViewportWidth, frame.ViewportHeight, vtkAccelVolumeReadDepthFormat()))
   {
     return false;
   }
+  vtkAccelVolumeCopyReadDepth(window, resources.SceneDepthFull, resources.DepthFramebuffer,
+    frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   resources.SceneDepthFull->Activate();
-  resources.SceneDepthFull->CopyFromFrameBuffer(
-    frame.LowerLeft[0], frame.LowerLeft[1], 0, 0, frame.ViewportWidth, frame.ViewportHeight);
   vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
     AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
   if (!program)
@@ -756,7 +758,8 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
   const int channels = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
-  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels) &&
+  bool ok = resources.PrepareTargets(
+              window, frame.Width, frame.Height, channels, vtkAccelVolumeReadDepthFormat()) &&
     resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage);
   if (ok)
   {

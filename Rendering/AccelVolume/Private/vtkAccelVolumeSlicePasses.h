@@ -51,7 +51,7 @@ struct vtkAccelVolumeSliceFrame
 
   int BlendMode = 0; // vtkVolumeMapper blend mode (MIP, MinIP, additive, average)
   int SlabSamples = 1;
-  int Width = 0;  // accumulation target: the viewport, divided by the image sample distance
+  int Width = 0; // accumulation target: the viewport, divided by the image sample distance
   int Height = 0;
   int ViewportWidth = 0; // the renderer's viewport in window pixels
   int ViewportHeight = 0;
@@ -70,6 +70,7 @@ struct vtkAccelVolumeSliceFrame
   float SliceSpacing = 1;
   float SlicePhase = 0;
   bool BoundaryRerendering = true;
+  bool SlicePlane = false; // SLICE_BLEND: one classified sample on the plane, drawn as a face
   bool Parallel = false;
   float AdditiveScale = 1;
   float OpacityUnitDistance = 1; // composite: length the table opacities hold for
@@ -121,12 +122,12 @@ struct vtkAccelVolumeSliceFrame
   bool RenderToImage = false;
   vtkImageData* ColourImage = nullptr;
   vtkImageData* DepthImage = nullptr; // float window depth, 1 where nothing contributes
-  int SelectionMode = 0; // vtkAccelVolumeSelectionMode
+  int SelectionMode = 0;              // vtkAccelVolumeSelectionMode
   float SelectionColour[3] = { 0, 0, 0 };
   // Composite early ray termination: every TerminationInterval slices, pixels whose alpha
   // reached TerminationThreshold are closed for later slices (counted across bricks).
   bool FrontToBack = true; // composite order (back to front uses "over")
-  bool Jitter = false;      // composite: per-pixel sample offsets against wood-grain
+  bool Jitter = false;     // composite: per-pixel sample offsets against wood-grain
   bool EarlyTermination = false;
   int TerminationInterval = 16;
   float TerminationThreshold = 0.99f;
@@ -134,16 +135,16 @@ struct vtkAccelVolumeSliceFrame
 
   // Composite empty-space skipping: per fragment (transparent samples skip the shading) and
   // by octree leaves (EmptyLeaves texture, 1 = transparent leaf).
-  bool GradientTexture = false;    // precomputed gradients instead of central differences
+  bool GradientTexture = false; // precomputed gradients instead of central differences
   float GradientTextureScale = 1;
   bool TransferFunction2D = false; // vtkVolumeProperty::TF_2D
-  float Gradient2DMaximum = 1;      // gradient magnitude at the 2D table's top row
+  float Gradient2DMaximum = 1;     // gradient magnitude at the 2D table's top row
   bool SkipTransparentSamples = false;
   bool SkipEmptyLeaves = false;
   float LeafSize = 8;
   float LeafGridMaximum[3] = { 0, 0, 0 };
 
-  std::vector<BrickDraw> Bricks; // in drawing order
+  std::vector<BrickDraw> Bricks;                // in drawing order
   const std::vector<float>* Vertices = nullptr; // triangles, VertexFloats per vertex
 };
 

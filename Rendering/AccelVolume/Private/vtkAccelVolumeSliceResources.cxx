@@ -1,6 +1,7 @@
 // GPU resources of the slice mapper: texture upload with exact integer encodings.
 #include "vtkAccelVolumeSliceResources.h"
 
+#include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeMapperSupport.h"
 
 #include "vtkAccelVolumeScalarEncoding.h"
@@ -37,9 +38,9 @@ bool vtkAccelVolumeSliceResources::UseContext(vtkOpenGLRenderWindow* window)
   return changed;
 }
 
-bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window,
-  vtkImageData* image, vtkDataArray* scalars, const double range[2], std::uint64_t budgetBytes,
-  int maximumBrickSize, std::string& error)
+bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window, vtkImageData* image,
+  vtkDataArray* scalars, const double range[2], std::uint64_t budgetBytes, int maximumBrickSize,
+  std::string& error)
 {
   const bool contextChanged = this->UseContext(window);
   int dims[3];
@@ -92,7 +93,7 @@ bool vtkAccelVolumeSliceResources::PrepareVolume(vtkOpenGLRenderWindow* window,
   const std::uint64_t capacity = budgetBytes == 0
     ? this->Layout.bricks.size()
     : std::max<std::uint64_t>(1, budgetBytes / this->Layout.largestBrickBytes);
-  this->Bricks.Reset(this->Layout, dims,  &this->Encoded,
+  this->Bricks.Reset(this->Layout, dims, &this->Encoded,
     static_cast<int>(std::min<std::uint64_t>(capacity, this->Layout.bricks.size())));
   std::copy(dims, dims + 3, this->Dimensions);
   this->UploadedScalars = scalars;
@@ -198,8 +199,8 @@ void NormalizedSlices(vtkDataArray* scalars, const int dims[3], const double ran
 // clamped central differences (edges one-sided, like clamp-to-edge sampling of the volume
 // texture) from `values`, which hold slices [valuesFirst, ...) and one slice around [z0, z1).
 template <typename Visit>
-void ForEachGradient(const std::vector<float>& values, int valuesFirst, const int dims[3], int z0,
-  int z1, Visit visit)
+void ForEachGradient(
+  const std::vector<float>& values, int valuesFirst, const int dims[3], int z0, int z1, Visit visit)
 {
   const vtkIdType sliceSize = static_cast<vtkIdType>(dims[0]) * dims[1];
   vtkSMPTools::For(static_cast<vtkIdType>(z0) * dims[1], static_cast<vtkIdType>(z1) * dims[1],
@@ -211,7 +212,8 @@ void ForEachGradient(const std::vector<float>& values, int valuesFirst, const in
         const int y = static_cast<int>(row % dims[1]);
         for (int x = 0; x < dims[0]; ++x)
         {
-          const vtkIdType at = (z - valuesFirst) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
+          const vtkIdType at =
+            (z - valuesFirst) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x;
           const vtkIdType step[3] = { 1, dims[0], sliceSize };
           const int position[3] = { x, y, z };
           float gradient[3];
@@ -221,8 +223,8 @@ void ForEachGradient(const std::vector<float>& values, int valuesFirst, const in
             const vtkIdType high = position[c] < dims[c] - 1 ? at + step[c] : at;
             gradient[c] = 0.5f * (values[high] - values[low]);
           }
-          visit((z - z0) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x, gradient,
-            values[at]);
+          visit(
+            (z - z0) * sliceSize + static_cast<vtkIdType>(y) * dims[0] + x, gradient, values[at]);
         }
       }
     });
@@ -345,9 +347,9 @@ bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
 }
 
 bool vtkAccelVolumeSliceResources::PrepareTargets(
-  vtkOpenGLRenderWindow* window, int width, int height, int channels)
+  vtkOpenGLRenderWindow* window, int width, int height, int channels, int depthFormat)
 {
-  if (!this->Accumulation->GetHandle() ||
+  if (!this->Accumulation->GetHandle() || this->SceneDepthFormat != depthFormat ||
     static_cast<int>(this->Accumulation->GetWidth()) != width ||
     static_cast<int>(this->Accumulation->GetHeight()) != height ||
     this->Accumulation->GetComponents() != channels)
@@ -363,10 +365,11 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
     this->Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
     this->Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
     this->SceneDepth->SetContext(window);
-    if (!this->SceneDepth->AllocateDepth(width, height, vtkTextureObject::Float32))
+    if (!vtkAccelVolumeAllocateDepth(this->SceneDepth, width, height, depthFormat))
     {
       return false;
     }
+    this->SceneDepthFormat = depthFormat;
     this->SceneDepth->SetMinificationFilter(vtkTextureObject::Nearest);
     this->SceneDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
     this->Framebuffer->SetContext(window);
@@ -447,8 +450,8 @@ bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(
   return true;
 }
 
-void vtkAccelVolumeSliceResources::UpdateComponentTables(vtkOpenGLRenderWindow* window,
-  vtkVolumeProperty* property, int components, bool independent)
+void vtkAccelVolumeSliceResources::UpdateComponentTables(
+  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, int components, bool independent)
 {
   // Rebuilt only when the property, its functions, the layout or the ranges changed.
   vtkMTimeType newest = property->GetMTime();
@@ -535,9 +538,9 @@ bool vtkAccelVolumeSliceResources::PrepareImageTargets(
   this->Framebuffer->RemoveColorAttachment(1);
   this->Framebuffer->AddColorAttachment(1, this->FirstDepth);
   this->Framebuffer->RestorePreviousBindingsAndBuffers();
-  if (ok && (!this->ImageColour->GetHandle() ||
-              static_cast<int>(this->ImageColour->GetWidth()) != width ||
-              static_cast<int>(this->ImageColour->GetHeight()) != height))
+  if (ok &&
+    (!this->ImageColour->GetHandle() || static_cast<int>(this->ImageColour->GetWidth()) != width ||
+      static_cast<int>(this->ImageColour->GetHeight()) != height))
   {
     this->ImageColour->SetContext(window);
     this->ImageColour->ResetFormatAndType();
@@ -553,26 +556,33 @@ bool vtkAccelVolumeSliceResources::PrepareImageTargets(
 }
 
 bool vtkAccelVolumeSliceResources::PrepareFullDepth(
-  vtkOpenGLRenderWindow* window, int width, int height)
+  vtkOpenGLRenderWindow* window, int width, int height, int depthFormat)
 {
-  if (this->SceneDepthFull->GetHandle() &&
+  if (this->SceneDepthFull->GetHandle() && this->SceneDepthFullFormat == depthFormat &&
     static_cast<int>(this->SceneDepthFull->GetWidth()) == width &&
     static_cast<int>(this->SceneDepthFull->GetHeight()) == height)
   {
     return true;
   }
   this->SceneDepthFull->SetContext(window);
-  if (!this->SceneDepthFull->AllocateDepth(width, height, vtkTextureObject::Float32))
+  if (!vtkAccelVolumeAllocateDepth(this->SceneDepthFull, width, height, depthFormat))
   {
     return false;
   }
+  this->SceneDepthFullFormat = depthFormat;
   this->SceneDepthFull->SetMinificationFilter(vtkTextureObject::Nearest);
   this->SceneDepthFull->SetMagnificationFilter(vtkTextureObject::Nearest);
+  this->DepthFramebuffer->SetContext(window);
+  this->DepthFramebuffer->SaveCurrentBindingsAndBuffers();
+  this->DepthFramebuffer->Bind();
+  this->DepthFramebuffer->AddDepthAttachment(this->SceneDepthFull);
+  this->DepthFramebuffer->RestorePreviousBindingsAndBuffers();
   return true;
 }
 
 void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
 {
+  this->DepthFramebuffer->ReleaseGraphicsResources(window);
   this->SceneDepthFull->ReleaseGraphicsResources(window);
   this->ComponentVolume->ReleaseGraphicsResources(window);
   this->ComponentTables->ReleaseGraphicsResources(window);
@@ -591,6 +601,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->GradientTableMaximum = -1.0;
   this->Accumulation->ReleaseGraphicsResources(window);
   this->SceneDepth->ReleaseGraphicsResources(window);
+  this->SceneDepthFormat = -2;
+  this->SceneDepthFullFormat = -2;
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->VertexBuffer->ReleaseGraphicsResources();
   this->SliceArray->ReleaseGraphicsResources();

@@ -60,8 +60,8 @@ public:
    * independent: colour and opacity of component c; dependent: row 0 holds the colour over
    * component 0 and the opacity over the last component.
    */
-  void UpdateComponentTables(vtkOpenGLRenderWindow* window, vtkVolumeProperty* property,
-    int components, bool independent);
+  void UpdateComponentTables(
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, int components, bool independent);
   vtkNew<vtkTextureObject> ComponentVolume;
   vtkNew<vtkTextureObject> ComponentTables;
   double ComponentRanges[4][2] = {};
@@ -102,16 +102,18 @@ public:
    * Precomputes central-difference gradients of the normalized scalars (the paper's
    * 4-channel texture) when the volume changed. Call after UploadVolume.
    */
-  bool UpdateGradients(vtkOpenGLRenderWindow* window, vtkImageData* image,
-    vtkDataArray* scalars, const double range[2]);
+  bool UpdateGradients(vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars,
+    const double range[2]);
 
   /**
    * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
    * integrating modes) and the scene depth copy to the viewport.
    */
-  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels);
+  /** depthFormat: vtkAccelVolumeReadDepthFormat()'s (-1: 32-bit float depth). */
+  bool PrepareTargets(
+    vtkOpenGLRenderWindow* window, int width, int height, int channels, int depthFormat);
   /** Sizes the full-viewport depth copy a reduced target (image sample distance > 1) needs. */
-  bool PrepareFullDepth(vtkOpenGLRenderWindow* window, int width, int height);
+  bool PrepareFullDepth(vtkOpenGLRenderWindow* window, int width, int height, int depthFormat);
   /**
    * RenderToImage targets: the depth attachment 1 of the accumulation framebuffer (or its
    * removal when `enable` is false) and the colour image framebuffer, both width x height.
@@ -123,13 +125,16 @@ public:
   vtkAccelVolumeBrickCache Bricks;
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
-  vtkNew<vtkTextureObject> EmptyLeaves; // R8 over the octree's leaf grid, 1 = transparent
+  vtkNew<vtkTextureObject> EmptyLeaves;     // R8 over the octree's leaf grid, 1 = transparent
   vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
-  vtkNew<vtkTextureObject> Gradients; // RGBA16: index-space gradient (rgb), value (a)
-  float GradientScale = 1.0f;         // decoded gradient = (rgb * 2 - 1) * GradientScale
+  vtkNew<vtkTextureObject> Gradients;       // RGBA16: index-space gradient (rgb), value (a)
+  float GradientScale = 1.0f;               // decoded gradient = (rgb * 2 - 1) * GradientScale
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
-  vtkNew<vtkTextureObject> SceneDepthFull; // viewport-sized, for a reduced target only
+  vtkNew<vtkTextureObject> SceneDepthFull;             // viewport-sized, for a reduced target only
+  vtkNew<vtkOpenGLFramebufferObject> DepthFramebuffer; // SceneDepthFull as its depth
+  int SceneDepthFormat = -2;     // what SceneDepth was allocated with (PrepareTargets)
+  int SceneDepthFullFormat = -2; // and SceneDepthFull
   // RenderToImage: the nearest contributing depth (second accumulation target, R32F), and the
   // resolved colour (RGBA8) with its framebuffer.
   vtkNew<vtkTextureObject> FirstDepth;

@@ -466,7 +466,21 @@ void main()
   float noise = float(hash & 0xffffffu) / 16777216.0;
   samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
 #endif
-#if ACCELVOLUME_ISOSURFACE
+#if ACCELVOLUME_SLICE_PLANE
+  // SLICE_BLEND (as VTK's GPU mapper): the plane's sample, coloured and opaque as the transfer
+  // functions say, no opacity correction (one sample, no step), shaded when the property is.
+  vec4 planeSample = classify(normalizedScalarAt(samplePosition));
+#if ACCELVOLUME_SHADE
+  ACCELVOLUME_PRECISE vec3 planeCenter = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
+  planeSample.rgb = shade(planeSample.rgb, normalMatrix * centralDifferences(planeCenter), rayDirection);
+#endif
+  if (planeSample.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = vec4(planeSample.rgb * planeSample.a, planeSample.a);
+  ACCELVOLUME_WRITE_DEPTH(true);
+#elif ACCELVOLUME_ISOSURFACE
   // The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
   // in the volume and inside the clip planes (cropping is not tested here).
   vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
