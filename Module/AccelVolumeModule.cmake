@@ -24,6 +24,7 @@ set(_av_classes
 set(_av_private_sources
   vtkAccelVolumeBrickCache
   vtkAccelVolumeDepthCopy
+  vtkAccelVolumeDepthPeeling
   vtkAccelVolumeImageDisplay
   vtkAccelVolumeInputAdapter
   vtkAccelVolumeMapperSupport

@@ -4,9 +4,9 @@
 #include "vtkAlgorithm.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkImageData.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkInformation.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
 // CPU ray casting volume mapper with octree / distance-map and semi-transparent cell leaping.
 #include "vtkAccelVolumeRayCastMapper.h"
 
+#include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
@@ -379,6 +380,11 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   {
     return;
   }
+  const vtkAccelVolumePeelStage peel = vtkAccelVolumeGetPeelStage(window, volume, this);
+  if (peel == vtkAccelVolumePeelStage::Later)
+  {
+    return; // drawn whole in the first volumetric stage of depth peeling
+  }
   if (this->HasHiddenPoints(input))
   {
     this->WarnNotApplicable("blanking (hidden points of the ghost array)",
@@ -412,9 +418,12 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
   float selectionColour[3];
   const int selectionMode = vtkAccelVolumeSelectionMode(renderer, selectionColour);
-  if (!internals.Display.Draw(window, in.LowerLeft, in.Width, in.Height, in.ImageWidth,
-        in.ImageHeight, internals.Image.data(), castRectangle, colourScale, colourBias,
-        selectionMode, selectionColour))
+  // vtkDualDepthPeelingPass's targets are viewport-sized, drawn from (0, 0).
+  const bool peeling = peel == vtkAccelVolumePeelStage::OutsideRange;
+  const int origin[2] = { 0, 0 };
+  if (!internals.Display.Draw(window, peeling ? origin : in.LowerLeft, in.Width, in.Height,
+        in.ImageWidth, in.ImageHeight, internals.Image.data(), castRectangle, colourScale,
+        colourBias, selectionMode, selectionColour, peeling))
   {
     vtkErrorMacro("Cannot show the ray cast image (OpenGL texture or shader failed)");
   }

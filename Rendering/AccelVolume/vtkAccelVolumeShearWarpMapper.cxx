@@ -2,6 +2,7 @@
 // threads and MPI ranks.
 #include "vtkAccelVolumeShearWarpMapper.h"
 
+#include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMPIExchange.h"
@@ -57,8 +58,7 @@ int UsableCores()
 
 double Now()
 {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-    .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // Why vtkAccelVolumeBeginCPURender refused (it reported the error on this rank; this text goes to
@@ -155,7 +155,7 @@ public:
   vtkAccelVolumeImageDisplay Display;
   std::vector<float> Image;
   std::vector<double> BandTimes;
-  vtkAccelVolumeCPUInputs Inputs; // tables and the versions the encodings were built from
+  vtkAccelVolumeCPUInputs Inputs;     // tables and the versions the encodings were built from
   vtkAccelVolumeMPIExchange Exchange; // bounded exchanges with the other ranks
   bool WarnedUnsupported = false;
 
@@ -489,11 +489,12 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   vtkVolumeProperty* property = nullptr;
-  vtkOpenGLRenderWindow* window =
-    vtkAccelVolumeBeginCPURender(this, *this->InputAdapter, renderer, volume, input, scalars, property);
+  vtkOpenGLRenderWindow* window = vtkAccelVolumeBeginCPURender(
+    this, *this->InputAdapter, renderer, volume, input, scalars, property);
   if (!window)
   {
-    leaveEarly(FrameFailed, ranks > 1 ? WhyNotRenderable(this, *this->InputAdapter, renderer, volume) : "");
+    leaveEarly(
+      FrameFailed, ranks > 1 ? WhyNotRenderable(this, *this->InputAdapter, renderer, volume) : "");
     return;
   }
   if (this->HasHiddenPoints(input))
@@ -537,10 +538,15 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
   float selectionColour[3];
   const int selectionMode = vtkAccelVolumeSelectionMode(renderer, selectionColour);
-  if (rank == 0 &&
-    !internals.Display.Draw(window, in.lowerLeft, in.width, in.height, in.width, in.height,
-      internals.Image.data(), out.rectangle, colourScale, colourBias, selectionMode,
-      selectionColour))
+  // Depth peeling: shown once, in the first volumetric stage (every rank still composites in
+  // every stage, so the ranks' exchanges stay in step).
+  const vtkAccelVolumePeelStage peel = vtkAccelVolumeGetPeelStage(window, volume, this);
+  const bool peeling = peel == vtkAccelVolumePeelStage::OutsideRange;
+  const int origin[2] = { 0, 0 }; // the pass's targets are viewport-sized
+  if (rank == 0 && peel != vtkAccelVolumePeelStage::Later &&
+    !internals.Display.Draw(window, peeling ? origin : in.lowerLeft, in.width, in.height, in.width,
+      in.height, internals.Image.data(), out.rectangle, colourScale, colourBias, selectionMode,
+      selectionColour, peeling))
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }

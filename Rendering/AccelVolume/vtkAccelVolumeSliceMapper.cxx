@@ -3,6 +3,7 @@
 
 #include "vtkAccelVolumeSliceMapperInternals.h"
 
+#include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeMinMaxOctree.h"
@@ -534,6 +535,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.Height = std::max(1, static_cast<int>(std::ceil(view.Height / imageSampleDistance)));
   frame.LowerLeft[0] = view.LowerLeft[0];
   frame.LowerLeft[1] = view.LowerLeft[1];
+  // vtkDualDepthPeelingPass's targets are viewport-sized, drawn from (0, 0).
+  frame.DrawLowerLeft[0] = frame.ClearSecondTarget ? 0 : view.LowerLeft[0];
+  frame.DrawLowerLeft[1] = frame.ClearSecondTarget ? 0 : view.LowerLeft[1];
   for (int c = 0; c < 3; ++c)
   {
     frame.Dimensions[c] = static_cast<float>(view.Dimensions[c]);
@@ -714,6 +718,12 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     vtkErrorMacro("vtkAccelVolumeSliceMapper needs an OpenGL render window");
     return;
   }
+  const vtkAccelVolumePeelStage peel = vtkAccelVolumeGetPeelStage(window, volume, this);
+  if (peel == vtkAccelVolumePeelStage::Later)
+  {
+    return; // drawn whole in the first volumetric stage of depth peeling
+  }
+  internals.Frame.ClearSecondTarget = peel == vtkAccelVolumePeelStage::OutsideRange;
   vtkImageData* input = nullptr;
   vtkDataArray* scalars = nullptr;
   std::string inputError;

@@ -7,9 +7,9 @@
 
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
-#include "vtkPointData.h"
 #include "vtkImageData.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -31,8 +31,8 @@ void vtkAccelVolumeSliceMapper::SetMaxMemoryFraction(float fraction)
 
 void vtkAccelVolumeSliceMapper::SetPartitions(unsigned short x, unsigned short y, unsigned short z)
 {
-  const unsigned short wanted[3] = { std::max<unsigned short>(1, x),
-    std::max<unsigned short>(1, y), std::max<unsigned short>(1, z) };
+  const unsigned short wanted[3] = { std::max<unsigned short>(1, x), std::max<unsigned short>(1, y),
+    std::max<unsigned short>(1, z) };
   if (!std::equal(wanted, wanted + 3, this->Partitions))
   {
     std::copy(wanted, wanted + 3, this->Partitions);
@@ -160,7 +160,6 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
 }
 
-
 vtkImageData* vtkAccelVolumeSliceMapper::vtkInternals::EffectiveMask(
   vtkAccelVolumeSliceMapper* self, vtkImageData* input)
 {
@@ -222,4 +221,3 @@ void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
   }
   image->DeepCopy(this->Internals->ColourImage);
 }
-

@@ -110,8 +110,9 @@ void vtkAccelVolumeSmartMapper::SetRequestedRenderMode(int mode)
   if (mode != DEFAULT_RENDER && mode != RAYCAST_RENDER && mode != SLICE_RENDER &&
     mode != OSPRAY_RENDER && mode != SHEARWARP_RENDER)
   {
-    vtkErrorMacro("Invalid render mode " << mode << " (use DefaultRenderMode, RayCastRenderMode, "
-                                          "GPURenderMode or SHEARWARP_RENDER)");
+    vtkErrorMacro("Invalid render mode " << mode
+                                         << " (use DefaultRenderMode, RayCastRenderMode, "
+                                            "GPURenderMode or SHEARWARP_RENDER)");
     return;
   }
   if (mode != this->RequestedRenderMode)
@@ -185,8 +186,7 @@ void vtkAccelVolumeSmartMapper::ConnectInput(vtkAccelVolumeMapper* mapper)
     this->ReducedComponent = component;
   }
   mapper->SetInputData(this->Reduced);
-  mapper->SetScalarMode(
-    cellFlag ? VTK_SCALAR_MODE_USE_CELL_DATA : VTK_SCALAR_MODE_USE_POINT_DATA);
+  mapper->SetScalarMode(cellFlag ? VTK_SCALAR_MODE_USE_CELL_DATA : VTK_SCALAR_MODE_USE_POINT_DATA);
 }
 
 void vtkAccelVolumeSmartMapper::ForwardSampleDistances(
@@ -205,8 +205,7 @@ void vtkAccelVolumeSmartMapper::ForwardSampleDistances(
     return;
   }
   vtkRenderWindow* window = renderer->GetRenderWindow();
-  const bool interactive =
-    window && window->GetDesiredUpdateRate() >= this->InteractiveUpdateRate;
+  const bool interactive = window && window->GetDesiredUpdateRate() >= this->InteractiveUpdateRate;
   const vtkTypeBool autoAdjust =
     this->InteractiveAdjustSampleDistances ? interactive : this->AutoAdjustSampleDistances;
   // An explicit distance is used as given; -1 locks the owned mappers to the input spacing.
@@ -234,7 +233,8 @@ void vtkAccelVolumeSmartMapper::ReleaseGraphicsResources(vtkWindow* window)
   this->ShearWarpMapper->ReleaseGraphicsResources(window);
 }
 
-void vtkAccelVolumeSmartMapper::Relay(vtkObject* caller, unsigned long event, void* client, void* data)
+void vtkAccelVolumeSmartMapper::Relay(
+  vtkObject* caller, unsigned long event, void* client, void* data)
 {
   auto* self = static_cast<vtkAccelVolumeSmartMapper*>(client);
   std::string message = data ? static_cast<const char*>(data) : "";
@@ -321,8 +321,9 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
   if (blend != COMPOSITE_BLEND && blend != MAXIMUM_INTENSITY_BLEND &&
     blend != MINIMUM_INTENSITY_BLEND)
   {
-    shearWarpBlocker = std::string(BlendName(blend)) + " blend: shear-warp cannot (composite, "
-                                                       "MIP, MinIP only)";
+    shearWarpBlocker = std::string(BlendName(blend)) +
+      " blend: shear-warp cannot (composite, "
+      "MIP, MinIP only)";
   }
   else if (!camera || !camera->GetParallelProjection())
   {
@@ -397,10 +398,10 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
   int mode = RAYCAST_RENDER;
   // Multi-component scalars that VectorMode does not reduce: only the slice mapper renders them.
   int cellFlag = 0;
-  vtkDataArray* scalars = this->GetInput() ? vtkAbstractMapper::GetScalars(this->GetInput(),
-                                               this->ScalarMode, this->ArrayAccessMode,
-                                               this->ArrayId, this->ArrayName, cellFlag)
-                                           : nullptr;
+  vtkDataArray* scalars = this->GetInput()
+    ? vtkAbstractMapper::GetScalars(this->GetInput(), this->ScalarMode, this->ArrayAccessMode,
+        this->ArrayId, this->ArrayName, cellFlag)
+    : nullptr;
   if (scalars && scalars->GetNumberOfComponents() > 1 && this->VectorMode == DISABLED &&
     sliceUsable)
   {
@@ -487,11 +488,8 @@ void vtkAccelVolumeSmartMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   if (progress.IsObserved())
   {
     forward->SetClientData(&progress);
-    forward->SetCallback(
-      [](vtkObject*, unsigned long, void* client, void* data)
-      {
-        static_cast<vtkAccelVolumeRenderProgress*>(client)->Report(*static_cast<double*>(data));
-      });
+    forward->SetCallback([](vtkObject*, unsigned long, void* client, void* data)
+      { static_cast<vtkAccelVolumeRenderProgress*>(client)->Report(*static_cast<double*>(data)); });
     forwardTag = mapper->AddObserver(vtkCommand::ProgressEvent, forward);
   }
   // The owned mapper's errors come back through Relay as this mapper's errors.

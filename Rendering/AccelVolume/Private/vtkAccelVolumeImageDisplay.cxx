@@ -21,7 +21,8 @@ vtkAccelVolumeImageDisplay::~vtkAccelVolumeImageDisplay() = default;
 
 bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
   int width, int height, int imageWidth, int imageHeight, const float* rgba, const int rectangle[4],
-  float colourScale, float colourBias, int selectionMode, const float selectionColour[3])
+  float colourScale, float colourBias, int selectionMode, const float selectionColour[3],
+  bool clearSecondTarget)
 {
   const int x0 = std::max(rectangle[0], 0), x1 = std::min(rectangle[1], imageWidth - 1);
   const int y0 = std::max(rectangle[2], 0), y1 = std::min(rectangle[3], imageHeight - 1);
@@ -99,6 +100,7 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
       program->SetUniformf("colourBias", colourBias);
       const float noColour[3] = { 0, 0, 0 };
       program->SetUniformi("selectionMode", selectionMode);
+      program->SetUniformi("clearSecondTarget", clearSecondTarget ? 1 : 0);
       program->SetUniform3f("selectionColour", selectionColour ? selectionColour : noColour);
       this->Array->Bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);

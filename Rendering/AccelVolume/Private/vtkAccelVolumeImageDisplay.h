@@ -28,7 +28,7 @@ public:
   bool Draw(vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height,
     int imageWidth, int imageHeight, const float* rgba, const int rectangle[4],
     float colourScale = 1.0f, float colourBias = 0.0f, int selectionMode = 0,
-    const float selectionColour[3] = nullptr);
+    const float selectionColour[3] = nullptr, bool clearSecondTarget = false);
 
   // The viewport's window depth in [0, 1] (rows from the bottom), width * height values.
   bool ReadDepth(

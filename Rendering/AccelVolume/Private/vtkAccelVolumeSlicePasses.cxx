@@ -650,6 +650,7 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   program->SetUniformf("colourBias", frame.ColourBias);
   program->SetUniformi("selectionMode", frame.SelectionMode);
   program->SetUniform3f("selectionColour", frame.SelectionColour);
+  program->SetUniformi("clearSecondTarget", frame.ClearSecondTarget ? 1 : 0);
   resources.ResolveArray->Bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   resources.ResolveArray->Release();
@@ -778,7 +779,7 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
         error = "the render-to-image pass failed";
       }
     }
-    else if (ok && !Resolve(window, resources, frame, frame.LowerLeft))
+    else if (ok && !Resolve(window, resources, frame, frame.DrawLowerLeft))
     {
       error = "the resolve shader did not compile";
       ok = false;

@@ -55,7 +55,8 @@ struct vtkAccelVolumeSliceFrame
   int Height = 0;
   int ViewportWidth = 0; // the renderer's viewport in window pixels
   int ViewportHeight = 0;
-  int LowerLeft[2] = { 0, 0 };
+  int LowerLeft[2] = { 0, 0 };     // the viewport in the read framebuffer (the scene depth)
+  int DrawLowerLeft[2] = { 0, 0 }; // and where it is drawn: (0, 0) in a depth-peeling target
   float Dimensions[3] = { 1, 1, 1 };
   bool Linear = true;   // trilinear (else nearest) volume sampling
   bool Bricked = false; // several bricks: the shaders test sample ownership
@@ -70,6 +71,7 @@ struct vtkAccelVolumeSliceFrame
   float SliceSpacing = 1;
   float SlicePhase = 0;
   bool BoundaryRerendering = true;
+  bool ClearSecondTarget = false; // depth peeling's first volumetric stage (see DepthPeeling.h)
   bool SlicePlane = false; // SLICE_BLEND: one classified sample on the plane, drawn as a face
   bool Parallel = false;
   float AdditiveScale = 1;

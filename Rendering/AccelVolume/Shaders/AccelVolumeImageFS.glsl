@@ -12,11 +12,18 @@ uniform vec2 rectangleOrigin;  // the rectangle's first pixel in the image
 uniform vec2 rectangleSize;
 uniform float colourScale;     // FinalColorWindow / Level: rgb * scale + bias * alpha
 uniform float colourBias;
+// Depth peeling of volumes (the pass's first volumetric stage): its second target, the front
+// accumulation, gets nothing from the volume.
+uniform int clearSecondTarget;
 uniform int selectionMode;     // vtkHardwareSelector, as the slice mapper's resolve pass
 uniform vec3 selectionColour;
 
 void main()
 {
+  if (clearSecondTarget != 0)
+  {
+    gl_FragData[1] = vec4(0.0);
+  }
   vec2 imagePosition = (gl_FragCoord.xy - viewportOrigin) / viewportSize * imageSize;
   vec4 colour;
   if (imageSize == viewportSize)

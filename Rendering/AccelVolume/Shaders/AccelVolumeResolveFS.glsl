@@ -15,6 +15,9 @@ uniform float colourScale; // FinalColorWindow / Level: rgb * scale + bias * alp
 uniform float colourBias;
 // vtkHardwareSelector: 1 = write selectionColour where the volume is seen (actor / process
 // passes, as VTK's GPU mapper), 2 = write nothing (attribute-id passes); 0 = render.
+// Depth peeling of volumes (the pass's first volumetric stage): its second target, the front
+// accumulation, gets nothing from the volume.
+uniform int clearSecondTarget;
 uniform int selectionMode;
 uniform vec3 selectionColour;
 
@@ -68,6 +71,10 @@ void emit(vec4 premultiplied)
 
 void main()
 {
+  if (clearSecondTarget != 0)
+  {
+    gl_FragData[1] = vec4(0.0);
+  }
   vec2 pixel = gl_FragCoord.xy - viewportOrigin;
   bool covered;
 #if ACCELVOLUME_REDUCED
