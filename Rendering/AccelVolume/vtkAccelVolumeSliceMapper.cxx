@@ -66,9 +66,9 @@ bool CompositeLike(int blendMode)
     blendMode == vtkVolumeMapper::ISOSURFACE_BLEND || blendMode == vtkVolumeMapper::SLICE_BLEND;
 }
 
-// SLICE_BLEND: the property's slice plane (world) in index space, cut to the volume and the
-// clip planes. Empty when the plane misses them; `error` says why there is no plane at all.
-accelvolume::Polygon SlicePlanePolygon(
+// SLICE_BLEND: the property's slice plane (world) in index space, cut to each cropping region
+// and the clip planes. Empty when the plane misses them; `error` says why there is no plane.
+std::vector<accelvolume::Polygon> SlicePlanePolygons(
   vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view, std::string& error)
 {
   vtkPlane* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
@@ -95,7 +95,17 @@ accelvolume::Polygon SlicePlanePolygon(
     indexNormal.z += m->GetElement(r, 2) * normal[r];
     value += normal[r] * (origin[r] - m->GetElement(r, 3));
   }
-  return accelvolume::PlaneRegionPolygon(indexNormal, value, view.VolumeBox, view.Clip);
+  std::vector<accelvolume::Polygon> polygons;
+  for (const accelvolume::Box& region : view.Regions)
+  {
+    accelvolume::Polygon polygon =
+      accelvolume::PlaneRegionPolygon(indexNormal, value, region, view.Clip);
+    if (!polygon.empty())
+    {
+      polygons.push_back(std::move(polygon));
+    }
+  }
+  return polygons;
 }
 
 // Composite shading inputs: VTK's light model in eye space (at most MaximumLights lights: more
@@ -474,11 +484,11 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   geometry.BoundaryFaces = self->BoundaryRerendering != 0;
   geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
   geometry.Layout = &layout;
-  accelvolume::Polygon slicePlane;
+  std::vector<accelvolume::Polygon> slicePlane;
   if (self->BlendMode == SLICE_BLEND)
   {
     std::string planeError;
-    slicePlane = SlicePlanePolygon(property, view, planeError);
+    slicePlane = SlicePlanePolygons(property, view, planeError);
     geometry.SlicePlane = &slicePlane;
     if (!planeError.empty())
     {
@@ -607,6 +617,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     ? 1
     : (!self->MaskInput ? 0
                         : (self->UsesLabelMap() ? 2 : (self->MaskType == BinaryMaskType ? 1 : 0)));
+  frame.MaskNeighbours = ghostMask;
   frame.MaskBlendFactor = self->MaskBlendFactor;
   frame.MaskTexture = this->Mask.GetTexture();
   frame.LabelTable = this->Mask.GetLabelTable();

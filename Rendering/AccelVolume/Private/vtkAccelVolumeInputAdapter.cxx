@@ -172,8 +172,9 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
   if (scalars->GetNumberOfTuples() != expected)
   {
     std::ostringstream message;
-    message << "Scalar array size (" << scalars->GetNumberOfTuples() << " tuples) does not match the "
-            << (cellFlag ? "input's " : "image's ") << expected << (cellFlag ? " cells" : " points");
+    message << "Scalar array size (" << scalars->GetNumberOfTuples()
+            << " tuples) does not match the " << (cellFlag ? "input's " : "image's ") << expected
+            << (cellFlag ? " cells" : " points");
     error = message.str();
     return false;
   }
@@ -201,22 +202,24 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
     }
     this->Adapted->GetPointData()->Initialize();
     this->Adapted->GetPointData()->SetScalars(this->Converted);
-    // Blanking travels with the scalars: hidden cells of cell scalars become hidden points.
+    // Blanking travels with the scalars: ghost cells of cell scalars become hidden points
+    // (any flag, as VTK's GPU mapper); point scalars keep both ghost arrays.
+    this->Adapted->GetCellData()->Initialize();
     if (vtkUnsignedCharArray* ghosts =
           cellFlag ? input->GetCellGhostArray() : input->GetPointGhostArray())
     {
       vtkNew<vtkUnsignedCharArray> hidden;
       hidden->SetName(vtkDataSetAttributes::GhostArrayName());
       hidden->SetNumberOfTuples(ghosts->GetNumberOfTuples());
-      const unsigned char hiddenBit = cellFlag
-        ? static_cast<unsigned char>(vtkDataSetAttributes::HIDDENCELL)
-        : static_cast<unsigned char>(vtkDataSetAttributes::HIDDENPOINT);
       for (vtkIdType i = 0; i < ghosts->GetNumberOfTuples(); ++i)
       {
-        hidden->SetValue(
-          i, (ghosts->GetValue(i) & hiddenBit) ? vtkDataSetAttributes::HIDDENPOINT : 0);
+        hidden->SetValue(i, ghosts->GetValue(i) != 0 ? vtkDataSetAttributes::HIDDENPOINT : 0);
       }
       this->Adapted->GetPointData()->AddArray(hidden);
+    }
+    if (!cellFlag && input->GetCellGhostArray())
+    {
+      this->Adapted->GetCellData()->AddArray(input->GetCellGhostArray());
     }
     this->Adapted->Modified();
     this->Source = input;

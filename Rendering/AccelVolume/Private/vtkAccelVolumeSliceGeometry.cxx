@@ -187,31 +187,33 @@ void BuildProjectionBrick(const vtkAccelVolumeSliceGeometryInput& input,
   }
 }
 
-// SLICE_BLEND: the plane's polygon as the brick's one cut face (no slices).
+// SLICE_BLEND: the plane's polygons as the brick's cut faces (no slices).
 void BuildSlicePlaneBrick(const vtkAccelVolumeSliceGeometryInput& input,
   const accelvolume::Box* drawn, Frame::BrickDraw& draw, std::vector<float>& vertices,
   vtkAccelVolumeSliceGeometryStats& stats)
 {
-  accelvolume::Polygon face = *input.SlicePlane;
-  if (drawn)
-  {
-    for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*drawn))
-    {
-      face = face.empty() ? face : accelvolume::ClipPolygon(face, half);
-    }
-  }
   Frame::Cell cell;
   cell.Lower = ToFloats(input.VolumeBox.lower);
   cell.Upper = ToFloats(input.VolumeBox.upper);
   cell.SliceFirst = VertexCount(vertices);
   draw.SliceStarts.assign(2, VertexCount(vertices));
   cell.FaceFirst = VertexCount(vertices);
-  if (!face.empty())
+  for (accelvolume::Polygon face : *input.SlicePlane)
   {
-    AppendProxyPolygon(face, 0.0, vertices);
-    ++stats.BoundaryFaces;
-    ++stats.ProxyPolygons;
-    stats.Slices = 1;
+    if (drawn)
+    {
+      for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*drawn))
+      {
+        face = face.empty() ? face : accelvolume::ClipPolygon(face, half);
+      }
+    }
+    if (!face.empty())
+    {
+      AppendProxyPolygon(face, 0.0, vertices);
+      ++stats.BoundaryFaces;
+      ++stats.ProxyPolygons;
+      stats.Slices = 1;
+    }
   }
   cell.FaceCount = VertexCount(vertices) - cell.FaceFirst;
   if (cell.FaceCount > 0)

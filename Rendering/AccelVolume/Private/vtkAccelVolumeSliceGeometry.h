@@ -37,9 +37,9 @@ struct vtkAccelVolumeSliceGeometryInput
   bool BoundaryFaces = false;                              // projection modes
   const std::vector<accelvolume::Box>* NonEmpty = nullptr; // composite octree culling
   const accelvolume::BrickLayout* Layout = nullptr;
-  // SLICE_BLEND: the slice function's plane inside the volume (and clip planes); each brick
-  // draws it as one cut face instead of slices.
-  const accelvolume::Polygon* SlicePlane = nullptr;
+  // SLICE_BLEND: the slice function's plane inside each cropping region (and the clip
+  // planes); each brick draws them as cut faces instead of slices.
+  const std::vector<accelvolume::Polygon>* SlicePlane = nullptr;
 };
 
 struct vtkAccelVolumeSliceGeometryStats

@@ -61,7 +61,8 @@ bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData
   this->Texture->SetContext(window);
   this->Texture->ResetFormatAndType();
   window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (!this->Texture->Create3DFromRaw(dims[0], dims[1], dims[2], 1, VTK_UNSIGNED_CHAR, bytes.data()))
+  if (!this->Texture->Create3DFromRaw(
+        dims[0], dims[1], dims[2], 1, VTK_UNSIGNED_CHAR, bytes.data()))
   {
     error = "The mask texture could not be created";
     return false;
@@ -124,37 +125,62 @@ void vtkAccelVolumeSliceMask::ReleaseGraphicsResources(vtkWindow* window)
   this->TableProperty = nullptr;
 }
 
-bool vtkAccelVolumeHiddenPointsMask(vtkImageData* input, vtkImageData* user,
-  vtkSmartPointer<vtkImageData>& mask, unsigned long& time)
+bool vtkAccelVolumeHiddenPointsMask(
+  vtkImageData* input, vtkImageData* user, vtkSmartPointer<vtkImageData>& mask, unsigned long& time)
 {
-  vtkUnsignedCharArray* ghosts = input->GetPointGhostArray();
+  vtkUnsignedCharArray* points = input->GetPointGhostArray();
+  vtkUnsignedCharArray* cells = input->GetCellGhostArray();
   const vtkIdType count = input->GetNumberOfPoints();
-  if (!ghosts || ghosts->GetNumberOfTuples() != count)
+  points = points && points->GetNumberOfTuples() == count ? points : nullptr;
+  cells = cells && cells->GetNumberOfTuples() == input->GetNumberOfCells() ? cells : nullptr;
+  if (!points && !cells)
   {
     return false;
   }
   vtkDataArray* userValues = user ? user->GetPointData()->GetScalars() : nullptr;
-  const unsigned long newest = std::max({ ghosts->GetMTime(), input->GetMTime(),
-    userValues ? userValues->GetMTime() : 0, user ? user->GetMTime() : 0 });
+  const unsigned long newest =
+    std::max({ points ? points->GetMTime() : 0, cells ? cells->GetMTime() : 0, input->GetMTime(),
+      userValues ? userValues->GetMTime() : 0, user ? user->GetMTime() : 0 });
   if (!mask || newest > time)
   {
+    // As vtkGPUVolumeRayCastMapper: any ghost flag hides (a duplicate belongs to another piece),
+    // a cell's flag marks its lower corner point (the last row takes its neighbour's).
     bool anyHidden = false;
-    for (vtkIdType i = 0; i < count && !anyHidden; ++i)
+    for (vtkUnsignedCharArray* ghosts : { points, cells })
     {
-      anyHidden = (ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) != 0;
+      for (vtkIdType i = 0; ghosts && i < ghosts->GetNumberOfTuples() && !anyHidden; ++i)
+      {
+        anyHidden = ghosts->GetValue(i) != 0;
+      }
     }
     mask = vtkSmartPointer<vtkImageData>::New();
     if (anyHidden)
     {
-      mask->SetDimensions(input->GetDimensions());
+      int dims[3];
+      input->GetDimensions(dims);
+      mask->SetDimensions(dims);
       mask->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
       auto* out = static_cast<unsigned char*>(mask->GetScalarPointer());
       const bool userFits = userValues && userValues->GetNumberOfTuples() == count;
-      for (vtkIdType i = 0; i < count; ++i)
+      const int cx = std::max(1, dims[0] - 1);
+      const int cy = std::max(1, dims[1] - 1);
+      const int cz = std::max(1, dims[2] - 1);
+      vtkIdType i = 0;
+      for (int z = 0; z < dims[2]; ++z)
       {
-        const bool visible = !(ghosts->GetValue(i) & vtkDataSetAttributes::HIDDENPOINT) &&
-          (!userFits || userValues->GetComponent(i, 0) != 0.0);
-        out[i] = visible ? 255 : 0;
+        for (int y = 0; y < dims[1]; ++y)
+        {
+          for (int x = 0; x < dims[0]; ++x, ++i)
+          {
+            const vtkIdType cell =
+              (static_cast<vtkIdType>(std::min(z, cz - 1)) * cy + std::min(y, cy - 1)) * cx +
+              std::min(x, cx - 1);
+            const bool visible = (!points || points->GetValue(i) == 0) &&
+              (!cells || cells->GetValue(cell) == 0) &&
+              (!userFits || userValues->GetComponent(i, 0) != 0.0);
+            out[i] = visible ? 255 : 0;
+          }
+        }
       }
     }
     time = newest;

@@ -170,6 +170,7 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
     "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
     "\n#define ACCELVOLUME_SLICE_PLANE " + (composite && frame.SlicePlane ? "1" : "0") +
+    "\n#define ACCELVOLUME_MASK_NEIGHBOURS " + (frame.MaskNeighbours ? "1" : "0") +
     "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(composite ? frame.Components : 1) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +

@@ -115,6 +115,7 @@ struct vtkAccelVolumeSliceFrame
   float ComponentUnitDistances[4] = { 1, 1, 1, 1 };
   // Mask input: 0 none, 1 binary, 2 label map (composite only); its texture and label table.
   int MaskMode = 0;
+  bool MaskNeighbours = false; // ghost masks: a sample next to a hidden point is hidden (VTK)
   float MaskBlendFactor = 1;
   float MaskMaximum[3] = { 0, 0, 0 };
   vtkTextureObject* MaskTexture = nullptr;
