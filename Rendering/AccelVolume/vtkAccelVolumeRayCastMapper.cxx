@@ -14,6 +14,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
@@ -44,6 +45,8 @@ accelvolume::Blend ToBlend(int blendMode)
       return accelvolume::Blend::Additive;
     case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
       return accelvolume::Blend::Average;
+    case vtkVolumeMapper::SLICE_BLEND:
+      return accelvolume::Blend::Slice;
     default:
       return accelvolume::Blend::Composite;
   }
@@ -156,13 +159,19 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, vtkVolume* volume,
   RayCastFrameInputs& in)
 {
-  if (self->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND ||
-    self->BlendMode == vtkVolumeMapper::SLICE_BLEND)
+  if (self->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND)
   {
     vtkErrorWithObjectMacro(self,
       "Blend mode " << self->BlendMode
                     << " is not supported by the ray cast mapper (use composite, "
-                       "maximum, minimum, additive or average intensity)");
+                       "maximum, minimum, additive, average intensity or slice)");
+    return false;
+  }
+  if (self->BlendMode == vtkVolumeMapper::SLICE_BLEND &&
+    !vtkPlane::SafeDownCast(property->GetSliceFunction()))
+  {
+    vtkErrorWithObjectMacro(
+      self, "SLICE_BLEND needs a vtkPlane as the volume property's slice function");
     return false;
   }
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
@@ -297,9 +306,25 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   settings.octreeLeafSize = self->OctreeLeafSize;
   settings.regions = vtkAccelVolumeRegions(self, input, vtkAccelVolumeIndexBox(in.View.dims));
   settings.clip = vtkAccelVolumeClipHalfSpaces(self->ClippingPlanes, in.IndexToWorld);
+  if (vtkPlane* plane = vtkPlane::SafeDownCast(property->GetSliceFunction()))
+  {
+    // world = A index + t: n . (world - o) = 0 is (A^T n) . index + n . (t - o) = 0.
+    double origin[3];
+    double normal[3];
+    plane->GetOrigin(origin);
+    plane->GetNormal(normal);
+    settings.slicePlane = accelvolume::HalfSpace();
+    for (int r = 0; r < 3; ++r)
+    {
+      settings.slicePlane.normal.x += in.IndexToWorld->GetElement(r, 0) * normal[r];
+      settings.slicePlane.normal.y += in.IndexToWorld->GetElement(r, 1) * normal[r];
+      settings.slicePlane.normal.z += in.IndexToWorld->GetElement(r, 2) * normal[r];
+      settings.slicePlane.offset += normal[r] * (in.IndexToWorld->GetElement(r, 3) - origin[r]);
+    }
+  }
 
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
-  const bool shade = composite && property->GetShade(0) != 0;
+  const bool shade = (composite || self->BlendMode == SLICE_BLEND) && property->GetShade(0) != 0;
   if (shade || !in.Transfer.gradientOpacity.empty())
   {
     // Gradient opacity needs the normal matrix too (gradients in world units).

@@ -261,8 +261,7 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
     const std::vector<float> reference =
       RenderWith(Fixed<vtkGPUVolumeRayCastMapper>(c.SampleDistance), c);
     const std::vector<float> slice = RenderWith(Fixed<vtkAccelVolumeSliceMapper>(c.SampleDistance), c);
-    const bool rayCasterRenders = c.Blend != vtkVolumeMapper::ISOSURFACE_BLEND &&
-      c.Blend != vtkVolumeMapper::SLICE_BLEND;
+    const bool rayCasterRenders = c.Blend != vtkVolumeMapper::ISOSURFACE_BLEND;
     const std::vector<float> rayCast = rayCasterRenders
       ? RenderWith(Fixed<vtkAccelVolumeRayCastMapper>(c.SampleDistance), c)
       : reference;
@@ -274,8 +273,7 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
            accelvolume_test::CompareImages(slice, reference, 16.0 / 255.0), c.MeanLimit,
            c.FractionLimit) &&
       ok;
-    // The ray caster refuses ISOSURFACE_BLEND and SLICE_BLEND with a clear error
-    // (TestAccelVolumeBadInput).
+    // The ray caster refuses ISOSURFACE_BLEND with a clear error (TestAccelVolumeBadInput).
     ok = (!rayCasterRenders ||
            accelvolume_test::Report(("ray cast vs vtkGPUVolumeRayCastMapper, " + name).c_str(),
              accelvolume_test::CompareImages(rayCast, reference, 16.0 / 255.0), c.MeanLimit,

@@ -2,7 +2,8 @@
 // mirrors vtkVolumeMapper's blend modes (raysum is ADDITIVE_BLEND, average is
 // AVERAGE_INTENSITY_BLEND). Not every renderer takes every mode: shear-warp takes Composite,
 // Maximum and Minimum; the projection oracle (RenderReference) takes all but Composite, which
-// RenderReferenceComposite handles.
+// RenderReferenceComposite handles. Slice (SLICE_BLEND: one classified sample where the ray
+// meets a plane) is the ray caster's only.
 #ifndef accelvolume_Blend_h
 #define accelvolume_Blend_h
 
@@ -15,7 +16,8 @@ enum class Blend
   Maximum,
   Minimum,
   Additive,
-  Average
+  Average,
+  Slice
 };
 
 } // namespace accelvolume

@@ -96,6 +96,7 @@ struct RayCastSettings
   bool precomputeGradients = true;
   std::vector<Box> regions;    // index space, non-overlapping
   std::vector<HalfSpace> clip; // index space
+  HalfSpace slicePlane;        // Blend::Slice: the plane Dot(normal, p) + offset == 0, index space
 };
 
 struct RayCastCounters

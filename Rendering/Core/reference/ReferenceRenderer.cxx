@@ -31,7 +31,6 @@ struct RayAccumulator
 };
 } // namespace
 
-
 float ScalarVolume::Value(int i, int j, int k) const
 {
   return values[static_cast<std::size_t>(i) +
@@ -87,7 +86,6 @@ float OpacityTable::Lookup(float normalizedScalar) const
   return static_cast<float>(values[lower] + (values[upper] - values[lower]) * fraction);
 }
 
-
 namespace
 {
 // Integrates one region interval [t0, t1] of the index-space ray into the accumulator; t is world
@@ -127,6 +125,7 @@ void IntegrateInterval(const ScalarVolume& volume, const OpacityTable& opacity,
         }
         break;
       case Blend::Composite: // refused by RenderReference
+      case Blend::Slice:
         break;
     }
   }
@@ -155,6 +154,7 @@ ReferencePixel Finish(const RayAccumulator& accumulator, const ReferenceOptions&
         pixel.hit ? static_cast<float>(accumulator.weighted / accumulator.length) : 0.0f;
       break;
     case Blend::Composite: // refused by RenderReference
+    case Blend::Slice:
       break;
   }
   return pixel;
@@ -174,10 +174,10 @@ std::vector<ReferencePixel> RenderReference(const ScalarVolume& volume,
   constexpr const char* caller = "accelvolume::RenderReference";
   detail::CheckRaysEndAndStep(caller, pixelCount, raysEnd, options.stepWorld);
   detail::CheckVolume(caller, volume);
-  if (options.blend == Blend::Composite)
+  if (options.blend == Blend::Composite || options.blend == Blend::Slice)
   {
-    throw std::invalid_argument(
-      std::string(caller) + ": composite is RenderReferenceComposite's blend");
+    throw std::invalid_argument(std::string(caller) +
+      ": composite is RenderReferenceComposite's blend, slice the ray caster's");
   }
   const Affine worldToIndex = volume.indexToWorld.Inverse();
   std::vector<ReferencePixel> pixels(pixelCount);

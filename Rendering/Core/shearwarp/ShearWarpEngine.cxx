@@ -69,9 +69,10 @@ bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double range
     error = "shear-warp: bad scalar range, band count or opacity unit distance";
     return false;
   }
-  if (settings.blend == Blend::Additive || settings.blend == Blend::Average)
+  if (settings.blend == Blend::Additive || settings.blend == Blend::Average ||
+    settings.blend == Blend::Slice)
   {
-    error = "shear-warp: additive and average blending are not supported";
+    error = "shear-warp: additive, average and slice blending are not supported";
     return false;
   }
   return true;
@@ -213,8 +214,8 @@ void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
 void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
 {
   const ShearWarpFactorization& f = this->factorization;
-  const std::size_t pixels =
-    static_cast<std::size_t>(f.intermediateSize[0]) * static_cast<std::size_t>(f.intermediateSize[1]);
+  const std::size_t pixels = static_cast<std::size_t>(f.intermediateSize[0]) *
+    static_cast<std::size_t>(f.intermediateSize[1]);
   // Resized only: each band clears its own rows (in parallel) before compositing them.
   this->intermediate.resize(4 * pixels);
   this->scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
@@ -324,8 +325,8 @@ void ShearWarpRenderer::CompositeRows(int v0, int v1)
   std::fill(rows, rows + 4 * static_cast<std::size_t>(width) * (v1 - v0), 0.0f);
   if (impl.compositeSlot)
   {
-    CompositeBand(impl.compositeSlot->encoded, f, impl.tables, v0, v1, rows, workspace, counters,
-      work.data());
+    CompositeBand(
+      impl.compositeSlot->encoded, f, impl.tables, v0, v1, rows, workspace, counters, work.data());
   }
   else
   {
@@ -357,7 +358,8 @@ void ShearWarpRenderer::CompositeRows(int v0, int v1)
   impl.terminatedPixelVisits += counters.terminatedPixelVisits;
 }
 
-void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4])
+void ShearWarpRenderer::Warp(
+  const ParallelFor& parallel, std::vector<float>& rgba, int rectangle[4])
 {
   Internals& impl = *this->Impl;
   const ShearWarpFactorization& f = impl.factorization;
@@ -368,7 +370,8 @@ void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rg
   const int iw = f.intermediateSize[0];
   const int ih = f.intermediateSize[1];
   // The final pixels the intermediate image (with its one-pixel bilinear fringe) can reach.
-  double lower[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double lower[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
   double upper[2] = { -lower[0], -lower[1] };
   for (int corner = 0; corner < 4; ++corner)
   {
@@ -446,7 +449,8 @@ void ShearWarpRenderer::Warp(const ParallelFor& parallel, std::vector<float>& rg
         const int first = static_cast<int>(lowX);
         const int last = static_cast<int>(highX);
         std::fill(out, out + 4 * static_cast<std::size_t>(first), 0.0f);
-        std::fill(out + 4 * static_cast<std::size_t>(last + 1), out + 4 * static_cast<std::size_t>(width), 0.0f);
+        std::fill(out + 4 * static_cast<std::size_t>(last + 1),
+          out + 4 * static_cast<std::size_t>(width), 0.0f);
         for (int x = first; x <= last; ++x)
         {
           // Shifted by one so the truncation is a floor (u, v > -1 here).
@@ -560,7 +564,8 @@ void ParallelVoxelToImage(const double indexToWorld[3][4], const double worldToV
   // View coordinates: x right, y up, the camera looking down -z; a parallel projection shows
   // [-scale * aspect, scale * aspect] x [-scale, scale].
   const double aspect = static_cast<double>(width) / height;
-  const double scale[3] = { width / (2.0 * parallelScale * aspect), height / (2.0 * parallelScale), -1.0 };
+  const double scale[3] = { width / (2.0 * parallelScale * aspect), height / (2.0 * parallelScale),
+    -1.0 };
   const double offset[3] = { width / 2.0, height / 2.0, 0.0 };
   for (int r = 0; r < 3; ++r)
   {
