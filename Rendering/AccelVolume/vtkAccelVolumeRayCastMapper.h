@@ -10,12 +10,17 @@
  * read back when the renderer has visible actors).
  *
  * Blend modes: composite (colour, scalar opacity, gradient opacity, Phong shading with VTK's
- * lights), maximum / minimum intensity, additive (raysum) and average, with the transfer
+ * lights), maximum / minimum intensity, additive (raysum), average and slice (the property's
+ * vtkPlane: one classified, optionally shaded sample where each ray meets it), with the transfer
  * function semantics of vtkAccelVolumeSliceMapper (1024-entry tables over the data range,
  * opacity corrected from ScalarOpacityUnitDistance to the sample distance), VTK cropping
  * (every region flag pattern) and any number of clipping planes, parallel and perspective
  * cameras, trilinear or nearest interpolation, one-component scalars of type
  * char, unsigned char, short, unsigned short, int, float or double.
+ *
+ * Samples sit at the middle of each step of the ray inside the volume (the midpoint rule of
+ * the ray integral); VTK's fixed-point mapper starts at the entry point, which differs visibly
+ * only when the sample distance is a large part of the volume.
  *
  * Rays sample at a fixed world distance: SampleDistance, or InteractiveSampleDistance when
  * AutoAdjustSampleDistances is on and the renderer asks for an interactive frame (allocated

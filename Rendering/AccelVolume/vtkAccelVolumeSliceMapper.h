@@ -47,8 +47,9 @@
  * stream through one texture every frame (see GetLastNumberOfBrickUploads).
  *
  * Drop-in for vtkGPUVolumeRayCastMapper (docs/drop-in.md): its API members, VTK's light model
- * and gradient units, masks (binary and label map), blanking, RenderToImage, picking,
- * ISOSURFACE_BLEND (the property's iso-values, drawn by the composite passes) and 2-4 component
+ * and gradient units, masks (binary and label map), ghost arrays and blanking, RenderToImage,
+ * picking, multisampled windows, ISOSURFACE_BLEND (the property's iso-values, drawn by the
+ * composite passes), SLICE_BLEND (the property's vtkPlane, drawn as a cut face) and 2-4 component
  * scalars (composite: independent with per-component functions and weights, or dependent
  * luminance-alpha / RGBA; one brick, no octree skipping or gradient opacity).
  *
@@ -56,8 +57,9 @@
  * float and double are sampled as 32-bit floats normalised to the data range; NaN samples
  * count as the minimum). Boundary re-rendering applies to the projection modes, not to
  * composite. Bricked volumes take gradients by central differences (no precomputed gradient
- * texture) and plain slices (SlabSamples is ignored). Not available: SLICE_BLEND, depth
- * peeling of volumes, the depth pass.
+ * texture) and plain slices (SlabSamples is ignored). With depth peeling of volumes the volume
+ * is drawn once, before the translucent layers (VTK interleaves them). Not available: the
+ * depth pass.
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h
