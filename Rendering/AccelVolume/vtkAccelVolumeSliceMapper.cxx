@@ -792,6 +792,10 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   std::string passError;
   const bool rendered = internals.DrawPasses(this, window, passError);
+  if (rendered && this->RenderToImage && this->ClampDepthToBackface)
+  {
+    internals.ClampDepthImageToBackface(view);
+  }
   progress.Report(0.6); // passes issued; the GPU may still be working on them
 
   // Wait for the GPU so the reported time is the frame's real cost.

@@ -280,9 +280,10 @@ public:
    * drawn into the scene; GetColorImage gives the last frame's premultiplied RGBA (unsigned
    * char, viewport size) and GetDepthImage the window depth of the nearest contributing sample
    * per pixel (1 where none), as float or scaled to DepthImageScalarType (unsigned char /
-   * short). Opaque geometry already drawn still stops the rays. ClampDepthToBackface is kept
-   * for the API (warns once: the depth image holds 1 where nothing contributes); the image
-   * sample distance is 1 in this mode.
+   * short). Opaque geometry already drawn still stops the rays. With ClampDepthToBackface,
+   * pixels whose ray crosses the volume but meets no contributing sample take the depth where
+   * the ray enters the volume box (and clip planes): what vtkGPUVolumeRayCastMapper 9.1 writes
+   * under that name; the image sample distance is 1 in this mode.
    */
   vtkSetMacro(RenderToImage, vtkTypeBool);
   vtkGetMacro(RenderToImage, vtkTypeBool);

@@ -8,9 +8,12 @@
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkVolumeProperty.h"
+
+#include "common/Geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -91,11 +94,6 @@ int vtkAccelVolumeSliceMapper::IsRenderSupported(
 
 void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
 {
-  if (this->RenderToImage && this->ClampDepthToBackface)
-  {
-    this->WarnNotApplicable(
-      "ClampDepthToBackface", "the depth image holds 1 where no sample contributes");
-  }
   if (this->UseDepthPass)
   {
     this->WarnNotApplicable("UseDepthPass", "not available yet; the volume is drawn without it");
@@ -220,4 +218,52 @@ void vtkAccelVolumeSliceMapper::GetColorImage(vtkImageData* image)
     return;
   }
   image->DeepCopy(this->Internals->ColourImage);
+}
+
+void vtkAccelVolumeSliceMapper::vtkInternals::ClampDepthImageToBackface(
+  const vtkAccelVolumeSliceView& view)
+{
+  vtkImageData* depth = this->DepthImage;
+  if (depth->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  int dims[3];
+  depth->GetDimensions(dims);
+  auto* values = static_cast<float*>(depth->GetScalarPointer());
+  vtkNew<vtkMatrix4x4> clipToIndex;
+  vtkMatrix4x4::Invert(view.IndexToClip, clipToIndex);
+  const auto unproject = [&](double x, double y, double z)
+  {
+    double point[4] = { x, y, z, 1.0 };
+    clipToIndex->MultiplyPoint(point, point);
+    return accelvolume::Vec3{ point[0] / point[3], point[1] / point[3], point[2] / point[3] };
+  };
+  for (int j = 0; j < dims[1]; ++j)
+  {
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      float& value = values[static_cast<size_t>(j) * dims[0] + i];
+      if (value < 1.0f)
+      {
+        continue;
+      }
+      const double x = 2.0 * (i + 0.5) / dims[0] - 1.0;
+      const double y = 2.0 * (j + 0.5) / dims[1] - 1.0;
+      const accelvolume::Vec3 nearPoint = unproject(x, y, -1.0);
+      const accelvolume::Vec3 direction = unproject(x, y, 1.0) - nearPoint;
+      double enter = 0.0;
+      double leave = 0.0;
+      if (!accelvolume::IntersectRayRegion(
+            nearPoint, direction, view.VolumeBox, view.Clip, enter, leave) ||
+        leave < 0.0 || enter > 1.0)
+      {
+        continue;
+      }
+      const accelvolume::Vec3 entry = nearPoint + std::max(enter, 0.0) * direction;
+      double clip[4] = { entry.x, entry.y, entry.z, 1.0 };
+      view.IndexToClip->MultiplyPoint(clip, clip);
+      value = static_cast<float>(std::min(1.0, std::max(0.0, 0.5 * clip[2] / clip[3] + 0.5)));
+    }
+  }
 }

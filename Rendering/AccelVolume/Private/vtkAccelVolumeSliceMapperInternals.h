@@ -82,6 +82,10 @@ public:
   // The mask the frame uses: the mask input, or the input's hidden points (ghost / blanking
   // array) as a binary mask, intersected with a binary mask input.
   vtkImageData* EffectiveMask(vtkAccelVolumeSliceMapper* self, vtkImageData* input);
+  // ClampDepthToBackface: where no sample contributed, the depth image takes the depth at which
+  // the pixel's ray starts in the volume (box and clip planes): what VTK 9.1's GPU mapper
+  // writes under that name (its ray start, not the back face).
+  void ClampDepthImageToBackface(const vtkAccelVolumeSliceView& view);
   bool ReportedError = false;
 
   // Uploads the volume and its transfer table; false (reported) when it cannot.
