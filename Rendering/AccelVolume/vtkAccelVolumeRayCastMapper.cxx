@@ -1,6 +1,7 @@
 // CPU ray casting volume mapper with octree / distance-map and semi-transparent cell leaping.
 #include "vtkAccelVolumeRayCastMapper.h"
 
+#include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeInputAdapter.h"
@@ -152,6 +153,7 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
 
 void vtkAccelVolumeRayCastMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
+  const vtkAccelVolumeWindowContext current(window);
   this->Internals->Display.ReleaseGraphicsResources(window);
 }
 

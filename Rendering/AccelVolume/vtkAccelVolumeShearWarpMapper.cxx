@@ -2,6 +2,7 @@
 // threads and MPI ranks.
 #include "vtkAccelVolumeShearWarpMapper.h"
 
+#include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeImageDisplay.h"
 #include "vtkAccelVolumeInputAdapter.h"
@@ -215,6 +216,7 @@ double vtkAccelVolumeShearWarpMapper::GetLastBandTime(int band) const
 
 void vtkAccelVolumeShearWarpMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
+  const vtkAccelVolumeWindowContext current(window);
   this->Internals->Display.ReleaseGraphicsResources(window);
 }
 

@@ -3,6 +3,7 @@
 
 #include "vtkAccelVolumeSliceMapperInternals.h"
 
+#include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
@@ -252,6 +253,7 @@ const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
 
 void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
+  const vtkAccelVolumeWindowContext current(window);
   this->Internals->Resources.ReleaseGraphicsResources(window);
   this->Internals->Mask.ReleaseGraphicsResources(window);
 }

@@ -123,3 +123,21 @@ void vtkAccelVolumeDepthReader::ReleaseGraphicsResources(vtkWindow* window)
   this->Resolved->ReleaseGraphicsResources(window);
   this->Format = -2;
 }
+
+vtkAccelVolumeWindowContext::vtkAccelVolumeWindowContext(vtkWindow* window)
+{
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (gl && gl->GetGenericContext())
+  {
+    this->Window = gl;
+    gl->PushContext();
+  }
+}
+
+vtkAccelVolumeWindowContext::~vtkAccelVolumeWindowContext()
+{
+  if (this->Window)
+  {
+    this->Window->PopContext();
+  }
+}

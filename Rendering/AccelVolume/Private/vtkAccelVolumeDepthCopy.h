@@ -51,4 +51,22 @@ private:
   int Format = -2;
 };
 
+/**
+ * Makes `window`'s context current for the scope when it has one (and restores the previous
+ * one after): a mapper releasing its objects for one window while another window's context is
+ * current would otherwise delete that window's objects of the same names (VTK's
+ * TestRemoveVolumeNonCurrentContext).
+ */
+class vtkAccelVolumeWindowContext
+{
+public:
+  explicit vtkAccelVolumeWindowContext(vtkWindow* window);
+  ~vtkAccelVolumeWindowContext();
+  vtkAccelVolumeWindowContext(const vtkAccelVolumeWindowContext&) = delete;
+  void operator=(const vtkAccelVolumeWindowContext&) = delete;
+
+private:
+  vtkOpenGLRenderWindow* Window = nullptr;
+};
+
 #endif
