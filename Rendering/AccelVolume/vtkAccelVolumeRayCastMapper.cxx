@@ -8,6 +8,7 @@
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkCamera.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -48,6 +49,8 @@ accelvolume::Blend ToBlend(int blendMode)
       return accelvolume::Blend::Average;
     case vtkVolumeMapper::SLICE_BLEND:
       return accelvolume::Blend::Slice;
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      return accelvolume::Blend::Isosurface;
     default:
       return accelvolume::Blend::Composite;
   }
@@ -161,14 +164,6 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, vtkVolume* volume,
   RayCastFrameInputs& in)
 {
-  if (self->BlendMode == vtkVolumeMapper::ISOSURFACE_BLEND)
-  {
-    vtkErrorWithObjectMacro(self,
-      "Blend mode " << self->BlendMode
-                    << " is not supported by the ray cast mapper (use composite, "
-                       "maximum, minimum, additive, average intensity or slice)");
-    return false;
-  }
   if (self->BlendMode == vtkVolumeMapper::SLICE_BLEND &&
     !vtkPlane::SafeDownCast(property->GetSliceFunction()))
   {
@@ -325,8 +320,22 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
     }
   }
 
+  if (self->BlendMode == ISOSURFACE_BLEND)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    settings.isoValues.assign(
+      values->GetValues(), values->GetValues() + values->GetNumberOfContours());
+    std::sort(settings.isoValues.begin(), settings.isoValues.end());
+  }
+  else
+  {
+    settings.isoValues.clear();
+  }
+
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
-  const bool shade = (composite || self->BlendMode == SLICE_BLEND) && property->GetShade(0) != 0;
+  const bool shade =
+    (composite || self->BlendMode == SLICE_BLEND || self->BlendMode == ISOSURFACE_BLEND) &&
+    property->GetShade(0) != 0;
   if (shade || !in.Transfer.gradientOpacity.empty())
   {
     // Gradient opacity needs the normal matrix too (gradients in world units).

@@ -10,8 +10,10 @@
  * read back when the renderer has visible actors).
  *
  * Blend modes: composite (colour, scalar opacity, gradient opacity, Phong shading with VTK's
- * lights), maximum / minimum intensity, additive (raysum), average and slice (the property's
- * vtkPlane: one classified, optionally shaded sample where each ray meets it), with the transfer
+ * lights), maximum / minimum intensity, additive (raysum), average, slice (the property's
+ * vtkPlane: one classified, optionally shaded sample where each ray meets it) and isosurface
+ * (the property's iso-values: every crossing between two samples adds the tables' colour and
+ * opacity at that value, shaded, front to back, as VTK's GPU mapper), with the transfer
  * function semantics of vtkAccelVolumeSliceMapper (1024-entry tables over the data range,
  * opacity corrected from ScalarOpacityUnitDistance to the sample distance), VTK cropping
  * (every region flag pattern) and any number of clipping planes, parallel and perspective

@@ -10,9 +10,9 @@
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeRayCastMapper.h"
 #include "vtkAccelVolumeSliceMapper.h"
-#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkLight.h"
 #include "vtkLightKit.h"
 #include "vtkPiecewiseFunction.h"
@@ -140,7 +140,8 @@ vtkSmartPointer<vtkImageData> Components(int components, bool unsignedChar)
     const double values[4] = { x, y, 1.0 - x, std::max(x, y) };
     for (int c = 0; c < components; ++c)
     {
-      out->SetComponent(i, c, unsignedChar ? std::floor(255.0 * values[c] + 0.5) : 1000.0 * values[c]);
+      out->SetComponent(
+        i, c, unsignedChar ? std::floor(255.0 * values[c] + 0.5) : 1000.0 * values[c]);
     }
   }
   return image;
@@ -191,10 +192,12 @@ bool MultiComponent()
     };
     const std::vector<float> reference = render(Fixed<vtkGPUVolumeRayCastMapper>(0.5));
     const std::vector<float> slice = render(Fixed<vtkAccelVolumeSliceMapper>(0.5));
-    accelvolume_test::DumpImage(std::string("multi_") + std::to_string(m.Components) +
-        (m.Independent ? "i" : "d") + "_vtk", reference, Size, Size);
-    accelvolume_test::DumpImage(std::string("multi_") + std::to_string(m.Components) +
-        (m.Independent ? "i" : "d") + "_slice", slice, Size, Size);
+    accelvolume_test::DumpImage(
+      std::string("multi_") + std::to_string(m.Components) + (m.Independent ? "i" : "d") + "_vtk",
+      reference, Size, Size);
+    accelvolume_test::DumpImage(
+      std::string("multi_") + std::to_string(m.Components) + (m.Independent ? "i" : "d") + "_slice",
+      slice, Size, Size);
     ok = accelvolume_test::Report(
            (std::string("slice vs vtkGPUVolumeRayCastMapper, composite, ") + m.Name).c_str(),
            accelvolume_test::CompareImages(slice, reference, 16.0 / 255.0), 4.0 / 255.0, 0.03) &&
@@ -242,8 +245,7 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
       4.0 / 255.0, 0.03 },
     // SLICE_BLEND: the property's plane, one classified sample per pixel (oblique plane).
     { "slice plane, unshaded", vtkVolumeMapper::SLICE_BLEND, 1.25, 0.5,
-      [](vtkRenderer*, vtkVolumeProperty* p) { SlicePlaneProperty(p); },
-      2.0 / 255.0, 0.01 },
+      [](vtkRenderer*, vtkVolumeProperty* p) { SlicePlaneProperty(p); }, 2.0 / 255.0, 0.01 },
     { "slice plane, shaded (diffuse)", vtkVolumeMapper::SLICE_BLEND, 1.25, 0.5,
       [](vtkRenderer*, vtkVolumeProperty* p)
       {
@@ -260,11 +262,10 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
   {
     const std::vector<float> reference =
       RenderWith(Fixed<vtkGPUVolumeRayCastMapper>(c.SampleDistance), c);
-    const std::vector<float> slice = RenderWith(Fixed<vtkAccelVolumeSliceMapper>(c.SampleDistance), c);
-    const bool rayCasterRenders = c.Blend != vtkVolumeMapper::ISOSURFACE_BLEND;
-    const std::vector<float> rayCast = rayCasterRenders
-      ? RenderWith(Fixed<vtkAccelVolumeRayCastMapper>(c.SampleDistance), c)
-      : reference;
+    const std::vector<float> slice =
+      RenderWith(Fixed<vtkAccelVolumeSliceMapper>(c.SampleDistance), c);
+    const std::vector<float> rayCast =
+      RenderWith(Fixed<vtkAccelVolumeRayCastMapper>(c.SampleDistance), c);
     const std::string name(c.Name);
     accelvolume_test::DumpImage("features_" + name.substr(0, 12) + "_vtk", reference, Size, Size);
     accelvolume_test::DumpImage("features_" + name.substr(0, 12) + "_slice", slice, Size, Size);
@@ -273,11 +274,9 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
            accelvolume_test::CompareImages(slice, reference, 16.0 / 255.0), c.MeanLimit,
            c.FractionLimit) &&
       ok;
-    // The ray caster refuses ISOSURFACE_BLEND with a clear error (TestAccelVolumeBadInput).
-    ok = (!rayCasterRenders ||
-           accelvolume_test::Report(("ray cast vs vtkGPUVolumeRayCastMapper, " + name).c_str(),
-             accelvolume_test::CompareImages(rayCast, reference, 16.0 / 255.0), c.MeanLimit,
-             c.FractionLimit)) &&
+    ok = (accelvolume_test::Report(("ray cast vs vtkGPUVolumeRayCastMapper, " + name).c_str(),
+           accelvolume_test::CompareImages(rayCast, reference, 16.0 / 255.0), c.MeanLimit,
+           c.FractionLimit)) &&
       ok;
   }
   // Highlights: one light model in both of our mappers (VTK's has the quirks named above).

@@ -3,7 +3,8 @@
 // AVERAGE_INTENSITY_BLEND). Not every renderer takes every mode: shear-warp takes Composite,
 // Maximum and Minimum; the projection oracle (RenderReference) takes all but Composite, which
 // RenderReferenceComposite handles. Slice (SLICE_BLEND: one classified sample where the ray
-// meets a plane) is the ray caster's only.
+// meets a plane) and Isosurface (ISOSURFACE_BLEND: the classified, shaded crossings of the
+// iso-values, composited) are the ray caster's only.
 #ifndef accelvolume_Blend_h
 #define accelvolume_Blend_h
 
@@ -17,7 +18,8 @@ enum class Blend
   Minimum,
   Additive,
   Average,
-  Slice
+  Slice,
+  Isosurface
 };
 
 } // namespace accelvolume

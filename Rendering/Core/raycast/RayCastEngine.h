@@ -18,12 +18,12 @@
 #ifndef accelvolume_RayCastEngine_h
 #define accelvolume_RayCastEngine_h
 
-#include "skipping/MinMaxOctree.h"
-#include "common/Blend.h"
-#include "common/Progress.h"
 #include "common/Affine.h"
+#include "common/Blend.h"
 #include "common/Camera.h"
 #include "common/Lighting.h"
+#include "common/Progress.h"
+#include "skipping/MinMaxOctree.h"
 
 #include <cstdint>
 #include <memory>
@@ -47,7 +47,8 @@ struct RayCastTransfer
   std::vector<float> rgba;
   // Gradient opacity over [0, gradientOpacityMaximum] of the gradient magnitude VTK's GPU mapper
   // uses: |(dv/di_a * gradientAxisScale[a])_a|, dv/di_a the central difference of the data value
-  // per index step along axis a (VTK: gradientAxisScale[a] = mean spacing / spacing[a]); empty: off.
+  // per index step along axis a (VTK: gradientAxisScale[a] = mean spacing / spacing[a]); empty:
+  // off.
   std::vector<float> gradientOpacity;
   double gradientOpacityMaximum = 1.0;
   double gradientAxisScale[3] = { 1, 1, 1 };
@@ -97,6 +98,7 @@ struct RayCastSettings
   std::vector<Box> regions;    // index space, non-overlapping
   std::vector<HalfSpace> clip; // index space
   HalfSpace slicePlane;        // Blend::Slice: the plane Dot(normal, p) + offset == 0, index space
+  std::vector<double> isoValues; // Blend::Isosurface: raw scalar values, ascending
 };
 
 struct RayCastCounters

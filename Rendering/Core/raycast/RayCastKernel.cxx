@@ -256,7 +256,90 @@ private:
       case Blend::Slice:
         this->SlicePlane(pixel, out);
         break;
+      case Blend::Isosurface:
+        this->IsoSurfaces(pixel, out);
+        break;
     }
+  }
+
+  // ISOSURFACE_BLEND (as VTK's GPU mapper and the slice mapper): every iso-value crossed between
+  // a sample and the one before it (in ray order) adds the tables' colour and opacity at that
+  // value (no opacity correction), shaded with the sample's gradient, composited front to back.
+  // The first sample of a ray has nothing to cross from.
+  void IsoSurfaces(const PixelRay& pixel, float* out)
+  {
+    const KernelFrame& frame = this->Frame;
+    const std::vector<double>& iso = this->Settings.isoValues;
+    const bool shade = frame.lighting && frame.lighting->shade;
+    const bool terminate = this->Settings.earlyTermination;
+    const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+    float colour[3] = { 0, 0, 0 };
+    float alpha = 0;
+    bool havePrevious = false;
+    float previous = 0;
+    this->Walk(pixel, false,
+      [&](const double p[3], const SampleCell& cell, float value)
+      {
+        if (value != value)
+        {
+          havePrevious = false;
+          return true;
+        }
+        const float before = previous;
+        const bool crossedFrom = havePrevious;
+        previous = value;
+        havePrevious = true;
+        if (!crossedFrom)
+        {
+          return true;
+        }
+        const double low = std::min(value, before);
+        const double high = std::max(value, before);
+        const bool rising = value >= before;
+        float eyeGradient[3] = { 0, 0, 0 };
+        bool haveGradient = false;
+        for (size_t k = 0; k < iso.size(); ++k)
+        {
+          const double v = iso[rising ? k : iso.size() - 1 - k];
+          if (!(v > low && v <= high))
+          {
+            continue;
+          }
+          int i;
+          float fraction;
+          TablePosition(frame, static_cast<float>(v), i, fraction);
+          const float* e0 = frame.rgba + 4 * i;
+          const float* e1 = e0 + 4;
+          const float a = Lerp(e0[3], e1[3], fraction);
+          float rgb[3] = { Lerp(e0[0], e1[0], fraction), Lerp(e0[1], e1[1], fraction),
+            Lerp(e0[2], e1[2], fraction) };
+          if (shade)
+          {
+            if (!haveGradient)
+            {
+              float indexGradient[3];
+              this->Gradient(p, cell, eyeGradient, indexGradient);
+              haveGradient = true;
+            }
+            this->Shade(pixel, p, eyeGradient, rgb);
+          }
+          const float weight = (1.0f - alpha) * a;
+          colour[0] += weight * rgb[0];
+          colour[1] += weight * rgb[1];
+          colour[2] += weight * rgb[2];
+          alpha += weight;
+        }
+        if (terminate && alpha >= threshold)
+        {
+          ++this->Counters.terminatedRays;
+          return false;
+        }
+        return true;
+      });
+    out[0] = colour[0];
+    out[1] = colour[1];
+    out[2] = colour[2];
+    out[3] = alpha;
   }
 
   // SLICE_BLEND (as VTK's GPU mapper): the sample where the ray meets the plane inside the

@@ -126,6 +126,7 @@ void IntegrateInterval(const ScalarVolume& volume, const OpacityTable& opacity,
         break;
       case Blend::Composite: // refused by RenderReference
       case Blend::Slice:
+      case Blend::Isosurface:
         break;
     }
   }
@@ -155,6 +156,7 @@ ReferencePixel Finish(const RayAccumulator& accumulator, const ReferenceOptions&
       break;
     case Blend::Composite: // refused by RenderReference
     case Blend::Slice:
+    case Blend::Isosurface:
       break;
   }
   return pixel;
@@ -174,10 +176,11 @@ std::vector<ReferencePixel> RenderReference(const ScalarVolume& volume,
   constexpr const char* caller = "accelvolume::RenderReference";
   detail::CheckRaysEndAndStep(caller, pixelCount, raysEnd, options.stepWorld);
   detail::CheckVolume(caller, volume);
-  if (options.blend == Blend::Composite || options.blend == Blend::Slice)
+  if (options.blend == Blend::Composite || options.blend == Blend::Slice ||
+    options.blend == Blend::Isosurface)
   {
     throw std::invalid_argument(std::string(caller) +
-      ": composite is RenderReferenceComposite's blend, slice the ray caster's");
+      ": composite is RenderReferenceComposite's blend, slice and isosurface the ray caster's");
   }
   const Affine worldToIndex = volume.indexToWorld.Inverse();
   std::vector<ReferencePixel> pixels(pixelCount);

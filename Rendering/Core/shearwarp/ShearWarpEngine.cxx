@@ -70,9 +70,9 @@ bool CheckFrameArguments(const VolumeView& volume, double rangeMin, double range
     return false;
   }
   if (settings.blend == Blend::Additive || settings.blend == Blend::Average ||
-    settings.blend == Blend::Slice)
+    settings.blend == Blend::Slice || settings.blend == Blend::Isosurface)
   {
-    error = "shear-warp: additive, average and slice blending are not supported";
+    error = "shear-warp: additive, average, slice and isosurface blending are not supported";
     return false;
   }
   return true;
