@@ -99,17 +99,29 @@ bool ExpectAll()
          },
          "Unsupported scalar type") &&
     ok;
-  // The slice mapper draws iso-surfaces (TestAccelVolumeVsGPURayCastFeatures).
-  ok = std::is_same<MapperType, vtkAccelVolumeSliceMapper>::value ||
+  // The slice mapper and the ray caster draw iso-surfaces (TestAccelVolumeVsGPURayCastFeatures).
+  ok = !std::is_same<MapperType, vtkAccelVolumeShearWarpMapper>::value ||
     Expect<MapperType>(
-         "isosurface blend (not provided)",
-         [](vtkVolumeMapper* mapper)
-         {
-           mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
-           mapper->SetBlendModeToIsoSurface();
-         },
-         "not supported") &&
-    ok;
+      "isosurface blend (not provided)",
+      [](vtkVolumeMapper* mapper)
+      {
+        mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
+        mapper->SetBlendModeToIsoSurface();
+      },
+      "not supported") &&
+      ok;
+  if (std::is_same<MapperType, vtkAccelVolumeRayCastMapper>::value)
+  {
+    ok = Expect<MapperType>(
+           "slice blend without a slice function",
+           [](vtkVolumeMapper* mapper)
+           {
+             mapper->SetInputData(accelvolume_test::MakePhantom("blobs", 8, 8, 8));
+             mapper->SetBlendMode(vtkVolumeMapper::SLICE_BLEND);
+           },
+           "needs a vtkPlane") &&
+      ok;
+  }
   if (std::is_same<MapperType, vtkAccelVolumeShearWarpMapper>::value)
   {
     ok = Expect<MapperType>(
