@@ -26,6 +26,25 @@ void AppendProxyPolygon(
   }
 }
 
+// `polygon` clipped to `box` (into `clipped`), or `polygon` itself without a box. Polygons are
+// never copied here: a copy would instantiate std::vector<Vec3>'s copy in this library, whose
+// symbols must not name Core types (Testing/Symbols).
+const accelvolume::Polygon& ClippedToBox(
+  const accelvolume::Polygon& polygon, const accelvolume::Box* box, accelvolume::Polygon& clipped)
+{
+  if (!box)
+  {
+    return polygon;
+  }
+  const accelvolume::Polygon* current = &polygon;
+  for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*box))
+  {
+    clipped = current->empty() ? accelvolume::Polygon() : accelvolume::ClipPolygon(*current, half);
+    current = &clipped;
+  }
+  return clipped;
+}
+
 int VertexCount(const std::vector<float>& vertices)
 {
   return static_cast<int>(vertices.size() / Frame::VertexFloats);
@@ -164,15 +183,10 @@ void BuildProjectionBrick(const vtkAccelVolumeSliceGeometryInput& input,
     stats.Slices += static_cast<int>(polygons.size()) * input.SlabSamples;
     cell.SliceCount = VertexCount(vertices) - cell.SliceFirst;
     cell.FaceFirst = VertexCount(vertices);
-    for (accelvolume::Polygon face : faces[r])
+    accelvolume::Polygon clipped;
+    for (const accelvolume::Polygon& source : faces[r])
     {
-      if (drawn)
-      {
-        for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*drawn))
-        {
-          face = face.empty() ? face : accelvolume::ClipPolygon(face, half);
-        }
-      }
+      const accelvolume::Polygon& face = ClippedToBox(source, drawn, clipped);
       if (!face.empty())
       {
         AppendProxyPolygon(face, 0.0, vertices);
@@ -198,15 +212,10 @@ void BuildSlicePlaneBrick(const vtkAccelVolumeSliceGeometryInput& input,
   cell.SliceFirst = VertexCount(vertices);
   draw.SliceStarts.assign(2, VertexCount(vertices));
   cell.FaceFirst = VertexCount(vertices);
-  for (accelvolume::Polygon face : *input.SlicePlane)
+  accelvolume::Polygon clipped;
+  for (const accelvolume::Polygon& source : *input.SlicePlane)
   {
-    if (drawn)
-    {
-      for (const accelvolume::HalfSpace& half : accelvolume::BoxHalfSpaces(*drawn))
-      {
-        face = face.empty() ? face : accelvolume::ClipPolygon(face, half);
-      }
-    }
+    const accelvolume::Polygon& face = ClippedToBox(source, drawn, clipped);
     if (!face.empty())
     {
       AppendProxyPolygon(face, 0.0, vertices);
