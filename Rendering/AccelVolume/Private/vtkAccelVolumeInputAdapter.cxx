@@ -118,15 +118,27 @@ bool vtkAccelVolumeInputAdapter::Structure(vtkDataSet* input, std::string& error
   double origin[3];
   double spacing[3];
   int dims[3];
+  this->Resampled = false;
   for (int a = 0; a < 3; ++a)
   {
-    if (!EvenCoordinates(axes[a], origin[a], spacing[a]))
+    this->Resampled = this->Resampled || !EvenCoordinates(axes[a], origin[a], spacing[a]);
+  }
+  if (this->Resampled)
+  {
+    if (!this->PlanResampling(axes, origin, spacing, dims, error))
     {
-      error = std::string("The vtkRectilinearGrid's ") + "xyz"[a] +
-        " coordinates are not evenly spaced and increasing; resample it to a vtkImageData "
-        "(vtkResampleToImage)";
       return false;
     }
+    adapted->SetOrigin(origin);
+    adapted->SetSpacing(spacing);
+    vtkNew<vtkMatrix3x3> identity;
+    adapted->SetDirectionMatrix(identity);
+    adapted->SetDimensions(dims);
+    return true;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    EvenCoordinates(axes[a], origin[a], spacing[a]);
     dims[a] = static_cast<int>(axes[a]->GetNumberOfTuples());
     if (this->CellFlag && dims[a] > 1)
     {
@@ -140,6 +152,116 @@ bool vtkAccelVolumeInputAdapter::Structure(vtkDataSet* input, std::string& error
   adapted->SetDirectionMatrix(identity);
   adapted->SetDimensions(dims);
   return true;
+}
+
+bool vtkAccelVolumeInputAdapter::PlanResampling(
+  vtkDataArray* const axes[3], double origin[3], double spacing[3], int dims[3], std::string& error)
+{
+  if (this->CellFlag)
+  {
+    error = "Cell scalars on an unevenly spaced vtkRectilinearGrid are not rendered; use point "
+            "scalars (vtkCellDataToPointData) or resample it to a vtkImageData";
+    return false;
+  }
+  double count[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    vtkDataArray* c = axes[a];
+    const vtkIdType n = c ? c->GetNumberOfTuples() : 0;
+    this->SourceDimensions[a] = static_cast<int>(n);
+    double smallest = VTK_DOUBLE_MAX;
+    for (vtkIdType i = 1; i < n; ++i)
+    {
+      const double step = c->GetComponent(i, 0) - c->GetComponent(i - 1, 0);
+      if (!(step > 0) || !std::isfinite(step))
+      {
+        error =
+          std::string("The vtkRectilinearGrid's ") + "xyz"[a] + " coordinates are not increasing";
+        return false;
+      }
+      smallest = std::min(smallest, step);
+    }
+    if (n < 1)
+    {
+      error = "The vtkRectilinearGrid has no coordinates";
+      return false;
+    }
+    origin[a] = c->GetComponent(0, 0);
+    const double length = n > 1 ? c->GetComponent(n - 1, 0) - origin[a] : 0.0;
+    count[a] = n > 1 ? std::min(std::ceil(length / smallest - 1.0e-6) + 1.0, 4.0 * n) : 1.0;
+  }
+  constexpr double MaximumSamples = 67108864.0; // 2^26
+  const double total = count[0] * count[1] * count[2];
+  const double shrink = total > MaximumSamples ? std::cbrt(MaximumSamples / total) : 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    vtkDataArray* c = axes[a];
+    const vtkIdType n = this->SourceDimensions[a];
+    dims[a] = n > 1 ? std::max(2, static_cast<int>(count[a] * shrink)) : 1;
+    const double length = n > 1 ? c->GetComponent(n - 1, 0) - origin[a] : 0.0;
+    spacing[a] = n > 1 ? length / (dims[a] - 1) : 1.0;
+    AxisMap& map = this->Axes[a];
+    map.Index.assign(dims[a], 0);
+    map.Weight.assign(dims[a], 0.0);
+    vtkIdType i = 0;
+    for (int t = 0; t < dims[a] && n > 1; ++t)
+    {
+      const double x = origin[a] + t * spacing[a];
+      while (i + 2 < n && c->GetComponent(i + 1, 0) <= x)
+      {
+        ++i;
+      }
+      const double lower = c->GetComponent(i, 0);
+      const double upper = c->GetComponent(i + 1, 0);
+      map.Index[t] = i;
+      map.Weight[t] = std::min(1.0, std::max(0.0, (x - lower) / (upper - lower)));
+    }
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkDataArray> vtkAccelVolumeInputAdapter::Resample(vtkDataArray* scalars) const
+{
+  const int* n = this->SourceDimensions;
+  const int dims[3] = { static_cast<int>(this->Axes[0].Index.size()),
+    static_cast<int>(this->Axes[1].Index.size()), static_cast<int>(this->Axes[2].Index.size()) };
+  const int components = scalars->GetNumberOfComponents();
+  vtkNew<vtkFloatArray> out;
+  out->SetName(scalars->GetName());
+  out->SetNumberOfComponents(components);
+  out->SetNumberOfTuples(static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
+  const auto source = [&](vtkIdType x, vtkIdType y, vtkIdType z)
+  { return (z * n[1] + y) * n[0] + x; };
+  vtkIdType t = 0;
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    const vtkIdType z0 = this->Axes[2].Index[z];
+    const vtkIdType z1 = std::min<vtkIdType>(z0 + 1, n[2] - 1);
+    const double wz = this->Axes[2].Weight[z];
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      const vtkIdType y0 = this->Axes[1].Index[y];
+      const vtkIdType y1 = std::min<vtkIdType>(y0 + 1, n[1] - 1);
+      const double wy = this->Axes[1].Weight[y];
+      for (int x = 0; x < dims[0]; ++x, ++t)
+      {
+        const vtkIdType x0 = this->Axes[0].Index[x];
+        const vtkIdType x1 = std::min<vtkIdType>(x0 + 1, n[0] - 1);
+        const double wx = this->Axes[0].Weight[x];
+        for (int c = 0; c < components; ++c)
+        {
+          const auto at = [&](vtkIdType i, vtkIdType j, vtkIdType k)
+          { return scalars->GetComponent(source(i, j, k), c); };
+          const double front = (1 - wy) * ((1 - wx) * at(x0, y0, z0) + wx * at(x1, y0, z0)) +
+            wy * ((1 - wx) * at(x0, y1, z0) + wx * at(x1, y1, z0));
+          const double back = (1 - wy) * ((1 - wx) * at(x0, y0, z1) + wx * at(x1, y0, z1)) +
+            wy * ((1 - wx) * at(x0, y1, z1) + wx * at(x1, y1, z1));
+          out->SetComponent(t, c, static_cast<float>((1 - wz) * front + wz * back));
+        }
+      }
+    }
+  }
+  return out;
 }
 
 bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* input,
@@ -188,7 +310,11 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
       this->Source = nullptr;
       return false;
     }
-    if (EngineType(scalars->GetDataType()))
+    if (this->Resampled)
+    {
+      this->Converted = this->Resample(scalars);
+    }
+    else if (EngineType(scalars->GetDataType()))
     {
       this->Converted = scalars;
     }
@@ -205,8 +331,9 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
     // Blanking travels with the scalars: ghost cells of cell scalars become hidden points
     // (any flag, as VTK's GPU mapper); point scalars keep both ghost arrays.
     this->Adapted->GetCellData()->Initialize();
-    if (vtkUnsignedCharArray* ghosts =
-          cellFlag ? input->GetCellGhostArray() : input->GetPointGhostArray())
+    vtkUnsignedCharArray* ghosts =
+      cellFlag ? input->GetCellGhostArray() : input->GetPointGhostArray();
+    if (ghosts && !this->Resampled)
     {
       vtkNew<vtkUnsignedCharArray> hidden;
       hidden->SetName(vtkDataSetAttributes::GhostArrayName());
@@ -217,7 +344,7 @@ bool vtkAccelVolumeInputAdapter::Adapt(vtkVolumeMapper* mapper, vtkDataSet* inpu
       }
       this->Adapted->GetPointData()->AddArray(hidden);
     }
-    if (!cellFlag && input->GetCellGhostArray())
+    if (!cellFlag && input->GetCellGhostArray() && !this->Resampled)
     {
       this->Adapted->GetCellData()->AddArray(input->GetCellGhostArray());
     }
