@@ -14,7 +14,8 @@
  * - LastRenderTime: wall-clock seconds of the last Render().
  * - The input is optional, so a missing input gets one clear error (from GetBounds, once per
  *   change of the mapper) instead of VTK's pipeline error.
- * - Inputs as VTK's mappers take them: vtkImageData or an evenly spaced vtkRectilinearGrid,
+ * - Inputs as VTK's mappers take them: vtkImageData or a vtkRectilinearGrid (unevenly spaced
+ *   ones with point scalars are resampled trilinearly onto a regular grid),
  *   point or cell scalars (cell scalars are drawn as VTK's GPU mapper draws them: one sample
  *   per cell centre, so the picture ends half a cell inside the point bounds), of any integer
  *   or floating type but bit (unsigned int and 64-bit integers are sampled as 32-bit floats, as
