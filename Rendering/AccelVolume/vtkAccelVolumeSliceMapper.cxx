@@ -272,10 +272,13 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(
   if (components > 1)
   {
     const bool independent = !property || property->GetIndependentComponents();
-    if (this->BlendMode != COMPOSITE_BLEND)
+    const bool projection = this->BlendMode == ADDITIVE_BLEND ||
+      (this->BlendMode == AVERAGE_INTENSITY_BLEND && !independent);
+    if (this->BlendMode != COMPOSITE_BLEND && !projection)
     {
-      vtkErrorMacro(
-        "Scalars with " << components << " components render with composite blending only here");
+      vtkErrorMacro("Scalars with " << components
+                                    << " components render with composite, "
+                                       "additive and (dependent components) average blending");
       return false;
     }
     if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)

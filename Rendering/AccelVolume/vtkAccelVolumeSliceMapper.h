@@ -51,7 +51,8 @@
  * picking, multisampled windows, ISOSURFACE_BLEND (the property's iso-values, drawn by the
  * composite passes), SLICE_BLEND (the property's vtkPlane, drawn as a cut face) and 2-4 component
  * scalars (composite: independent with per-component functions and weights, or dependent
- * luminance-alpha / RGBA; one brick, no octree skipping or gradient opacity).
+ * luminance-alpha / RGBA; raysum of either and the average of dependent components; one brick,
+ * no octree skipping or gradient opacity).
  *
  * Limits: scalars of any integer or floating type but bit (int, unsigned int, 64-bit integers,
  * float and double are sampled as 32-bit floats normalised to the data range; NaN samples

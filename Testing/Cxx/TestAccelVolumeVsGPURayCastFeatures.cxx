@@ -155,9 +155,14 @@ bool MultiComponent()
     int Components;
     bool Independent;
     bool UnsignedChar;
+    int Blend = vtkVolumeMapper::COMPOSITE_BLEND;
   };
-  const MultiCase cases[] = { { "2 independent components", 2, true, false },
-    { "dependent luminance-alpha", 2, false, false }, { "dependent RGBA", 4, false, true } };
+  const MultiCase cases[] = { { "composite, 2 independent components", 2, true, false },
+    { "composite, dependent luminance-alpha", 2, false, false },
+    { "composite, dependent RGBA", 4, false, true },
+    { "raysum, 2 independent components", 2, true, false, vtkVolumeMapper::ADDITIVE_BLEND },
+    { "raysum, dependent RGBA", 4, false, true, vtkVolumeMapper::ADDITIVE_BLEND },
+    { "average, dependent RGBA", 4, false, true, vtkVolumeMapper::AVERAGE_INTENSITY_BLEND } };
   bool ok = true;
   for (const MultiCase& m : cases)
   {
@@ -165,6 +170,7 @@ bool MultiComponent()
     auto render = [&](vtkVolumeMapper* mapper)
     {
       mapper->SetInputData(image);
+      mapper->SetBlendMode(m.Blend);
       vtkNew<vtkVolume> volume;
       volume->SetMapper(mapper);
       vtkVolumeProperty* property = volume->GetProperty();
@@ -192,14 +198,14 @@ bool MultiComponent()
     };
     const std::vector<float> reference = render(Fixed<vtkGPUVolumeRayCastMapper>(0.5));
     const std::vector<float> slice = render(Fixed<vtkAccelVolumeSliceMapper>(0.5));
-    accelvolume_test::DumpImage(
-      std::string("multi_") + std::to_string(m.Components) + (m.Independent ? "i" : "d") + "_vtk",
+    accelvolume_test::DumpImage(std::string("multi_") + std::to_string(m.Components) +
+        (m.Independent ? "i" : "d") + std::to_string(m.Blend) + "_vtk",
       reference, Size, Size);
-    accelvolume_test::DumpImage(
-      std::string("multi_") + std::to_string(m.Components) + (m.Independent ? "i" : "d") + "_slice",
+    accelvolume_test::DumpImage(std::string("multi_") + std::to_string(m.Components) +
+        (m.Independent ? "i" : "d") + std::to_string(m.Blend) + "_slice",
       slice, Size, Size);
     ok = accelvolume_test::Report(
-           (std::string("slice vs vtkGPUVolumeRayCastMapper, composite, ") + m.Name).c_str(),
+           (std::string("slice vs vtkGPUVolumeRayCastMapper, ") + m.Name).c_str(),
            accelvolume_test::CompareImages(slice, reference, 16.0 / 255.0), 4.0 / 255.0, 0.03) &&
       ok;
   }

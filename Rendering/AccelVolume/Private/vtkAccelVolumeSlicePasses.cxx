@@ -171,7 +171,11 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
     "\n#define ACCELVOLUME_SLICE_PLANE " + (composite && frame.SlicePlane ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK_NEIGHBOURS " + (frame.MaskNeighbours ? "1" : "0") +
-    "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(composite ? frame.Components : 1) +
+    "\n#define ACCELVOLUME_COMPONENTS " +
+    std::to_string(composite || frame.BlendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
+          frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND
+        ? frame.Components
+        : 1) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";

@@ -601,7 +601,26 @@ void main()
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float here = dot(eyePosition - rayOrigin, rayDirection);
   float geometry = sceneDistance(rayOrigin, rayDirection);
+#if ACCELVOLUME_COMPONENTS > 1
+  // Multi-component raysum / average as VTK's GPU mapper: independent components add their
+  // weighted opacity(value) * value; dependent ones (luminance-alpha, RGBA) take component 0's
+  // value and the opacity of the last component.
+  vec4 values =
+    texture(volumeTexture, ACCELVOLUME_TEXEL_CENTRE(indexPosition) / volumeDimensions);
+  float value = values.x;
+#if ACCELVOLUME_INDEPENDENT
+  float weightedValue = 0.0;
+  for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
+  {
+    weightedValue += componentWeights[c] * componentLookup(c, values[c]).a * values[c];
+  }
+#else
+  float weightedValue = componentLookup(0, values[ACCELVOLUME_COMPONENTS - 1]).a * value;
+#endif
+#else
   float value = normalizedScalar();
+  float weightedValue = opacity(value) * value;
+#endif
   // Integrating modes: weight each sample by the ray length it stands for, so the result
   // is a line integral whatever the slice count. Slices are planes of constant eye depth;
   // along this ray they are sliceSpacing / cos(theta) apart.
@@ -650,11 +669,11 @@ void main()
 #endif
   weight = max(weight, 0.0);
 #if defined(ACCELVOLUME_BLEND_ADDITIVE)
-  gl_FragData[0] = vec4(weight * opacity(value) * value * additiveScale, weight, 0.0, 0.0);
+  gl_FragData[0] = vec4(weight * weightedValue * additiveScale, weight, 0.0, 0.0);
   ACCELVOLUME_WRITE_DEPTH(true);
 #else
   float inRange = (value >= averageRange.x && value <= averageRange.y) ? 1.0 : 0.0;
-  gl_FragData[0] = vec4(inRange * weight * opacity(value) * value, inRange * weight, 0.0, 0.0);
+  gl_FragData[0] = vec4(inRange * weight * weightedValue, inRange * weight, 0.0, 0.0);
   ACCELVOLUME_WRITE_DEPTH(true);
 #endif
 #endif
