@@ -68,7 +68,7 @@ bool Components(MapperKind kind)
            [](Probe& probe) { probe.Volume->GetProperty()->SetIndependentComponents(false); }) &&
       ok;
     ok = ExpectError(kind, "2 components, MIP", withComponents(2),
-           "components render with composite blending only",
+           "components render with composite, additive and (dependent components) average",
            [](Probe& probe) { probe.Mapper->SetBlendModeToMaximumIntensity(); }) &&
       ok;
     return ok;
