@@ -305,21 +305,8 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   settings.clip = vtkAccelVolumeClipHalfSpaces(self->ClippingPlanes, in.IndexToWorld);
   if (vtkPlane* plane = vtkPlane::SafeDownCast(property->GetSliceFunction()))
   {
-    // world = A index + t: n . (world - o) = 0 is (A^T n) . index + n . (t - o) = 0.
-    double origin[3];
-    double normal[3];
-    plane->GetOrigin(origin);
-    plane->GetNormal(normal);
-    settings.slicePlane = accelvolume::HalfSpace();
-    for (int r = 0; r < 3; ++r)
-    {
-      settings.slicePlane.normal.x += in.IndexToWorld->GetElement(r, 0) * normal[r];
-      settings.slicePlane.normal.y += in.IndexToWorld->GetElement(r, 1) * normal[r];
-      settings.slicePlane.normal.z += in.IndexToWorld->GetElement(r, 2) * normal[r];
-      settings.slicePlane.offset += normal[r] * (in.IndexToWorld->GetElement(r, 3) - origin[r]);
-    }
+    settings.slicePlane = vtkAccelVolumeIndexHalfSpace(plane, in.IndexToWorld);
   }
-
   if (self->BlendMode == ISOSURFACE_BLEND)
   {
     vtkContourValues* values = property->GetIsoSurfaceValues();

@@ -81,26 +81,13 @@ std::vector<accelvolume::Polygon> SlicePlanePolygons(
       : "SLICE_BLEND needs a slice function on the volume property (vtkPlane)";
     return {};
   }
-  double origin[3];
-  double normal[3];
-  plane->GetOrigin(origin);
-  plane->GetNormal(normal);
-  // world = A index + t: the plane n . (world - o) = 0 is (A^T n) . index = n . (o - t).
-  vtkMatrix4x4* m = view.IndexToWorld;
-  accelvolume::Vec3 indexNormal;
-  double value = 0.0;
-  for (int r = 0; r < 3; ++r)
-  {
-    indexNormal.x += m->GetElement(r, 0) * normal[r];
-    indexNormal.y += m->GetElement(r, 1) * normal[r];
-    indexNormal.z += m->GetElement(r, 2) * normal[r];
-    value += normal[r] * (origin[r] - m->GetElement(r, 3));
-  }
+  // The plane n.p + offset = 0 of the index half-space is n.p = -offset.
+  const accelvolume::HalfSpace indexPlane = vtkAccelVolumeIndexHalfSpace(plane, view.IndexToWorld);
   std::vector<accelvolume::Polygon> polygons;
   for (const accelvolume::Box& region : view.Regions)
   {
     accelvolume::Polygon polygon =
-      accelvolume::PlaneRegionPolygon(indexNormal, value, region, view.Clip);
+      accelvolume::PlaneRegionPolygon(indexPlane.normal, -indexPlane.offset, region, view.Clip);
     if (!polygon.empty())
     {
       polygons.push_back(std::move(polygon));

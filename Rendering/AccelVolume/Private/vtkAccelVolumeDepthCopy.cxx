@@ -61,9 +61,9 @@ bool vtkAccelVolumeAllocateDepth(vtkTextureObject* texture, int width, int heigh
 }
 
 void vtkAccelVolumeCopyReadDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
-  vtkOpenGLFramebufferObject* framebuffer, int x, int y, int width, int height)
+  vtkOpenGLFramebufferObject* framebuffer, int depthFormat, int x, int y, int width, int height)
 {
-  if (vtkAccelVolumeReadDepthFormat() < 0)
+  if (depthFormat < 0)
   {
     texture->Activate();
     texture->CopyFromFrameBuffer(x, y, 0, 0, width, height);
@@ -109,7 +109,7 @@ bool vtkAccelVolumeDepthReader::Read(
     this->Framebuffer->RestorePreviousBindingsAndBuffers();
   }
   vtkAccelVolumeCopyReadDepth(
-    window, this->Resolved, this->Framebuffer, lowerLeft[0], lowerLeft[1], width, height);
+    window, this->Resolved, this->Framebuffer, format, lowerLeft[0], lowerLeft[1], width, height);
   state->PushReadFramebufferBinding();
   this->Framebuffer->Bind(GL_READ_FRAMEBUFFER);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth);

@@ -27,11 +27,11 @@ bool vtkAccelVolumeAllocateDepth(vtkTextureObject* texture, int width, int heigh
 
 /**
  * Copies the read framebuffer's depth in [x, x + width) x [y, y + height) to (0, 0) of
- * `texture`, the depth attachment of `framebuffer` (allocated with the read depth format when
- * the read framebuffer is multisampled).
+ * `texture`, the depth attachment of `framebuffer` (allocated with `depthFormat`, the read
+ * framebuffer's vtkAccelVolumeReadDepthFormat(), when that is multisampled).
  */
 void vtkAccelVolumeCopyReadDepth(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
-  vtkOpenGLFramebufferObject* framebuffer, int x, int y, int width, int height);
+  vtkOpenGLFramebufferObject* framebuffer, int depthFormat, int x, int y, int width, int height);
 
 /** Reads the read framebuffer's depth into `depth` (width x height floats), multisampled or not. */
 class vtkAccelVolumeDepthReader

@@ -141,8 +141,7 @@ bool vtkAccelVolumeCheckInput(
     error = "Input has no point scalars to render";
     return false;
   }
-  if (scalars->GetNumberOfComponents() < 1 ||
-    scalars->GetNumberOfComponents() > maximumComponents)
+  if (scalars->GetNumberOfComponents() < 1 || scalars->GetNumberOfComponents() > maximumComponents)
   {
     // Rendering component 0 of independent components, or colour without the opacity channel,
     // would be a silently wrong picture: refuse both.
@@ -322,6 +321,29 @@ std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   return accelvolume::CroppingRegionBoxes(volumeBox, indexPlanes, mapper->GetCroppingRegionFlags());
 }
 
+accelvolume::HalfSpace vtkAccelVolumeIndexHalfSpace(vtkPlane* plane, vtkMatrix4x4* indexToWorld)
+{
+  double normal[3];
+  double origin[3];
+  plane->GetNormal(normal);
+  plane->GetOrigin(origin);
+  // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
+  double indexNormal[3] = { 0, 0, 0 };
+  double offset = 0;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      indexNormal[c] += indexToWorld->GetElement(r, c) * normal[r];
+    }
+    offset += normal[r] * (indexToWorld->GetElement(r, 3) - origin[r]);
+  }
+  accelvolume::HalfSpace halfSpace;
+  halfSpace.normal = { indexNormal[0], indexNormal[1], indexNormal[2] };
+  halfSpace.offset = offset;
+  return halfSpace;
+}
+
 std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
   vtkPlaneCollection* planes, vtkMatrix4x4* indexToWorld)
 {
@@ -344,20 +366,7 @@ std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(
       clip.push_back(none);
       continue;
     }
-    // World half-space n.(x - o) >= 0 with x = A p + t becomes (A^T n).p + n.(t - o) >= 0.
-    double indexNormal[3] = { 0, 0, 0 };
-    double offset = 0;
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        indexNormal[c] += indexToWorld->GetElement(r, c) * normal[r];
-      }
-      offset += normal[r] * (indexToWorld->GetElement(r, 3) - origin[r]);
-    }
-    accelvolume::HalfSpace halfSpace;
-    halfSpace.normal = { indexNormal[0], indexNormal[1], indexNormal[2] };
-    halfSpace.offset = offset;
+    const accelvolume::HalfSpace halfSpace = vtkAccelVolumeIndexHalfSpace(plane, indexToWorld);
     clip.push_back(halfSpace);
   }
   return clip;
@@ -401,8 +410,8 @@ void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
     {
       continue;
     }
-    singleHeadlight = model.lights.empty() && light->LightTypeIsHeadlight() &&
-      light->GetIntensity() == 1.0;
+    singleHeadlight =
+      model.lights.empty() && light->LightTypeIsHeadlight() && light->GetIntensity() == 1.0;
     accelvolume::SceneLight scene;
     const double intensity = light->GetIntensity();
     double colour[3];
@@ -648,18 +657,18 @@ void vtkAccelVolumeCPULighting(vtkRenderer* renderer, vtkVolumeProperty* propert
 }
 
 vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
-  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property)
+  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume,
+  vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window)
   {
-    vtkErrorWithObjectMacro(mapper,
-      << mapper->GetClassName() << " needs an OpenGL render window to show its image");
+    vtkErrorWithObjectMacro(
+      mapper, << mapper->GetClassName() << " needs an OpenGL render window to show its image");
     return nullptr;
   }
   std::string error;
-  if (!adapter.Fetch(mapper, input, scalars, error) ||
-    !vtkAccelVolumeCheckGeometry(mapper, error))
+  if (!adapter.Fetch(mapper, input, scalars, error) || !vtkAccelVolumeCheckGeometry(mapper, error))
   {
     vtkErrorWithObjectMacro(mapper, << error);
     return nullptr;

@@ -7,8 +7,8 @@
 #include "common/Geometry.h"
 #include "common/Lighting.h"
 #include "common/ParallelFor.h"
-#include "skipping/MinMaxOctree.h"  // ScalarType, VolumeView
 #include "raycast/RayCastEngine.h" // RayCastTransfer, RayCastLighting
+#include "skipping/MinMaxOctree.h" // ScalarType, VolumeView
 
 #include "vtkDataArray.h"    // For vtkSmartPointer<vtkDataArray>
 #include "vtkSmartPointer.h" // For vtkSmartPointer
@@ -21,6 +21,7 @@
 class vtkAccelVolumeInputAdapter;
 class vtkImageData;
 class vtkMatrix4x4;
+class vtkPlane;
 class vtkPlaneCollection;
 class vtkCamera;
 class vtkOpenGLRenderWindow;
@@ -43,7 +44,8 @@ accelvolume::ParallelFor vtkAccelVolumeSMPParallelFor();
 // renderable input (vtkAccelVolumeInputAdapter::Fetch) and a volume property. Null, after a
 // vtkErrorMacro on the mapper, when one is missing.
 vtkOpenGLRenderWindow* vtkAccelVolumeBeginCPURender(vtkVolumeMapper* mapper,
-  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume, vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
+  vtkAccelVolumeInputAdapter& adapter, vtkRenderer* renderer, vtkVolume* volume,
+  vtkImageData*& input, vtkDataArray*& scalars, vtkVolumeProperty*& property);
 
 // The core's view of VTK scalars (no copy); false for a type the mappers do not render.
 bool vtkAccelVolumeScalarType(int vtkType, accelvolume::ScalarType& type);
@@ -80,6 +82,10 @@ void vtkAccelVolumeIndexToWorld(vtkVolume* volume, vtkImageData* input, vtkMatri
 // The visible cropping regions (or the whole box) in index coordinates.
 std::vector<accelvolume::Box> vtkAccelVolumeRegions(
   vtkVolumeMapper* mapper, vtkImageData* input, const accelvolume::Box& volumeBox);
+
+// A world plane as an index-space half-space (kept side: n.p + offset >= 0, the side its
+// normal points to).
+accelvolume::HalfSpace vtkAccelVolumeIndexHalfSpace(vtkPlane* plane, vtkMatrix4x4* indexToWorld);
 
 // The mapper's clipping planes as index-space half-spaces (kept side: n.p + offset >= 0).
 std::vector<accelvolume::HalfSpace> vtkAccelVolumeClipHalfSpaces(

@@ -696,21 +696,20 @@ bool ResolveToImage(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources&
 // The scene's depth at the target's size: copied, or (reduced target) copied at the viewport's
 // size and sampled down by a pass that writes the target's depth buffer.
 bool CopySceneDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame)
+  const vtkAccelVolumeSliceFrame& frame, int depthFormat)
 {
   if (!Reduced(frame))
   {
-    vtkAccelVolumeCopyReadDepth(window, resources.SceneDepth, resources.Framebuffer,
+    vtkAccelVolumeCopyReadDepth(window, resources.SceneDepth, resources.Framebuffer, depthFormat,
       frame.LowerLeft[0], frame.LowerLeft[1], frame.Width, frame.Height);
     return true;
   }
-  if (!resources.PrepareFullDepth(
-        window, frame.ViewportWidth, frame.ViewportHeight, vtkAccelVolumeReadDepthFormat()))
+  if (!resources.PrepareFullDepth(window, frame.ViewportWidth, frame.ViewportHeight, depthFormat))
   {
     return false;
   }
   vtkAccelVolumeCopyReadDepth(window, resources.SceneDepthFull, resources.DepthFramebuffer,
-    frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
+    depthFormat, frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   resources.SceneDepthFull->Activate();
   vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
     AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
@@ -764,13 +763,14 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
   const int channels = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
-  bool ok = resources.PrepareTargets(
-              window, frame.Width, frame.Height, channels, vtkAccelVolumeReadDepthFormat()) &&
+  // One query of the read framebuffer's depth format per frame (targets and copies use it).
+  const int depthFormat = vtkAccelVolumeReadDepthFormat();
+  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels, depthFormat) &&
     resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage);
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.
-    ok = CopySceneDepth(window, resources, frame);
+    ok = CopySceneDepth(window, resources, frame, depthFormat);
     if (!ok)
     {
       error = "the scene depth could not be copied";
