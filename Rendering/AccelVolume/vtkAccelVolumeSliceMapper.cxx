@@ -61,6 +61,19 @@ bool IsSupportedBlend(int blendMode)
 
 // Iso-surfaces are drawn by the composite passes (front to back, terminated), and so is a slice
 // plane (one classified sample per pixel).
+// Gradient opacity is on when one of the first `components` functions is set and enabled.
+bool HasGradientOpacity(vtkVolumeProperty* property, int components)
+{
+  for (int c = 0; c < components; ++c)
+  {
+    if (property->HasGradientOpacity(c) && !property->GetDisableGradientOpacity(c))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool CompositeLike(int blendMode)
 {
   return blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
@@ -259,13 +272,11 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(
   if (components > 1)
   {
     const bool independent = !property || property->GetIndependentComponents();
-    const bool projection = this->BlendMode == ADDITIVE_BLEND ||
-      (this->BlendMode == AVERAGE_INTENSITY_BLEND && !independent);
-    if (this->BlendMode != COMPOSITE_BLEND && !projection)
+    if (this->BlendMode == ISOSURFACE_BLEND || this->BlendMode == SLICE_BLEND)
     {
       vtkErrorMacro("Scalars with " << components
-                                    << " components render with composite, "
-                                       "additive and (dependent components) average blending");
+                                    << " components render with composite, maximum, minimum, "
+                                       "additive and average blending");
       return false;
     }
     if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
@@ -278,11 +289,6 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(
       vtkErrorMacro(
         "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not " << components);
       return false;
-    }
-    if (property && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
-    {
-      this->WarnNotApplicable("gradient opacity with multi-component scalars",
-        "the scalar opacity of each component is used alone");
     }
   }
   if (!IsSupportedBlend(this->BlendMode))
@@ -448,8 +454,11 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   const bool extremum =
     self->BlendMode == MAXIMUM_INTENSITY_BLEND || self->BlendMode == MINIMUM_INTENSITY_BLEND;
   // A binary mask is tested once per fragment: plain slices.
+  // Multi-component extremes keep several values per sample: plain slices too.
   const int slabSamples =
-    extremum && !self->MaskInput && !this->UsedGhostMask ? self->SlabSamples : 1;
+    extremum && !self->MaskInput && !this->UsedGhostMask && this->Frame.Components == 1
+    ? self->SlabSamples
+    : 1;
   const bool composite = CompositeLike(self->BlendMode);
   const bool transferFunction2D = self->BlendMode == COMPOSITE_BLEND &&
     property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
@@ -635,6 +644,17 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     static_cast<float>((self->AverageIPScalarRange[0] - range[0]) / rangeWidth);
   frame.AverageRange[1] =
     static_cast<float>((self->AverageIPScalarRange[1] - range[0]) / rangeWidth);
+  for (int c = 0; c < 4; ++c)
+  {
+    // Each component is normalised to its own range on upload.
+    const double* componentRange = this->Resources.ComponentRanges[c];
+    const double componentWidth =
+      componentRange[1] > componentRange[0] ? componentRange[1] - componentRange[0] : 1.0;
+    frame.AverageLower[c] =
+      static_cast<float>((self->AverageIPScalarRange[0] - componentRange[0]) / componentWidth);
+    frame.AverageUpper[c] =
+      static_cast<float>((self->AverageIPScalarRange[1] - componentRange[0]) / componentWidth);
+  }
   self->GetFinalColorScaleAndBias(frame.ColourScale, frame.ColourBias);
   frame.SelectionMode = vtkAccelVolumeSelectionMode(renderer, frame.SelectionColour);
   frame.RenderToImage = self->RenderToImage != 0 && frame.SelectionMode == 0;
@@ -652,8 +672,10 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.Shade = composite && property->GetShade(0) != 0;
-  frame.GradientOpacity = self->BlendMode == COMPOSITE_BLEND && frame.Components == 1 &&
-    property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  // Independent components: VTK applies every component's gradient opacity to each (below).
+  frame.GradientOpacity = self->BlendMode == COMPOSITE_BLEND &&
+    HasGradientOpacity(
+      property, frame.Components > 1 && frame.IndependentComponents ? frame.Components : 1);
   frame.ScalarRangeWidth = static_cast<float>(range[1] > range[0] ? range[1] - range[0] : 1.0);
   if (frame.Shade || frame.GradientOpacity || frame.TransferFunction2D)
   {
@@ -679,10 +701,18 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   }
   if (frame.GradientOpacity)
   {
-    // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type).
+    // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type); each
+    // independent component over its own range.
     const double maximum = 0.25 * frame.ScalarRangeWidth;
     frame.GradientTableMaximum = static_cast<float>(maximum);
-    this->Resources.UpdateGradientOpacityTable(window, property, maximum);
+    double maxima[4] = { maximum, maximum, maximum, maximum };
+    const int rows = frame.Components > 1 && frame.IndependentComponents ? frame.Components : 1;
+    for (int c = 0; c < rows && frame.Components > 1; ++c)
+    {
+      const double* componentRange = this->Resources.ComponentRanges[c];
+      maxima[c] = 0.25 * std::max(componentRange[1] - componentRange[0], 1.0e-30);
+    }
+    this->Resources.UpdateGradientOpacityTable(window, property, maxima, rows);
   }
 }
 

@@ -58,18 +58,18 @@ bool Components(MapperKind kind)
   };
   if (kind == MapperKind::Slice || kind == MapperKind::Smart)
   {
-    // 2-4 components render (composite; TestAccelVolumeVsGPURayCastFeatures); the rest is
+    // 2-4 components render (TestAccelVolumeVsGPURayCastFeatures); the rest is
     // refused clearly.
-    ok = ExpectError(kind, "5 components", withComponents(5),
-           "At most 4 scalar components are supported") &&
+    ok = ExpectError(
+           kind, "5 components", withComponents(5), "At most 4 scalar components are supported") &&
       ok;
     ok = ExpectError(kind, "3 dependent components", withComponents(3),
            "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not 3",
            [](Probe& probe) { probe.Volume->GetProperty()->SetIndependentComponents(false); }) &&
       ok;
-    ok = ExpectError(kind, "2 components, MIP", withComponents(2),
-           "components render with composite, additive and (dependent components) average",
-           [](Probe& probe) { probe.Mapper->SetBlendModeToMaximumIntensity(); }) &&
+    ok = ExpectError(kind, "2 components, iso-surface", withComponents(2),
+           "components render with composite, maximum, minimum, additive and average blending",
+           [](Probe& probe) { probe.Mapper->SetBlendModeToIsoSurface(); }) &&
       ok;
     return ok;
   }
@@ -94,9 +94,7 @@ bool Types(MapperKind kind)
 {
   bool ok = true;
   // unsigned int and the 64-bit integers render (as floats: TestAccelVolumeInputKinds).
-  const std::vector<vtkSmartPointer<vtkDataArray>> arrays = {
-    vtkSmartPointer<vtkBitArray>::New()
-  };
+  const std::vector<vtkSmartPointer<vtkDataArray>> arrays = { vtkSmartPointer<vtkBitArray>::New() };
   for (vtkDataArray* array : arrays)
   {
     const std::string type = array->GetDataTypeAsString();

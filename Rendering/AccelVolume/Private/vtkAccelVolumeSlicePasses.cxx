@@ -171,12 +171,9 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
     "\n#define ACCELVOLUME_SLICE_PLANE " + (composite && frame.SlicePlane ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK_NEIGHBOURS " + (frame.MaskNeighbours ? "1" : "0") +
-    "\n#define ACCELVOLUME_COMPONENTS " +
-    std::to_string(composite || frame.BlendMode == vtkVolumeMapper::ADDITIVE_BLEND ||
-          frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND
-        ? frame.Components
-        : 1) +
+    "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(frame.Components) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
+
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
   const size_t at = text.find("//VTK::Output::Dec");
@@ -247,6 +244,8 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniform4f("lighting", frame.Lighting);
   }
   program->SetUniform2f("averageRange", frame.AverageRange);
+  program->SetUniform4f("averageLower", frame.AverageLower);
+  program->SetUniform4f("averageUpper", frame.AverageUpper);
   if (frame.IsoSurface)
   {
     program->SetUniformi("isoSurfaceCount", frame.IsoSurfaceCount);
@@ -467,6 +466,35 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   return true;
 }
 
+// Dependent multi-component MIP / MinIP keep one whole sample: a depth test on its last
+// component (ExtremeDepth) replaces blending.
+bool DependentExtreme(const vtkAccelVolumeSliceFrame& frame)
+{
+  return frame.Components > 1 && !frame.IndependentComponents &&
+    (frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+      frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND);
+}
+
+// The average of 3-4 independent components needs 8 channels: a second target.
+bool SecondAccumulation(const vtkAccelVolumeSliceFrame& frame)
+{
+  return frame.Components > 2 && frame.IndependentComponents &&
+    frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
+}
+
+// Draw buffers 0 (accumulation), 1 (RenderToImage depth), then the second accumulation.
+void ActivateAccumulationBuffers(
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame)
+{
+  unsigned int attachments[3] = { 0, 1, 2 };
+  int count = frame.RenderToImage ? 2 : 1;
+  if (SecondAccumulation(frame))
+  {
+    attachments[count++] = 2;
+  }
+  resources.Framebuffer->ActivateDrawBuffers(attachments, count);
+}
+
 // Pass 1: MAX / MIN / additive blending of one value per fragment into the float target.
 bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame, std::string& error)
@@ -474,14 +502,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   vtkOpenGLState* state = window->GetState();
   resources.Framebuffer->SaveCurrentBindingsAndBuffers();
   resources.Framebuffer->Bind();
-  if (frame.RenderToImage)
-  {
-    resources.Framebuffer->ActivateDrawBuffers(2);
-  }
-  else
-  {
-    resources.Framebuffer->ActivateDrawBuffer(0);
-  }
+  ActivateAccumulationBuffers(resources, frame);
   state->vtkglViewport(0, 0, frame.Width, frame.Height);
   state->vtkglDisable(GL_SCISSOR_TEST);
   // The scene depth is the target's depth buffer: fragments behind opaque geometry fail early.
@@ -496,17 +517,27 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   // Cleared to values no sample reaches, so the resolve pass can tell uncovered pixels.
   if (maximum)
   {
-    state->vtkglClearColor(-1.0f, 0.0f, 0.0f, 0.0f);
+    state->vtkglClearColor(-1.0f, -1.0f, -1.0f, -1.0f);
   }
   else if (minimum)
   {
-    state->vtkglClearColor(2.0f, 2.0f, 0.0f, 0.0f);
+    state->vtkglClearColor(2.0f, 2.0f, 2.0f, 2.0f);
   }
   else
   {
     state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   }
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  const bool dependentExtreme = DependentExtreme(frame);
+  if (dependentExtreme)
+  {
+    // Ties pass, so the last drawn of equal samples (slices go back to front) stays.
+    resources.AttachExtremeDepth(true);
+    state->vtkglClearDepth(maximum ? 0.0 : 1.0);
+    state->vtkglDepthMask(GL_TRUE);
+    state->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    state->vtkglDepthFunc(maximum ? GL_GEQUAL : GL_LEQUAL);
+  }
   state->vtkglEnable(GL_BLEND);
   state->vtkglBlendEquation(maximum ? GL_MAX : (minimum ? GL_MIN : GL_FUNC_ADD));
   if (composite && frame.FrontToBack)
@@ -537,6 +568,10 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     glGetIntegeri_v(GL_BLEND_DST_RGB, 1, &savedDestination);
     glBlendEquationi(1, GL_MIN);
     glBlendFunci(1, GL_ONE, GL_ONE);
+  }
+  if (dependentExtreme)
+  {
+    glDisablei(GL_BLEND, 0); // the depth test keeps the sample
   }
 
   resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
@@ -618,6 +653,14 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     glBlendEquationi(1, static_cast<GLenum>(savedEquation));
     glBlendFunci(1, static_cast<GLenum>(savedSource), static_cast<GLenum>(savedDestination));
   }
+  if (dependentExtreme)
+  {
+    glEnablei(GL_BLEND, 0);
+    resources.AttachExtremeDepth(false);
+    state->vtkglClearDepth(1.0);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglDepthFunc(GL_LESS);
+  }
   resources.Framebuffer->RestorePreviousBindingsAndBuffers();
   return ok;
 }
@@ -641,6 +684,17 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   }
   resources.Accumulation->Activate();
   resources.TransferTable->Activate();
+  if (frame.Components > 1)
+  {
+    resources.ComponentTables->Activate();
+    program->SetUniformi("componentTables", resources.ComponentTables->GetTextureUnit());
+    program->SetUniform4f("componentWeights", frame.ComponentWeights);
+  }
+  if (SecondAccumulation(frame))
+  {
+    resources.AccumulationSecond->Activate();
+    program->SetUniformi("accumulationSecond", resources.AccumulationSecond->GetTextureUnit());
+  }
   program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
   program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
   program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
@@ -661,6 +715,14 @@ bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resour
   resources.ResolveArray->Release();
   resources.Accumulation->Deactivate();
   resources.TransferTable->Deactivate();
+  if (frame.Components > 1)
+  {
+    resources.ComponentTables->Deactivate();
+  }
+  if (SecondAccumulation(frame))
+  {
+    resources.AccumulationSecond->Deactivate();
+  }
   return true;
 }
 
@@ -762,11 +824,19 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   // compositing needs premultiplied colour and alpha.
   const bool extremum = frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
-  const int channels = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND ? 4 : (extremum ? 1 : 2);
+  // Multi-component extremes keep a value per component (independent) or the whole sample;
+  // the independent average a (sum, weight) pair per component.
+  const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+  const bool fourChannels = composite || (frame.Components > 1 && extremum) ||
+    (frame.Components > 1 && frame.IndependentComponents &&
+      frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND);
+  const int channels = fourChannels ? 4 : (extremum ? 1 : 2);
   // One query of the read framebuffer's depth format per frame (targets and copies use it).
   const int depthFormat = vtkAccelVolumeReadDepthFormat();
   bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels, depthFormat) &&
-    resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage);
+    resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage) &&
+    resources.PrepareComponentTargets(
+      window, frame.Width, frame.Height, DependentExtreme(frame), SecondAccumulation(frame));
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.

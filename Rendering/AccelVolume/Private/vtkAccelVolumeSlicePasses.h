@@ -100,6 +100,8 @@ struct vtkAccelVolumeSliceFrame
   bool HeadlightOnly = false;
   float Lighting[4] = { 0.1f, 0.7f, 0.2f, 10.0f }; // ambient, diffuse, specular, power
   float AverageRange[2] = { 0, 1 };
+  float AverageLower[4] = { 0, 0, 0, 0 }; // per component (independent multi-component)
+  float AverageUpper[4] = { 1, 1, 1, 1 };
   float ColourScale = 1; // FinalColorWindow / Level
   float ColourBias = 0;
   // ISOSURFACE_BLEND (drawn as composite): the property's iso-values normalised to the data
@@ -108,7 +110,7 @@ struct vtkAccelVolumeSliceFrame
   bool IsoSurface = false;
   int IsoSurfaceCount = 0;
   float IsoSurfaceValues[MaximumIsoSurfaces] = {};
-  // 2-4 component scalars (composite): the resources' ComponentVolume and ComponentTables.
+  // 2-4 component scalars: the resources' ComponentVolume and ComponentTables.
   int Components = 1;
   bool IndependentComponents = true;
   float ComponentWeights[4] = { 1, 1, 1, 1 };

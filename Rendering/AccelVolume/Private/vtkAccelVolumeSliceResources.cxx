@@ -148,24 +148,34 @@ void vtkAccelVolumeSliceResources::UpdateTransferTable(
 }
 
 void vtkAccelVolumeSliceResources::UpdateGradientOpacityTable(
-  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum)
+  vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double* maxima, int rows)
 {
-  vtkPiecewiseFunction* gradientOpacity = property->GetGradientOpacity(0);
-  if (this->GradientOpacityTable->GetHandle() && maximum == this->GradientTableMaximum &&
-    gradientOpacity->GetMTime() <= this->GradientTableBuildTime)
+  bool current = this->GradientOpacityTable->GetHandle() && rows == this->GradientTableRows &&
+    property == this->GradientTableProperty;
+  for (int r = 0; r < rows && current; ++r)
+  {
+    current = maxima[r] == this->GradientTableMaxima[r] &&
+      property->GetGradientOpacity(r)->GetMTime() <= this->GradientTableBuildTime;
+  }
+  if (current)
   {
     return;
   }
   constexpr int Size = 1024;
-  std::vector<float> table(Size);
-  gradientOpacity->GetTable(0.0, maximum, Size, table.data());
+  std::vector<float> table(static_cast<size_t>(Size) * rows);
+  for (int r = 0; r < rows; ++r)
+  {
+    property->GetGradientOpacity(r)->GetTable(0.0, maxima[r], Size, table.data() + r * Size);
+    this->GradientTableMaxima[r] = maxima[r];
+  }
   this->GradientOpacityTable->SetContext(window);
-  this->GradientOpacityTable->Create2DFromRaw(Size, 1, 1, VTK_FLOAT, table.data());
+  this->GradientOpacityTable->Create2DFromRaw(Size, rows, 1, VTK_FLOAT, table.data());
   this->GradientOpacityTable->SetWrapS(vtkTextureObject::ClampToEdge);
   this->GradientOpacityTable->SetWrapT(vtkTextureObject::ClampToEdge);
   this->GradientOpacityTable->SetMinificationFilter(vtkTextureObject::Linear);
   this->GradientOpacityTable->SetMagnificationFilter(vtkTextureObject::Linear);
-  this->GradientTableMaximum = maximum;
+  this->GradientTableRows = rows;
+  this->GradientTableProperty = property;
   this->GradientTableBuildTime.Modified();
 }
 
@@ -555,6 +565,51 @@ bool vtkAccelVolumeSliceResources::PrepareImageTargets(
   return ok;
 }
 
+bool vtkAccelVolumeSliceResources::PrepareComponentTargets(
+  vtkOpenGLRenderWindow* window, int width, int height, bool extremeDepth, bool secondAccumulation)
+{
+  const auto sized = [width, height](vtkTextureObject* texture)
+  {
+    return texture->GetHandle() && static_cast<int>(texture->GetWidth()) == width &&
+      static_cast<int>(texture->GetHeight()) == height;
+  };
+  if (extremeDepth && !sized(this->ExtremeDepth))
+  {
+    this->ExtremeDepth->SetContext(window);
+    if (!this->ExtremeDepth->AllocateDepth(width, height, vtkTextureObject::Float32))
+    {
+      return false;
+    }
+    this->ExtremeDepth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->ExtremeDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+  }
+  if (secondAccumulation && !sized(this->AccumulationSecond))
+  {
+    this->AccumulationSecond->SetContext(window);
+    this->AccumulationSecond->ResetFormatAndType();
+    if (!this->AccumulationSecond->Create2D(width, height, 4, VTK_FLOAT, false))
+    {
+      return false;
+    }
+    this->AccumulationSecond->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->AccumulationSecond->SetMagnificationFilter(vtkTextureObject::Nearest);
+  }
+  this->Framebuffer->SaveCurrentBindingsAndBuffers();
+  this->Framebuffer->Bind();
+  this->Framebuffer->RemoveColorAttachment(2);
+  if (secondAccumulation)
+  {
+    this->Framebuffer->AddColorAttachment(2, this->AccumulationSecond);
+  }
+  this->Framebuffer->RestorePreviousBindingsAndBuffers();
+  return true;
+}
+
+void vtkAccelVolumeSliceResources::AttachExtremeDepth(bool extreme)
+{
+  this->Framebuffer->AddDepthAttachment(extreme ? this->ExtremeDepth : this->SceneDepth);
+}
+
 bool vtkAccelVolumeSliceResources::PrepareFullDepth(
   vtkOpenGLRenderWindow* window, int width, int height, int depthFormat)
 {
@@ -588,6 +643,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->ComponentTables->ReleaseGraphicsResources(window);
   this->ComponentTableProperty = nullptr;
   this->FirstDepth->ReleaseGraphicsResources(window);
+  this->ExtremeDepth->ReleaseGraphicsResources(window);
+  this->AccumulationSecond->ReleaseGraphicsResources(window);
   this->ImageColour->ReleaseGraphicsResources(window);
   this->ImageFramebuffer->ReleaseGraphicsResources(window);
   this->Bricks.ReleaseGraphicsResources(window);
@@ -598,7 +655,8 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->Gradients->ReleaseGraphicsResources(window);
   this->GradientScalars = nullptr;
   this->Table2DSource = nullptr;
-  this->GradientTableMaximum = -1.0;
+  this->GradientTableRows = 0;
+  this->GradientTableProperty = nullptr;
   this->Accumulation->ReleaseGraphicsResources(window);
   this->SceneDepth->ReleaseGraphicsResources(window);
   this->SceneDepthFormat = -2;

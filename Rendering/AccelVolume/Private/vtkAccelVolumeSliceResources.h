@@ -85,11 +85,12 @@ public:
     vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2]);
 
   /**
-   * Rebuilds the gradient-opacity table (1024 entries of the property's gradient opacity over
-   * [0, maximum] gradient magnitude) when the function or maximum changed.
+   * Rebuilds the gradient-opacity table when a function or maximum changed: row r (of `rows`,
+   * 1-4: one per independent component) holds 1024 entries of the property's gradient opacity
+   * r over [0, maxima[r]] gradient magnitude.
    */
   void UpdateGradientOpacityTable(
-    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, double maximum);
+    vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double* maxima, int rows);
 
   /**
    * Uploads the property's 2D transfer function (an RGBA float vtkImageData, x: scalar,
@@ -119,6 +120,16 @@ public:
    * removal when `enable` is false) and the colour image framebuffer, both width x height.
    */
   bool PrepareImageTargets(vtkOpenGLRenderWindow* window, int width, int height, bool enable);
+  /**
+   * Multi-component targets, width x height: `extremeDepth` sizes the 32-bit float depth
+   * buffer dependent MIP / MinIP test their last component against (attached by
+   * AttachExtremeDepth); `secondAccumulation` sizes and attaches (colour attachment 2) the
+   * target of components 2-3 of an independent average, else removes it.
+   */
+  bool PrepareComponentTargets(vtkOpenGLRenderWindow* window, int width, int height,
+    bool extremeDepth, bool secondAccumulation);
+  /** The accumulation framebuffer (bound) tests depth against ExtremeDepth, or SceneDepth. */
+  void AttachExtremeDepth(bool extreme);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -138,6 +149,8 @@ public:
   // RenderToImage: the nearest contributing depth (second accumulation target, R32F), and the
   // resolved colour (RGBA8) with its framebuffer.
   vtkNew<vtkTextureObject> FirstDepth;
+  vtkNew<vtkTextureObject> ExtremeDepth;       // dependent MIP / MinIP: the kept last component
+  vtkNew<vtkTextureObject> AccumulationSecond; // independent average: components 2-3
   vtkNew<vtkTextureObject> ImageColour;
   vtkNew<vtkOpenGLFramebufferObject> ImageFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
@@ -166,7 +179,9 @@ private:
   vtkTimeStamp GradientBuildTime;
   vtkDataArray* GradientScalars = nullptr;
   vtkImageData* Table2DSource = nullptr;
-  double GradientTableMaximum = -1.0;
+  double GradientTableMaxima[4] = { -1.0, -1.0, -1.0, -1.0 };
+  int GradientTableRows = 0;
+  vtkVolumeProperty* GradientTableProperty = nullptr;
   vtkDataArray* UploadedScalars = nullptr;
   double UploadedRange[2] = { 0.0, 0.0 };
   double TableRange[2] = { 0.0, 0.0 };

@@ -6,6 +6,9 @@
 //VTK::Output::Dec
 
 uniform sampler2D accumulation;
+#if ACCELVOLUME_COMPONENTS > 2
+uniform sampler2D accumulationSecond; // components 2-3 of an independent average
+#endif
 uniform sampler2D transferTable;
 uniform float tableSize;
 uniform vec2 viewportOrigin;
@@ -27,13 +30,75 @@ vec4 lookup(float value)
   return texture(transferTable, vec2(u, 0.5));
 }
 
+#if ACCELVOLUME_COMPONENTS > 1
+// Multi-component extremes, coloured as vtkGPUVolumeRayCastMapper does (no shading, opacity
+// as the table gives it): independent components add their weighted colour x opacity and
+// opacity; dependent ones colour the kept sample (2: component 0 through the colour table,
+// opacity of component 1; 4: RGB as is, opacity of component 3).
+uniform sampler2D componentTables; // rows c = 0..3: rgba over component c's range
+uniform vec4 componentWeights;
+
+vec4 componentLookup(int c, float value)
+{
+  float u = (clamp(value, 0.0, 1.0) * (tableSize - 1.0) + 0.5) / tableSize;
+  return texture(componentTables, vec2(u, (float(c) + 0.5) / 4.0));
+}
+
+vec4 multiComponentExtreme(vec4 values)
+{
+#if ACCELVOLUME_INDEPENDENT
+  vec4 colour = vec4(0.0);
+  for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
+  {
+    vec4 classified = componentLookup(c, values[c]);
+    colour += componentWeights[c] * vec4(classified.rgb * classified.a, classified.a);
+  }
+  return colour;
+#elif ACCELVOLUME_COMPONENTS == 2
+  float alpha = componentLookup(0, values.y).a;
+  return vec4(componentLookup(0, values.x).rgb * alpha, alpha);
+#else
+  float alpha = componentLookup(0, values.a).a;
+  return vec4(clamp(values.rgb, 0.0, 1.0) * alpha, alpha);
+#endif
+}
+#endif
+
 // The premultiplied colour of one target texel; `covered` is false where no sample landed.
 vec4 resolveTexel(ivec2 texel, out bool covered)
 {
   vec4 accumulated = texelFetch(accumulation, texel, 0);
   vec2 sums = accumulated.rg;
-  // MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
-#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+#if ACCELVOLUME_COMPONENTS > 1 && defined(ACCELVOLUME_BLEND_MAXIMUM)
+  // Cleared to -1 in every channel.
+  covered = accumulated.x >= -0.5;
+  return covered ? multiComponentExtreme(accumulated) : vec4(0.0);
+#elif ACCELVOLUME_COMPONENTS > 1 && defined(ACCELVOLUME_BLEND_MINIMUM)
+  // Cleared to 2 in every channel.
+  covered = accumulated.x <= 1.5;
+  return covered ? multiComponentExtreme(accumulated) : vec4(0.0);
+#elif ACCELVOLUME_COMPONENTS > 1 && ACCELVOLUME_INDEPENDENT && defined(ACCELVOLUME_BLEND_AVERAGE)
+  // Independent components' averages, weighted and added as VTK's GPU mapper does.
+#if ACCELVOLUME_COMPONENTS > 2
+  vec4 second = texelFetch(accumulationSecond, texel, 0);
+#else
+  vec4 second = vec4(0.0);
+#endif
+  vec4 componentSums = vec4(accumulated.x, accumulated.z, second.x, second.z);
+  vec4 componentCounts = vec4(accumulated.y, accumulated.w, second.y, second.w);
+  float average = 0.0;
+  covered = false;
+  for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
+  {
+    if (componentCounts[c] > 0.0)
+    {
+      average += componentWeights[c] * componentSums[c] / componentCounts[c];
+      covered = true;
+    }
+  }
+  return covered ? vec4(vec3(clamp(average, 0.0, 1.0)), 1.0) : vec4(0.0);
+#elif defined(ACCELVOLUME_BLEND_MAXIMUM)
+  // Single-component MIP/MinIP targets have one channel, cleared to -1 (maximum) or 2 (minimum).
   covered = sums.x >= -0.5;
   vec4 colour = lookup(sums.x);
   return covered ? vec4(colour.rgb * colour.a, colour.a) : vec4(0.0);

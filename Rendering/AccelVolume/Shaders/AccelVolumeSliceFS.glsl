@@ -48,6 +48,8 @@ uniform int boundaryRerendering;
 uniform int parallelProjection;
 uniform float additiveScale;       // 1 / unit distance
 uniform vec2 averageRange;         // normalized scalar range counted by the average
+uniform vec4 averageLower;         // ... per component of independent multi-component scalars
+uniform vec4 averageUpper;
 uniform float opacityUnitDistance; // composite: the table opacities hold for this length
 // Composite shading and gradient opacity (ACCELVOLUME_SHADE, ACCELVOLUME_GRADIENT_OPACITY):
 uniform mat3 normalMatrix;          // index-space gradient -> eye-space gradient
@@ -297,11 +299,23 @@ vec4 componentLookup(int c, float value)
   return texture(componentTables, vec2(u, (float(c) + 0.5) / 4.0));
 }
 
+#if ACCELVOLUME_GRADIENT_OPACITY
+// Row c of the gradient-opacity table at a gradient of normalised values per index step: the
+// row spans [0, a quarter of component c's range] per mean voxel step (VTK's units).
+float componentGradientOpacity(int c, vec3 indexGradient)
+{
+  float magnitude = clamp(4.0 * length(indexGradient * gradientAxisScale), 0.0, 1.0);
+  float rows = float(ACCELVOLUME_INDEPENDENT != 0 ? ACCELVOLUME_COMPONENTS : 1);
+  return texture(gradientOpacityTable,
+    vec2((magnitude * 1023.0 + 0.5) / 1024.0, (float(c) + 0.5) / rows)).r;
+}
+#endif
+
 vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
 {
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
   vec4 values = texture(volumeTexture, center);
-#if ACCELVOLUME_SHADE
+#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY
   vec3 texel = 1.0 / volumeDimensions;
   vec4 dx = 0.5 * (texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)) -
                     texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0)));
@@ -317,6 +331,13 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
   for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
   {
     vec4 colour = componentLookup(c, values[c]);
+#if ACCELVOLUME_GRADIENT_OPACITY
+    // VTK's GPU mapper: every component's function at this component's gradient, weighted.
+    for (int i = 0; i < ACCELVOLUME_COMPONENTS; ++i)
+    {
+      colour.a *= componentGradientOpacity(i, vec3(dx[c], dy[c], dz[c])) * componentWeights[i];
+    }
+#endif
     float alpha = 1.0 - pow(max(1.0 - colour.a, 0.0), step / componentUnitDistances[c]);
 #if ACCELVOLUME_SHADE
     colour.rgb = shade(colour.rgb, normalMatrix * vec3(dx[c], dy[c], dz[c]), rayDirection);
@@ -336,6 +357,9 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
 #else
   vec3 rgb = values.rgb;
   float opacityValue = componentLookup(0, values.a).a;
+#endif
+#if ACCELVOLUME_GRADIENT_OPACITY
+  opacityValue *= componentGradientOpacity(0, vec3(dx.x, dy.x, dz.x)); // component 0's, as VTK
 #endif
   float alpha = 1.0 - pow(max(1.0 - opacityValue, 0.0), step / componentUnitDistances.x);
 #if ACCELVOLUME_SHADE
@@ -416,7 +440,25 @@ void main()
 #if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)
   // Order-independent extremes: opaque geometry is handled by the early depth test against
   // the scene depth attached to the target, so a plain slice costs one texture fetch.
-#if ACCELVOLUME_SLAB_SAMPLES <= 1
+#if ACCELVOLUME_COMPONENTS > 1
+  // Multi-component extremes as VTK's GPU mapper: independent components each keep their own
+  // extreme (MAX / MIN blending per channel); dependent ones keep the whole sample whose last
+  // component is extreme. That sample is kept by a depth test on its last component, written
+  // as the fragment's depth (the target's depth buffer is then not the scene's, which is
+  // tested here); slices are drawn back to front and the test passes ties, so the front-most
+  // such sample stays, VTK's first along the ray.
+  vec4 values =
+    texture(volumeTexture, ACCELVOLUME_TEXEL_CENTRE(indexPosition) / volumeDimensions);
+#if !ACCELVOLUME_INDEPENDENT
+  if (gl_FragCoord.z >= texelFetch(sceneDepth, ivec2(gl_FragCoord.xy), 0).r)
+  {
+    discard;
+  }
+  gl_FragDepth = clamp(values[ACCELVOLUME_COMPONENTS - 1], 0.0, 1.0);
+#endif
+  gl_FragData[0] = values;
+  ACCELVOLUME_WRITE_DEPTH(true);
+#elif ACCELVOLUME_SLAB_SAMPLES <= 1
   gl_FragData[0] = vec4(normalizedScalar(), 1.0, 0.0, 0.0);
   ACCELVOLUME_WRITE_DEPTH(true);
 #else
@@ -610,9 +652,11 @@ void main()
   float value = values.x;
 #if ACCELVOLUME_INDEPENDENT
   float weightedValue = 0.0;
+  vec4 opacityValues = vec4(0.0); // the average keeps them apart (weighted in the resolve)
   for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
   {
-    weightedValue += componentWeights[c] * componentLookup(c, values[c]).a * values[c];
+    opacityValues[c] = componentLookup(c, values[c]).a * values[c];
+    weightedValue += componentWeights[c] * opacityValues[c];
   }
 #else
   float weightedValue = componentLookup(0, values[ACCELVOLUME_COMPONENTS - 1]).a * value;
@@ -670,6 +714,20 @@ void main()
   weight = max(weight, 0.0);
 #if defined(ACCELVOLUME_BLEND_ADDITIVE)
   gl_FragData[0] = vec4(weight * weightedValue * additiveScale, weight, 0.0, 0.0);
+  ACCELVOLUME_WRITE_DEPTH(true);
+#elif ACCELVOLUME_COMPONENTS > 1 && ACCELVOLUME_INDEPENDENT
+  // Independent components average apart, each over its samples in the range (as VTK's GPU
+  // mapper): (sum, weight) pairs, components 0-1 in the first target, 2-3 in the second.
+  vec4 inRange = vec4(greaterThanEqual(values, averageLower)) *
+    vec4(lessThanEqual(values, averageUpper)) * weight;
+  vec4 sums = inRange * opacityValues;
+  gl_FragData[0] = vec4(sums.x, inRange.x, sums.y, inRange.y);
+  // (VTK's shader cache maps the literal names gl_FragData[n] to its outputs.)
+#if ACCELVOLUME_COMPONENTS > 2 && ACCELVOLUME_RENDER_TO_IMAGE
+  gl_FragData[2] = vec4(sums.z, inRange.z, sums.w, inRange.w);
+#elif ACCELVOLUME_COMPONENTS > 2
+  gl_FragData[1] = vec4(sums.z, inRange.z, sums.w, inRange.w);
+#endif
   ACCELVOLUME_WRITE_DEPTH(true);
 #else
   float inRange = (value >= averageRange.x && value <= averageRange.y) ? 1.0 : 0.0;
