@@ -36,6 +36,7 @@ set(_av_private_sources
   vtkAccelVolumeSliceGeometry
   vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses
+  vtkAccelVolumeSliceResolve
   vtkAccelVolumeSliceResources)
 
 set(_av_shaders

@@ -465,9 +465,10 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
   // ... nor does it know a label map's colours (a binary mask only removes samples).
   // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.
+  // ... nor where a depth pass's contour lies (its first stage must see every slice).
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D &&
-    !self->UsesLabelMap() && this->Frame.Components == 1 &&
-    (self->EmptySpaceSkipping & SKIP_OCTREE) &&
+    !self->UsesDepthPass(this->Frame.Components) && !self->UsesLabelMap() &&
+    this->Frame.Components == 1 && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
@@ -512,11 +513,16 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   const bool composite = CompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.BlendMode = composite ? COMPOSITE_BLEND : self->BlendMode;
+  frame.IsoSurface = self->BlendMode == ISOSURFACE_BLEND;
+  frame.DepthPassStage = self->UsesDepthPass(this->Frame.Components) ? 2 : 0;
+  // The property's iso-values (or the depth pass's contour values) normalised to the data
+  // range, ascending (VTK's order).
+  vtkContourValues* values = frame.IsoSurface
+    ? property->GetIsoSurfaceValues()
+    : (frame.DepthPassStage ? self->DepthPassContourValues : nullptr);
   frame.IsoSurfaceCount = 0;
-  if (self->BlendMode == ISOSURFACE_BLEND)
+  if (values)
   {
-    // The property's iso-values normalised to the data range, ascending (VTK's order).
-    vtkContourValues* values = property->GetIsoSurfaceValues();
     std::vector<double> iso(
       values->GetValues(), values->GetValues() + values->GetNumberOfContours());
     std::sort(iso.begin(), iso.end());
@@ -529,11 +535,6 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
           static_cast<float>((value - range[0]) / width);
       }
     }
-    frame.IsoSurface = true;
-  }
-  else
-  {
-    frame.IsoSurface = false;
   }
   frame.Linear = property->GetInterpolationType() != VTK_NEAREST_INTERPOLATION;
   // Image sample distance: a target that many times smaller, magnified by the resolve pass
@@ -765,7 +766,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     return;
   }
-  this->WarnUnappliedSettings();
+  this->WarnUnappliedSettings(scalars->GetNumberOfComponents());
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
 

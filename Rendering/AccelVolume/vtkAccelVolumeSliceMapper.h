@@ -306,8 +306,14 @@ public:
 
   ///@{
   /**
-   * vtkGPUVolumeRayCastMapper's depth pass (default off): not available; turning it on warns
-   * once and the volume is drawn without it.
+   * vtkGPUVolumeRayCastMapper's depth pass (default off; composite blending, one-component
+   * scalars): rays start where they first cross one of the DepthPassContourValues and pixels
+   * whose ray crosses none draw nothing, as VTK's. VTK renders the contour's polygons
+   * (vtkContourFilter) for that depth; here the crossing is found along the ray between
+   * successive slices (linear between the two samples), so the start differs from VTK's by
+   * less than a voxel where marching cubes and trilinear interpolation disagree. Octree
+   * skipping is off while it is on. With no contour value or more components it warns once
+   * and the volume is drawn without it.
    */
   vtkSetClampMacro(UseDepthPass, vtkTypeBool, 0, 1);
   vtkGetMacro(UseDepthPass, vtkTypeBool);
@@ -506,7 +512,9 @@ private:
   bool ValidateInput(vtkImageData* input, vtkDataArray* scalars, const std::string& inputError,
     vtkVolume* volume);
   // Warns once for each VTK setting in use that this mapper does not apply.
-  void WarnUnappliedSettings();
+  void WarnUnappliedSettings(int components);
+  // UseDepthPass applies: composite, one component, at least one contour value.
+  bool UsesDepthPass(int components) const;
   // A label-map mask that changes composite colours (then no opacity-based skipping applies).
   bool UsesLabelMap() const;
   // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.

@@ -92,11 +92,18 @@ int vtkAccelVolumeSliceMapper::IsRenderSupported(
   return 1;
 }
 
-void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
+bool vtkAccelVolumeSliceMapper::UsesDepthPass(int components) const
 {
-  if (this->UseDepthPass)
+  return this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && components == 1 &&
+    this->DepthPassContourValues && this->DepthPassContourValues->GetNumberOfContours() > 0;
+}
+
+void vtkAccelVolumeSliceMapper::WarnUnappliedSettings(int components)
+{
+  if (this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && !this->UsesDepthPass(components))
   {
-    this->WarnNotApplicable("UseDepthPass", "not available yet; the volume is drawn without it");
+    this->WarnNotApplicable("UseDepthPass without contour values or with multi-component scalars",
+      "the volume is drawn without a depth pass");
   }
   if (!this->ReportProgress)
   {

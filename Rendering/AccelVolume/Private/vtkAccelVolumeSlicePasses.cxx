@@ -2,6 +2,7 @@
 #include "vtkAccelVolumeSlicePasses.h"
 
 #include "vtkAccelVolumeDepthCopy.h"
+#include "vtkAccelVolumeSliceResolve.h"
 #include "vtkAccelVolumeSliceResources.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
@@ -17,8 +18,6 @@
 #include "vtkVolumeMapper.h"
 #include "vtk_glew.h"
 
-#include "AccelVolumeDepthDownsampleFS.h"
-#include "AccelVolumeResolveFS.h"
 #include "AccelVolumeResolveVS.h"
 #include "AccelVolumeSliceFS.h"
 #include "AccelVolumeSliceVS.h"
@@ -141,14 +140,9 @@ void SetSliceMapUniforms(vtkShaderProgram* program, const vtkAccelVolumeSliceFra
   program->SetUniform3f("pixelWeight", pixelWeight);
 }
 
-// An accumulation target smaller than the viewport (image sample distance above 1).
-bool Reduced(const vtkAccelVolumeSliceFrame& frame)
-{
-  return frame.Width != frame.ViewportWidth || frame.Height != frame.ViewportHeight;
 }
 
-// Inserts the variant's #defines before the output declarations (after #version).
-std::string ShaderVariant(
+std::string vtkAccelVolumeSliceShaderVariant(
   const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
 {
   std::string text = source;
@@ -166,13 +160,14 @@ std::string ShaderVariant(
     "\n#define ACCELVOLUME_JITTER " + (composite && frame.Jitter ? "1" : "0") +
     "\n#define ACCELVOLUME_PROJECTIVE_SLICES " + (ProjectiveSlices(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_BRICKED " + (frame.Bricked ? "1" : "0") +
-    "\n#define ACCELVOLUME_REDUCED " + (Reduced(frame) ? "1" : "0") +
+    "\n#define ACCELVOLUME_REDUCED " + (vtkAccelVolumeSliceReducedTarget(frame) ? "1" : "0") +
     "\n#define ACCELVOLUME_RENDER_TO_IMAGE " + (frame.RenderToImage ? "1" : "0") +
     "\n#define ACCELVOLUME_ISOSURFACE " + (composite && frame.IsoSurface ? "1" : "0") +
     "\n#define ACCELVOLUME_SLICE_PLANE " + (composite && frame.SlicePlane ? "1" : "0") +
     "\n#define ACCELVOLUME_MASK_NEIGHBOURS " + (frame.MaskNeighbours ? "1" : "0") +
     "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(frame.Components) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
+    "\n#define ACCELVOLUME_DEPTH_PASS " + std::to_string(composite ? frame.DepthPassStage : 0) +
 
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
@@ -181,6 +176,8 @@ std::string ShaderVariant(
   return text;
 }
 
+namespace
+{
 void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame)
 {
@@ -246,7 +243,11 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniform2f("averageRange", frame.AverageRange);
   program->SetUniform4f("averageLower", frame.AverageLower);
   program->SetUniform4f("averageUpper", frame.AverageUpper);
-  if (frame.IsoSurface)
+  if (frame.DepthPassStage == 2)
+  {
+    program->SetUniformi("contourDepth", resources.AuxiliaryDepth->GetTextureUnit());
+  }
+  if (frame.IsoSurface || frame.DepthPassStage == 1)
   {
     program->SetUniformi("isoSurfaceCount", frame.IsoSurfaceCount);
     const float maximum[3] = { std::max(0.0f, frame.Dimensions[0] - 1),
@@ -391,7 +392,7 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
 {
   vtkOpenGLShaderCache* cache = window->GetShaderCache();
   const std::string sliceSource =
-    ShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
+    vtkAccelVolumeSliceShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
   vtkShaderProgram* sliceProgram =
     cache->ReadyShaderProgram(AccelVolumeSliceVS, sliceSource.c_str(), "");
   if (!sliceProgram)
@@ -403,7 +404,8 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   vtkShaderProgram* faceProgram = nullptr;
   if (frame.BoundaryRerendering)
   {
-    const std::string faceSource = ShaderVariant(AccelVolumeSliceFS, frame, 1, true);
+    const std::string faceSource =
+      vtkAccelVolumeSliceShaderVariant(AccelVolumeSliceFS, frame, 1, true);
     faceProgram = cache->ReadyShaderProgram(AccelVolumeSliceVS, faceSource.c_str(), "");
     if (!faceProgram)
     {
@@ -467,19 +469,12 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
 }
 
 // Dependent multi-component MIP / MinIP keep one whole sample: a depth test on its last
-// component (ExtremeDepth) replaces blending.
+// component (AuxiliaryDepth) replaces blending.
 bool DependentExtreme(const vtkAccelVolumeSliceFrame& frame)
 {
   return frame.Components > 1 && !frame.IndependentComponents &&
     (frame.BlendMode == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
       frame.BlendMode == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND);
-}
-
-// The average of 3-4 independent components needs 8 channels: a second target.
-bool SecondAccumulation(const vtkAccelVolumeSliceFrame& frame)
-{
-  return frame.Components > 2 && frame.IndependentComponents &&
-    frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
 }
 
 // Draw buffers 0 (accumulation), 1 (RenderToImage depth), then the second accumulation.
@@ -488,11 +483,34 @@ void ActivateAccumulationBuffers(
 {
   unsigned int attachments[3] = { 0, 1, 2 };
   int count = frame.RenderToImage ? 2 : 1;
-  if (SecondAccumulation(frame))
+  if (vtkAccelVolumeSliceSecondAccumulation(frame))
   {
     attachments[count++] = 2;
   }
   resources.Framebuffer->ActivateDrawBuffers(attachments, count);
+}
+
+// UseDepthPass, first stage: the window depth of each ray's first contour crossing into the
+// auxiliary depth buffer (the nearest kept by the depth test; no colour). The accumulation
+// then starts its rays there.
+bool DrawContourDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, std::string& error)
+{
+  vtkAccelVolumeSliceFrame contour = frame;
+  contour.DepthPassStage = 1;
+  contour.EarlyTermination = false;
+  vtkOpenGLState* state = window->GetState();
+  resources.AttachAuxiliaryDepth(true);
+  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglClearDepth(1.0);
+  state->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  state->vtkglDepthFunc(GL_LESS);
+  const bool ok = DrawBricks(window, resources, contour, error);
+  resources.AttachAuxiliaryDepth(false);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglDepthMask(GL_FALSE);
+  return ok;
 }
 
 // Pass 1: MAX / MIN / additive blending of one value per fragment into the float target.
@@ -532,7 +550,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (dependentExtreme)
   {
     // Ties pass, so the last drawn of equal samples (slices go back to front) stays.
-    resources.AttachExtremeDepth(true);
+    resources.AttachAuxiliaryDepth(true);
     state->vtkglClearDepth(maximum ? 0.0 : 1.0);
     state->vtkglDepthMask(GL_TRUE);
     state->vtkglClear(GL_DEPTH_BUFFER_BIT);
@@ -607,7 +625,16 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   }
   // Per brick, slices then faces: every blend here but composite's is order-independent, and
   // composite has no faces.
-  const bool ok = DrawBricks(window, resources, frame, error);
+  bool ok = frame.DepthPassStage == 0 || DrawContourDepth(window, resources, frame, error);
+  if (ok && frame.DepthPassStage != 0)
+  {
+    resources.AuxiliaryDepth->Activate();
+  }
+  ok = ok && DrawBricks(window, resources, frame, error);
+  if (frame.DepthPassStage != 0)
+  {
+    resources.AuxiliaryDepth->Deactivate();
+  }
   resources.TransferTable->Deactivate();
   resources.SceneDepth->Deactivate();
   if (frame.GradientOpacity)
@@ -656,7 +683,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   if (dependentExtreme)
   {
     glEnablei(GL_BLEND, 0);
-    resources.AttachExtremeDepth(false);
+    resources.AttachAuxiliaryDepth(false);
     state->vtkglClearDepth(1.0);
     state->vtkglDepthMask(GL_FALSE);
     state->vtkglDepthFunc(GL_LESS);
@@ -665,148 +692,17 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   return ok;
 }
 
-// Pass 2: colour the accumulated value as VTK's GPU ray caster does and blend it
-// (premultiplied) over the scene.
-bool Resolve(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame, const int lowerLeft[2])
-{
-  vtkOpenGLState* state = window->GetState();
-  state->vtkglViewport(lowerLeft[0], lowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglBlendEquation(GL_FUNC_ADD);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  const std::string fragment = ShaderVariant(AccelVolumeResolveFS, frame, 1, false);
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, fragment.c_str(), "");
-  if (!program)
-  {
-    return false;
-  }
-  resources.Accumulation->Activate();
-  resources.TransferTable->Activate();
-  if (frame.Components > 1)
-  {
-    resources.ComponentTables->Activate();
-    program->SetUniformi("componentTables", resources.ComponentTables->GetTextureUnit());
-    program->SetUniform4f("componentWeights", frame.ComponentWeights);
-  }
-  if (SecondAccumulation(frame))
-  {
-    resources.AccumulationSecond->Activate();
-    program->SetUniformi("accumulationSecond", resources.AccumulationSecond->GetTextureUnit());
-  }
-  program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
-  program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
-  program->SetUniformf("tableSize", static_cast<float>(vtkAccelVolumeSliceResources::TableSize));
-  const float origin[2] = { static_cast<float>(lowerLeft[0]), static_cast<float>(lowerLeft[1]) };
-  program->SetUniform2f("viewportOrigin", origin);
-  const float viewport[2] = { static_cast<float>(frame.ViewportWidth),
-    static_cast<float>(frame.ViewportHeight) };
-  const float target[2] = { static_cast<float>(frame.Width), static_cast<float>(frame.Height) };
-  program->SetUniform2f("viewportSize", viewport);
-  program->SetUniform2f("targetSize", target);
-  program->SetUniformf("colourScale", frame.ColourScale);
-  program->SetUniformf("colourBias", frame.ColourBias);
-  program->SetUniformi("selectionMode", frame.SelectionMode);
-  program->SetUniform3f("selectionColour", frame.SelectionColour);
-  program->SetUniformi("clearSecondTarget", frame.ClearSecondTarget ? 1 : 0);
-  resources.ResolveArray->Bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  resources.ResolveArray->Release();
-  resources.Accumulation->Deactivate();
-  resources.TransferTable->Deactivate();
-  if (frame.Components > 1)
-  {
-    resources.ComponentTables->Deactivate();
-  }
-  if (SecondAccumulation(frame))
-  {
-    resources.AccumulationSecond->Deactivate();
-  }
-  return true;
 }
 
-// RenderToImage: the resolve into the image framebuffer (cleared to transparent), read back.
-bool ResolveToImage(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame)
+bool vtkAccelVolumeSliceReducedTarget(const vtkAccelVolumeSliceFrame& frame)
 {
-  vtkOpenGLState* state = window->GetState();
-  resources.ImageFramebuffer->SaveCurrentBindingsAndBuffers();
-  resources.ImageFramebuffer->Bind();
-  resources.ImageFramebuffer->ActivateDrawBuffer(0);
-  state->vtkglViewport(0, 0, frame.ViewportWidth, frame.ViewportHeight);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  state->vtkglClear(GL_COLOR_BUFFER_BIT);
-  state->vtkglEnable(GL_BLEND);
-  const int origin[2] = { 0, 0 };
-  bool ok = Resolve(window, resources, frame, origin);
-  if (ok && frame.ColourImage)
-  {
-    frame.ColourImage->SetDimensions(frame.ViewportWidth, frame.ViewportHeight, 1);
-    frame.ColourImage->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
-    resources.ImageFramebuffer->ActivateReadBuffer(0);
-    state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, frame.ViewportWidth, frame.ViewportHeight, GL_RGBA, GL_UNSIGNED_BYTE,
-      frame.ColourImage->GetScalarPointer());
-  }
-  resources.ImageFramebuffer->RestorePreviousBindingsAndBuffers();
-  return ok;
+  return frame.Width != frame.ViewportWidth || frame.Height != frame.ViewportHeight;
 }
 
-// The scene's depth at the target's size: copied, or (reduced target) copied at the viewport's
-// size and sampled down by a pass that writes the target's depth buffer.
-bool CopySceneDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  const vtkAccelVolumeSliceFrame& frame, int depthFormat)
+bool vtkAccelVolumeSliceSecondAccumulation(const vtkAccelVolumeSliceFrame& frame)
 {
-  if (!Reduced(frame))
-  {
-    vtkAccelVolumeCopyReadDepth(window, resources.SceneDepth, resources.Framebuffer, depthFormat,
-      frame.LowerLeft[0], frame.LowerLeft[1], frame.Width, frame.Height);
-    return true;
-  }
-  if (!resources.PrepareFullDepth(window, frame.ViewportWidth, frame.ViewportHeight, depthFormat))
-  {
-    return false;
-  }
-  vtkAccelVolumeCopyReadDepth(window, resources.SceneDepthFull, resources.DepthFramebuffer,
-    depthFormat, frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
-  resources.SceneDepthFull->Activate();
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
-  if (!program)
-  {
-    resources.SceneDepthFull->Deactivate();
-    return false;
-  }
-  vtkOpenGLState* state = window->GetState();
-  resources.Framebuffer->SaveCurrentBindingsAndBuffers();
-  resources.Framebuffer->Bind();
-  state->vtkglViewport(0, 0, frame.Width, frame.Height);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_BLEND);
-  state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDepthFunc(GL_ALWAYS);
-  state->vtkglDepthMask(GL_TRUE);
-  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  program->SetUniformi("fullDepth", resources.SceneDepthFull->GetTextureUnit());
-  const float scale[2] = { static_cast<float>(frame.ViewportWidth) / frame.Width,
-    static_cast<float>(frame.ViewportHeight) / frame.Height };
-  const float size[2] = { static_cast<float>(frame.ViewportWidth),
-    static_cast<float>(frame.ViewportHeight) };
-  program->SetUniform2f("scale", scale);
-  program->SetUniform2f("fullSize", size);
-  resources.ResolveArray->Bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  resources.ResolveArray->Release();
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglDepthFunc(GL_LESS);
-  resources.Framebuffer->RestorePreviousBindingsAndBuffers();
-  resources.SceneDepthFull->Deactivate();
-  return true;
-}
+  return frame.Components > 2 && frame.IndependentComponents &&
+    frame.BlendMode == vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
 }
 
 bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
@@ -835,12 +731,13 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   const int depthFormat = vtkAccelVolumeReadDepthFormat();
   bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels, depthFormat) &&
     resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage) &&
-    resources.PrepareComponentTargets(
-      window, frame.Width, frame.Height, DependentExtreme(frame), SecondAccumulation(frame));
+    resources.PrepareExtraTargets(window, frame.Width, frame.Height,
+      DependentExtreme(frame) || frame.DepthPassStage != 0,
+      vtkAccelVolumeSliceSecondAccumulation(frame));
   if (ok)
   {
     // Opaque geometry drawn so far limits the rays.
-    ok = CopySceneDepth(window, resources, frame, depthFormat);
+    ok = vtkAccelVolumeSliceCopySceneDepth(window, resources, frame, depthFormat);
     if (!ok)
     {
       error = "the scene depth could not be copied";
@@ -848,13 +745,13 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
     ok = ok && Accumulate(window, resources, frame, error);
     if (ok && frame.RenderToImage)
     {
-      ok = ResolveToImage(window, resources, frame);
+      ok = vtkAccelVolumeSliceResolveToImage(window, resources, frame);
       if (!ok)
       {
         error = "the render-to-image pass failed";
       }
     }
-    else if (ok && !Resolve(window, resources, frame, frame.DrawLowerLeft))
+    else if (ok && !vtkAccelVolumeSliceResolve(window, resources, frame, frame.DrawLowerLeft))
     {
       error = "the resolve shader did not compile";
       ok = false;

@@ -108,6 +108,9 @@ struct vtkAccelVolumeSliceFrame
   // range, ascending.
   static constexpr int MaximumIsoSurfaces = 16;
   bool IsoSurface = false;
+  // UseDepthPass (composite): 1 = the contour-depth stage, 2 = the accumulation after it (rays
+  // start at the contour); the contour values are IsoSurfaceValues then. 0 = no depth pass.
+  int DepthPassStage = 0;
   int IsoSurfaceCount = 0;
   float IsoSurfaceValues[MaximumIsoSurfaces] = {};
   // 2-4 component scalars: the resources' ComponentVolume and ComponentTables.

@@ -565,23 +565,23 @@ bool vtkAccelVolumeSliceResources::PrepareImageTargets(
   return ok;
 }
 
-bool vtkAccelVolumeSliceResources::PrepareComponentTargets(
-  vtkOpenGLRenderWindow* window, int width, int height, bool extremeDepth, bool secondAccumulation)
+bool vtkAccelVolumeSliceResources::PrepareExtraTargets(vtkOpenGLRenderWindow* window, int width,
+  int height, bool auxiliaryDepth, bool secondAccumulation)
 {
   const auto sized = [width, height](vtkTextureObject* texture)
   {
     return texture->GetHandle() && static_cast<int>(texture->GetWidth()) == width &&
       static_cast<int>(texture->GetHeight()) == height;
   };
-  if (extremeDepth && !sized(this->ExtremeDepth))
+  if (auxiliaryDepth && !sized(this->AuxiliaryDepth))
   {
-    this->ExtremeDepth->SetContext(window);
-    if (!this->ExtremeDepth->AllocateDepth(width, height, vtkTextureObject::Float32))
+    this->AuxiliaryDepth->SetContext(window);
+    if (!this->AuxiliaryDepth->AllocateDepth(width, height, vtkTextureObject::Float32))
     {
       return false;
     }
-    this->ExtremeDepth->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->ExtremeDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
+    this->AuxiliaryDepth->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->AuxiliaryDepth->SetMagnificationFilter(vtkTextureObject::Nearest);
   }
   if (secondAccumulation && !sized(this->AccumulationSecond))
   {
@@ -605,9 +605,9 @@ bool vtkAccelVolumeSliceResources::PrepareComponentTargets(
   return true;
 }
 
-void vtkAccelVolumeSliceResources::AttachExtremeDepth(bool extreme)
+void vtkAccelVolumeSliceResources::AttachAuxiliaryDepth(bool auxiliary)
 {
-  this->Framebuffer->AddDepthAttachment(extreme ? this->ExtremeDepth : this->SceneDepth);
+  this->Framebuffer->AddDepthAttachment(auxiliary ? this->AuxiliaryDepth : this->SceneDepth);
 }
 
 bool vtkAccelVolumeSliceResources::PrepareFullDepth(
@@ -643,7 +643,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->ComponentTables->ReleaseGraphicsResources(window);
   this->ComponentTableProperty = nullptr;
   this->FirstDepth->ReleaseGraphicsResources(window);
-  this->ExtremeDepth->ReleaseGraphicsResources(window);
+  this->AuxiliaryDepth->ReleaseGraphicsResources(window);
   this->AccumulationSecond->ReleaseGraphicsResources(window);
   this->ImageColour->ReleaseGraphicsResources(window);
   this->ImageFramebuffer->ReleaseGraphicsResources(window);

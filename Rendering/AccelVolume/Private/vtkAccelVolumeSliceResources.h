@@ -121,15 +121,15 @@ public:
    */
   bool PrepareImageTargets(vtkOpenGLRenderWindow* window, int width, int height, bool enable);
   /**
-   * Multi-component targets, width x height: `extremeDepth` sizes the 32-bit float depth
-   * buffer dependent MIP / MinIP test their last component against (attached by
-   * AttachExtremeDepth); `secondAccumulation` sizes and attaches (colour attachment 2) the
-   * target of components 2-3 of an independent average, else removes it.
+   * Extra targets, width x height: `auxiliaryDepth` sizes a 32-bit float depth buffer
+   * (AttachAuxiliaryDepth: dependent MIP / MinIP test their last component against it, the
+   * depth pass keeps its contour there); `secondAccumulation` sizes and attaches (colour
+   * attachment 2) the target of components 2-3 of an independent average, else removes it.
    */
-  bool PrepareComponentTargets(vtkOpenGLRenderWindow* window, int width, int height,
-    bool extremeDepth, bool secondAccumulation);
-  /** The accumulation framebuffer (bound) tests depth against ExtremeDepth, or SceneDepth. */
-  void AttachExtremeDepth(bool extreme);
+  bool PrepareExtraTargets(vtkOpenGLRenderWindow* window, int width, int height,
+    bool auxiliaryDepth, bool secondAccumulation);
+  /** The accumulation framebuffer (bound) tests depth against AuxiliaryDepth, or SceneDepth. */
+  void AttachAuxiliaryDepth(bool auxiliary);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -149,7 +149,7 @@ public:
   // RenderToImage: the nearest contributing depth (second accumulation target, R32F), and the
   // resolved colour (RGBA8) with its framebuffer.
   vtkNew<vtkTextureObject> FirstDepth;
-  vtkNew<vtkTextureObject> ExtremeDepth;       // dependent MIP / MinIP: the kept last component
+  vtkNew<vtkTextureObject> AuxiliaryDepth;     // float depth: MIP / MinIP sample, contour
   vtkNew<vtkTextureObject> AccumulationSecond; // independent average: components 2-3
   vtkNew<vtkTextureObject> ImageColour;
   vtkNew<vtkOpenGLFramebufferObject> ImageFramebuffer;

@@ -25,6 +25,11 @@ flat in mat3 sliceEyeMap;          // ... -> eye point (homogeneous, see pixelWe
 uniform sampler3D volumeTexture;
 uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the data range
 uniform sampler2D sceneDepth;      // window depth of the opaque geometry already drawn
+#if ACCELVOLUME_DEPTH_PASS == 2
+uniform sampler2D contourDepth;    // UseDepthPass: window depth of the ray's first contour
+#elif ACCELVOLUME_DEPTH_PASS == 1
+uniform mat4 indexToClip;
+#endif
 uniform vec3 volumeDimensions;    // of the texture (the brick's, when bricked)
 // ACCELVOLUME_BRICKED: the texture holds the volume's points from textureOrigin on, and this
 // brick takes only the samples in [ownedLower, ownedUpper) (its neighbours take the others).
@@ -245,7 +250,7 @@ vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
 }
 #endif
 
-#if ACCELVOLUME_ISOSURFACE
+#if ACCELVOLUME_ISOSURFACE || ACCELVOLUME_DEPTH_PASS == 1
 // ISOSURFACE_BLEND as vtkGPUVolumeRayCastMapper: where the value crosses one of the
 // property's iso-values between the previous sample along the ray and this one, that value's
 // colour and (uncorrected) opacity, lit at this sample, composited front to back.
@@ -280,6 +285,37 @@ vec4 isoSurfaceSample(vec3 position, vec3 previous, vec3 rayDirection)
     }
   }
   return accumulated;
+}
+
+// The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
+// in the volume and inside the clip planes (cropping is not tested here).
+bool previousSampleInside(vec3 previous)
+{
+  bool inside = all(greaterThanEqual(previous, vec3(0.0))) &&
+    all(lessThanEqual(previous, volumeIndexMaximum));
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    inside = inside && dot(clipPlanes[i].xyz, previous) + clipPlanes[i].w >= 0.0;
+  }
+  return inside;
+}
+
+// The fraction of the way from `previous` to `position` where the first contour value is
+// crossed (linear between the two samples), or 2 when none is.
+float firstCrossing(vec3 position, vec3 previous)
+{
+  float value = normalizedScalarAt(position);
+  float before = normalizedScalarAt(previous);
+  float first = 2.0;
+  for (int i = 0; i < isoSurfaceCount; ++i)
+  {
+    float iso = isoSurfaceValues[i];
+    if (iso > min(value, before) && iso <= max(value, before))
+    {
+      first = min(first, (iso - before) / (value - before));
+    }
+  }
+  return first;
 }
 #endif
 
@@ -507,6 +543,14 @@ void main()
   // Front-to-back compositing (blended "under" in the target); the opacity is corrected from
   // the unit distance to this ray's actual slice spacing, so the image does not change with
   // the slice count.
+#if ACCELVOLUME_DEPTH_PASS == 2
+  // UseDepthPass: rays start at their first contour crossing, and draw nothing without one
+  // (as VTK's GPU mapper, whose rays then start at the far plane).
+  if (gl_FragCoord.z < texelFetch(contourDepth, ivec2(gl_FragCoord.xy), 0).r)
+  {
+    discard;
+  }
+#endif
   vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
   ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
@@ -538,18 +582,23 @@ void main()
   }
   gl_FragData[0] = vec4(planeSample.rgb * planeSample.a, planeSample.a);
   ACCELVOLUME_WRITE_DEPTH(true);
-#elif ACCELVOLUME_ISOSURFACE
-  // The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
-  // in the volume and inside the clip planes (cropping is not tested here).
+#elif ACCELVOLUME_DEPTH_PASS == 1
+  // UseDepthPass, first stage: the window depth of the ray's first contour crossing (VTK
+  // renders the contour's polygons there); the depth test keeps the nearest.
   vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
-  bool previousInside = all(greaterThanEqual(previousPosition, vec3(0.0))) &&
-    all(lessThanEqual(previousPosition, volumeIndexMaximum));
-  for (int i = 0; i < clipPlaneCount; ++i)
+  float crossing = previousSampleInside(previousPosition)
+    ? firstCrossing(samplePosition, previousPosition)
+    : 2.0;
+  if (crossing > 1.0)
   {
-    previousInside = previousInside &&
-      dot(clipPlanes[i].xyz, previousPosition) + clipPlanes[i].w >= 0.0;
+    discard;
   }
-  if (!previousInside)
+  vec4 clip = indexToClip * vec4(mix(previousPosition, samplePosition, crossing), 1.0);
+  gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
+  gl_FragData[0] = vec4(0.0);
+#elif ACCELVOLUME_ISOSURFACE
+  vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
+  if (!previousSampleInside(previousPosition))
   {
     discard;
   }
