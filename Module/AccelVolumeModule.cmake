@@ -33,6 +33,7 @@ set(_av_private_sources
   vtkAccelVolumeOctreeGPUBuilder
   vtkAccelVolumeRenderProgress
   vtkAccelVolumeScalarEncoding
+  vtkAccelVolumeSliceFrameFill
   vtkAccelVolumeSliceGeometry
   vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses

@@ -105,6 +105,14 @@ public:
     vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
     vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
     bool skipEmptyLeaves);
+  // Components (weights, unit distances), masks (vtkAccelVolumeSliceFrameFill.cxx).
+  void FillComponentsAndMasks(vtkAccelVolumeSliceMapper* self, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view);
+  // Raysum and average scales: the additive unit, the average's scalar range normalised to
+  // the data range and to each component's (vtkAccelVolumeSliceFrameFill.cxx).
+  void FillProjectionScales(
+    vtkAccelVolumeSliceMapper* self, vtkVolumeProperty* property, const double range[2]);
+  // Lights, gradient units and tables (vtkAccelVolumeSliceFrameFill.cxx).
   void FillShadingAndGradients(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
     vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
     vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view);
@@ -112,5 +120,6 @@ public:
   bool DrawPasses(
     vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window, std::string& passError);
 };
+
 
 #endif
