@@ -33,7 +33,6 @@ set(_av_private_sources
   vtkAccelVolumeOctreeGPUBuilder
   vtkAccelVolumeRenderProgress
   vtkAccelVolumeScalarEncoding
-  vtkAccelVolumeSliceFrameFill
   vtkAccelVolumeSliceGeometry
   vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses
@@ -68,6 +67,8 @@ list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctr
   "${_av_vtk_dir}/Private/vtkAccelVolumeSliceMapperInternals.h")
 # vtkAccelVolumeSliceMapper's vtkGPUVolumeRayCastMapper API members, apart from its rendering.
 list(APPEND _av_sources "${_av_vtk_dir}/vtkAccelVolumeSliceMapperVTKAPI.cxx")
+# ... and its frame settings for shading, components and masks (members of its vtkInternals).
+list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeSliceFrameFill.cxx")
 
 if (NOT COMMAND vtk_encode_string)
   include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)

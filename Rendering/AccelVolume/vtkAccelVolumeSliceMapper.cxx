@@ -61,12 +61,6 @@ bool IsSupportedBlend(int blendMode)
 
 // Iso-surfaces are drawn by the composite passes (front to back, terminated), and so is a slice
 // plane (one classified sample per pixel).
-bool CompositeLike(int blendMode)
-{
-  return blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
-    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND || blendMode == vtkVolumeMapper::SLICE_BLEND;
-}
-
 // SLICE_BLEND: the property's slice plane (world) in index space, cut to each cropping region
 // and the clip planes. Empty when the plane misses them; `error` says why there is no plane.
 std::vector<accelvolume::Polygon> SlicePlanePolygons(
@@ -258,7 +252,10 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
   std::string error;
   if (scalars->GetNumberOfComponents() > 1)
   {
-    if (!this->Resources.PrepareMultiComponentVolume(window, input, scalars, error))
+    const bool colourComponents =
+      !property->GetIndependentComponents() && scalars->GetNumberOfComponents() == 4;
+    if (!this->Resources.PrepareMultiComponentVolume(
+          window, input, scalars, colourComponents, error))
     {
       vtkErrorWithObjectMacro(self, "Cannot upload the volume: " << error);
       return false;
@@ -399,7 +396,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
     extremum && !self->MaskInput && !this->UsedGhostMask && this->Frame.Components == 1
     ? self->SlabSamples
     : 1;
-  const bool composite = CompositeLike(self->BlendMode);
+  const bool composite = vtkAccelVolumeCompositeLike(self->BlendMode);
   const bool transferFunction2D = self->BlendMode == COMPOSITE_BLEND &&
     property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
@@ -450,7 +447,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
   bool skipEmptyLeaves)
 {
-  const bool composite = CompositeLike(self->BlendMode);
+  const bool composite = vtkAccelVolumeCompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.BlendMode = composite ? COMPOSITE_BLEND : self->BlendMode;
   frame.IsoSurface = self->BlendMode == ISOSURFACE_BLEND;

@@ -49,18 +49,22 @@
  * Drop-in for vtkGPUVolumeRayCastMapper (docs/drop-in.md): its API members, VTK's light model
  * and gradient units, masks (binary and label map), ghost arrays and blanking, RenderToImage,
  * picking, multisampled windows, ISOSURFACE_BLEND (the property's iso-values, drawn by the
- * composite passes), SLICE_BLEND (the property's vtkPlane, drawn as a cut face) and 2-4 component
- * scalars (composite: independent with per-component functions and weights, or dependent
- * luminance-alpha / RGBA; raysum of either and the average of dependent components; one brick,
- * no octree skipping or gradient opacity).
+ * composite passes), SLICE_BLEND (the property's vtkPlane, drawn as a cut face), the depth pass
+ * (UseDepthPass) and 2-4 component scalars (independent with per-component functions, weights
+ * and gradient opacities, or dependent luminance-alpha / RGBA; composite, MIP, MinIP, raysum and
+ * average as VTK's GPU mapper combines them; one brick, no octree skipping). Where VTK 9.1's
+ * shader slips we differ on purpose: independent MinIP keeps each component's minimum (VTK's
+ * its maximum, with alpha 0) and luminance-alpha MIP / MinIP the sample whose alpha is extreme
+ * (VTK's the ray's first sample).
  *
  * Limits: scalars of any integer or floating type but bit (int, unsigned int, 64-bit integers,
  * float and double are sampled as 32-bit floats normalised to the data range; NaN samples
  * count as the minimum). Boundary re-rendering applies to the projection modes, not to
  * composite. Bricked volumes take gradients by central differences (no precomputed gradient
  * texture) and plain slices (SlabSamples is ignored). With depth peeling of volumes the volume
- * is drawn once, before the translucent layers (VTK interleaves them). Not available: the
- * depth pass.
+ * is drawn once, before the translucent layers (VTK interleaves them). Multi-component scalars
+ * past GL_MAX_3D_TEXTURE_SIZE are not bricked (a clear error), nor drawn as iso-surfaces or a
+ * slice plane.
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h

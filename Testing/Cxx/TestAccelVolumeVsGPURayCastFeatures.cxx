@@ -137,7 +137,8 @@ vtkSmartPointer<vtkImageData> Components(int components, bool unsignedChar, bool
   {
     const double x = (va->GetComponent(i, 0) - ra[0]) / (ra[1] - ra[0]);
     const double y = (vb->GetComponent(i, 0) - rb[0]) / (rb[1] - rb[0]);
-    const double values[4] = { x, equal ? x : y, 1.0 - x, std::max(x, y) };
+    // Component 2 spans half the range: RGBA colours are not normalised to it (VTK).
+    const double values[4] = { x, equal ? x : y, 0.5 * (1.0 - x), std::max(x, y) };
     for (int c = 0; c < components; ++c)
     {
       out->SetComponent(

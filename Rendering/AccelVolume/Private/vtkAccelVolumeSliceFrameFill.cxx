@@ -138,7 +138,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillShadingAndGradients(
   vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2],
   const vtkAccelVolumeSliceView& view)
 {
-  const bool composite = CompositeLike(self->BlendMode);
+  const bool composite = vtkAccelVolumeCompositeLike(self->BlendMode);
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.Shade = composite && property->GetShade(0) != 0;
   // Independent components: VTK applies every component's gradient opacity to each (below).

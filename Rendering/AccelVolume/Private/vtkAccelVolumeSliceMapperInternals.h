@@ -122,4 +122,11 @@ public:
 };
 
 
+// Blend modes drawn by the composite passes (iso-surfaces and the slice plane too).
+inline bool vtkAccelVolumeCompositeLike(int blendMode)
+{
+  return blendMode == vtkVolumeMapper::COMPOSITE_BLEND ||
+    blendMode == vtkVolumeMapper::ISOSURFACE_BLEND || blendMode == vtkVolumeMapper::SLICE_BLEND;
+}
+
 #endif

@@ -50,11 +50,14 @@ public:
 
   /**
    * 2-4 component scalars: one float texture with each component normalised to its finite
-   * range (ComponentRanges), as one brick. False with `error` set when the volume would need
-   * bricks (larger than GL_MAX_3D_TEXTURE_SIZE) or the texture cannot be created.
+   * range (ComponentRanges), as one brick. `colourComponents` (dependent RGBA): components 0-2
+   * are colours as VTK's GPU mapper reads them instead, the value over the type's maximum for
+   * 8- and 16-bit integers, as is for floating types (wider integers keep their range). False
+   * with `error` set when the volume would need bricks (larger than GL_MAX_3D_TEXTURE_SIZE) or
+   * the texture cannot be created.
    */
-  bool PrepareMultiComponentVolume(
-    vtkOpenGLRenderWindow* window, vtkImageData* image, vtkDataArray* scalars, std::string& error);
+  bool PrepareMultiComponentVolume(vtkOpenGLRenderWindow* window, vtkImageData* image,
+    vtkDataArray* scalars, bool colourComponents, std::string& error);
   /**
    * The per-component tables of 2-4 component scalars, rows 0..3 over ComponentRanges:
    * independent: colour and opacity of component c; dependent: row 0 holds the colour over
@@ -65,6 +68,7 @@ public:
   vtkNew<vtkTextureObject> ComponentVolume;
   vtkNew<vtkTextureObject> ComponentTables;
   double ComponentRanges[4][2] = {};
+  bool UploadedColourComponents = false;
   // What ComponentTables reflects (the ranges come with the volume upload).
   vtkVolumeProperty* ComponentTableProperty = nullptr;
   vtkMTimeType ComponentTableTime = 0;
