@@ -166,6 +166,7 @@ struct MultiCase
   bool UnsignedChar;
   int Blend = vtkVolumeMapper::COMPOSITE_BLEND;
   bool GradientOpacity = false;
+  bool Shaded = false; // each component with its own ambient and diffuse coefficients
 };
 
 // One multi-component frame. `mirrored`: every function point x moves to top - x (for data
@@ -202,6 +203,13 @@ std::vector<float> RenderComponents(const MultiCase& m, vtkImageData* image,
     }
     property->SetColor(c, colours);
     property->SetScalarOpacity(c, opacity);
+    if (m.Shaded)
+    {
+      property->ShadeOn();
+      property->SetAmbient(c, c == 0 ? 0.1 : 0.5);
+      property->SetDiffuse(c, c == 0 ? 0.9 : 0.4);
+      property->SetSpecular(c, 0.0); // VTK's highlights differ on purpose (file comment)
+    }
     if (m.GradientOpacity)
     {
       // VTK's units: data values per mean voxel step, table over [0, range / 4].
@@ -228,6 +236,8 @@ bool MultiComponent()
     { "composite, dependent RGBA", 4, false, true },
     { "composite, 2 independent components, gradient opacity", 2, true, false,
       vtkVolumeMapper::COMPOSITE_BLEND, true },
+    { "composite, 2 independent components, shaded with their own coefficients", 2, true, false,
+      vtkVolumeMapper::COMPOSITE_BLEND, false, true },
     { "composite, dependent luminance-alpha, gradient opacity", 2, false, false,
       vtkVolumeMapper::COMPOSITE_BLEND, true },
     { "composite, dependent RGBA, gradient opacity", 4, false, true,
@@ -253,7 +263,8 @@ bool MultiComponent()
     const std::vector<float> slice =
       RenderComponents(m, image, Fixed<vtkAccelVolumeSliceMapper>(0.5), m.Blend, false, lowOpaque);
     const std::string tag = std::string("multi_") + std::to_string(m.Components) +
-      (m.Independent ? "i" : "d") + std::to_string(m.Blend) + (m.GradientOpacity ? "g" : "");
+      (m.Independent ? "i" : "d") + std::to_string(m.Blend) + (m.GradientOpacity ? "g" : "") +
+      (m.Shaded ? "s" : "");
     if (Mean(reference) < 1.0 / 255.0)
     {
       std::cerr << m.Name << ": VTK's picture is (almost) empty, the case proves nothing\n";

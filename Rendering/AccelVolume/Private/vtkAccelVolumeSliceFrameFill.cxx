@@ -88,6 +88,12 @@ void vtkAccelVolumeSliceMapper::vtkInternals::FillComponentsAndMasks(
     frame.ComponentWeights[c] = static_cast<float>(property->GetComponentWeight(c));
     // Dependent components correct opacity with the last component's unit distance, as VTK.
     const int unitComponent = frame.IndependentComponents ? c : frame.Components - 1;
+    // Independent components are lit with their own coefficients (VTK's in_ambient[c], ...).
+    const int lit = frame.IndependentComponents ? c : 0;
+    frame.ComponentLighting[c][0] = static_cast<float>(property->GetAmbient(lit));
+    frame.ComponentLighting[c][1] = static_cast<float>(property->GetDiffuse(lit));
+    frame.ComponentLighting[c][2] = static_cast<float>(property->GetSpecular(lit));
+    frame.ComponentLighting[c][3] = static_cast<float>(property->GetSpecularPower(lit));
     frame.ComponentUnitDistances[c] =
       static_cast<float>(std::max(1.0e-6, property->GetScalarOpacityUnitDistance(unitComponent)));
   }

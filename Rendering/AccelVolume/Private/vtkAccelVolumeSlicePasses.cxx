@@ -261,6 +261,7 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
     program->SetUniformi("componentTables", resources.ComponentTables->GetTextureUnit());
     program->SetUniform4f("componentWeights", frame.ComponentWeights);
     program->SetUniform4f("componentUnitDistances", frame.ComponentUnitDistances);
+    program->SetUniform4fv("componentLighting", 4, frame.ComponentLighting);
   }
   if (frame.MaskMode != 0)
   {

@@ -118,6 +118,7 @@ struct vtkAccelVolumeSliceFrame
   bool IndependentComponents = true;
   float ComponentWeights[4] = { 1, 1, 1, 1 };
   float ComponentUnitDistances[4] = { 1, 1, 1, 1 };
+  float ComponentLighting[4][4] = {}; // per independent component: as Lighting
   // Mask input: 0 none, 1 binary, 2 label map (composite only); its texture and label table.
   int MaskMode = 0;
   bool MaskNeighbours = false; // ghost masks: a sample next to a hidden point is hidden (VTK)

@@ -190,8 +190,9 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
 }
 
 #if ACCELVOLUME_SHADE
-// The colour `rgb` lit by VTK's light model for an eye-space gradient.
-vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
+// The colour `rgb` lit by VTK's light model for an eye-space gradient, with the property's
+// (ambient, diffuse, specular, specular power) `coefficients`.
+vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
 {
   // VTK's light model: per light ambient, diffuse (N.L) and Blinn-Phong specular (N.H) colours,
   // positional lights attenuated, spot lights within their cone.
@@ -239,14 +240,19 @@ vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
       nDotH = twoSidedLighting != 0 ? abs(nDotH) : nDotH;
       if (nDotH > 0.0)
       {
-        specularSum += attenuation * pow(min(nDotH, 1.0), lighting.w) * lightSpecular[i];
+        specularSum += attenuation * pow(min(nDotH, 1.0), coefficients.w) * lightSpecular[i];
       }
     }
   }
   vec3 ambientFactor = headlightOnly != 0 ? vec3(1.0) : ambientSum;
-  vec3 shaded = rgb * (lighting.x * ambientFactor + lighting.y * diffuseSum) +
-    lighting.z * specularSum;
+  vec3 shaded = rgb * (coefficients.x * ambientFactor + coefficients.y * diffuseSum) +
+    coefficients.z * specularSum;
   return min(shaded, vec3(1.0));
+}
+
+vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
+{
+  return shadeWith(rgb, eyeGradient, rayDirection, lighting);
 }
 #endif
 
@@ -328,6 +334,7 @@ float firstCrossing(vec3 position, vec3 previous)
 uniform sampler2D componentTables;   // rows c = 0..3: rgba over component c's range
 uniform vec4 componentWeights;
 uniform vec4 componentUnitDistances;
+uniform vec4 componentLighting[4]; // each independent component's shading coefficients
 
 vec4 componentLookup(int c, float value)
 {
@@ -376,7 +383,8 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
 #endif
     float alpha = 1.0 - pow(max(1.0 - colour.a, 0.0), step / componentUnitDistances[c]);
 #if ACCELVOLUME_SHADE
-    colour.rgb = shade(colour.rgb, normalMatrix * vec3(dx[c], dy[c], dz[c]), rayDirection);
+    colour.rgb = shadeWith(
+      colour.rgb, normalMatrix * vec3(dx[c], dy[c], dz[c]), rayDirection, componentLighting[c]);
 #endif
     totalAlpha += alpha * componentWeights[c];
     if (componentWeights[c] > 0.0)
