@@ -61,6 +61,20 @@ bool IsSupportedBlend(int blendMode)
 
 // Iso-surfaces are drawn by the composite passes (front to back, terminated), and so is a slice
 // plane (one classified sample per pixel).
+// Every contour value has a non-zero scalar opacity.
+bool ContourValuesVisible(vtkVolumeProperty* property, vtkContourValues* values)
+{
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  for (int i = 0; i < values->GetNumberOfContours(); ++i)
+  {
+    if (!(opacity->GetValue(values->GetValue(i)) > 0.0))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // SLICE_BLEND: the property's slice plane (world) in index space, cut to each cropping region
 // and the clip planes. Empty when the plane misses them; `error` says why there is no plane.
 std::vector<accelvolume::Polygon> SlicePlanePolygons(
@@ -402,9 +416,12 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
   // ... nor does it know a label map's colours (a binary mask only removes samples).
   // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.
-  // ... nor where a depth pass's contour lies (its first stage must see every slice).
+  // ... nor where a depth pass's contour lies, unless every contour value is visible (a leaf
+  // whose voxels a crossing reads holds the value, so it is not transparent then).
+  const bool contourCulled = self->UsesDepthPass(this->Frame.Components) &&
+    !ContourValuesVisible(property, self->GetDepthPassContourValues());
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D &&
-    !self->UsesDepthPass(this->Frame.Components) && !self->UsesLabelMap() &&
+    !contourCulled && !self->UsesLabelMap() &&
     this->Frame.Components == 1 && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();

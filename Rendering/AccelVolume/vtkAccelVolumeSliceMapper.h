@@ -316,8 +316,9 @@ public:
    * (vtkContourFilter) for that depth; here the crossing is found along the ray between
    * successive slices (linear between the two samples), so the start differs from VTK's by
    * less than a voxel where marching cubes and trilinear interpolation disagree. Octree
-   * skipping is off while it is on. With no contour value or more components it warns once
-   * and the volume is drawn without it.
+   * skipping stays on when every contour value has a non-zero opacity (else the contour may
+   * lie in transparent space and it is off). With no contour value or more components it
+   * warns once and the volume is drawn without it.
    */
   vtkSetClampMacro(UseDepthPass, vtkTypeBool, 0, 1);
   vtkGetMacro(UseDepthPass, vtkTypeBool);

@@ -27,8 +27,6 @@ uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the d
 uniform sampler2D sceneDepth;      // window depth of the opaque geometry already drawn
 #if ACCELVOLUME_DEPTH_PASS == 2
 uniform sampler2D contourDepth;    // UseDepthPass: window depth of the ray's first contour
-#elif ACCELVOLUME_DEPTH_PASS == 1
-uniform mat4 indexToClip;
 #endif
 uniform vec3 volumeDimensions;    // of the texture (the brick's, when bricked)
 // ACCELVOLUME_BRICKED: the texture holds the volume's points from textureOrigin on, and this
@@ -591,18 +589,16 @@ void main()
   gl_FragData[0] = vec4(planeSample.rgb * planeSample.a, planeSample.a);
   ACCELVOLUME_WRITE_DEPTH(true);
 #elif ACCELVOLUME_DEPTH_PASS == 1
-  // UseDepthPass, first stage: the window depth of the ray's first contour crossing (VTK
-  // renders the contour's polygons there); the depth test keeps the nearest.
+  // UseDepthPass, first stage: the depth of the first sample behind the ray's first contour
+  // crossing (VTK renders the contour's polygons there; the accumulation starts at that same
+  // sample either way). The fragment's own depth, so the depth test keeps the nearest and,
+  // slices drawn front to back, culls every slice behind it before shading.
   vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
-  float crossing = previousSampleInside(previousPosition)
-    ? firstCrossing(samplePosition, previousPosition)
-    : 2.0;
-  if (crossing > 1.0)
+  if (!previousSampleInside(previousPosition) ||
+    firstCrossing(samplePosition, previousPosition) > 1.0)
   {
     discard;
   }
-  vec4 clip = indexToClip * vec4(mix(previousPosition, samplePosition, crossing), 1.0);
-  gl_FragDepth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);
   gl_FragData[0] = vec4(0.0);
 #elif ACCELVOLUME_ISOSURFACE
   vec3 previousPosition = samplePosition - (mat3(eyeToIndex) * rayDirection) * step;
