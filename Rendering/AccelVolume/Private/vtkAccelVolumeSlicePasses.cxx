@@ -243,10 +243,6 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   program->SetUniform2f("averageRange", frame.AverageRange);
   program->SetUniform4f("averageLower", frame.AverageLower);
   program->SetUniform4f("averageUpper", frame.AverageUpper);
-  if (frame.DepthPassStage == 2)
-  {
-    program->SetUniformi("contourDepth", resources.AuxiliaryDepth->GetTextureUnit());
-  }
   if (frame.IsoSurface || frame.DepthPassStage == 1)
   {
     program->SetUniformi("isoSurfaceCount", frame.IsoSurfaceCount);
@@ -298,11 +294,15 @@ bool RunTerminationPass(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
   resources.Accumulation->Activate();
   program->SetUniformi("accumulation", resources.Accumulation->GetTextureUnit());
   program->SetUniformf("threshold", frame.TerminationThreshold);
+  // A terminated pixel's depth fails every later slice: 0 for the usual LESS test, 1 for the
+  // depth pass's GEQUAL test against the contour.
+  const bool contourTest = frame.DepthPassStage == 2;
+  program->SetUniformf("terminatedDepth", contourTest ? 1.0f : 0.0f);
   resources.ResolveArray->Bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   resources.ResolveArray->Release();
   resources.Accumulation->Deactivate();
-  state->vtkglDepthFunc(GL_LESS);
+  state->vtkglDepthFunc(contourTest ? GL_GEQUAL : GL_LESS);
   state->vtkglDepthMask(GL_FALSE);
   state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ++frame.TerminationPasses;
@@ -629,12 +629,16 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   bool ok = frame.DepthPassStage == 0 || DrawContourDepth(window, resources, frame, error);
   if (ok && frame.DepthPassStage != 0)
   {
-    resources.AuxiliaryDepth->Activate();
+    // The contour's depth becomes the depth buffer: fragments in front of it fail early (the
+    // shader tests the scene's depth instead).
+    resources.AttachAuxiliaryDepth(true);
+    state->vtkglDepthFunc(GL_GEQUAL);
   }
   ok = ok && DrawBricks(window, resources, frame, error);
   if (frame.DepthPassStage != 0)
   {
-    resources.AuxiliaryDepth->Deactivate();
+    resources.AttachAuxiliaryDepth(false);
+    state->vtkglDepthFunc(GL_LESS);
   }
   resources.TransferTable->Deactivate();
   resources.SceneDepth->Deactivate();

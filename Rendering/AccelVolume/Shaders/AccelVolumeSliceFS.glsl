@@ -25,9 +25,6 @@ flat in mat3 sliceEyeMap;          // ... -> eye point (homogeneous, see pixelWe
 uniform sampler3D volumeTexture;
 uniform sampler2D transferTable;   // rgb: colour, a: scalar opacity, over the data range
 uniform sampler2D sceneDepth;      // window depth of the opaque geometry already drawn
-#if ACCELVOLUME_DEPTH_PASS == 2
-uniform sampler2D contourDepth;    // UseDepthPass: window depth of the ray's first contour
-#endif
 uniform vec3 volumeDimensions;    // of the texture (the brick's, when bricked)
 // ACCELVOLUME_BRICKED: the texture holds the volume's points from textureOrigin on, and this
 // brick takes only the samples in [ownedLower, ownedUpper) (its neighbours take the others).
@@ -551,8 +548,10 @@ void main()
   // the slice count.
 #if ACCELVOLUME_DEPTH_PASS == 2
   // UseDepthPass: rays start at their first contour crossing, and draw nothing without one
-  // (as VTK's GPU mapper, whose rays then start at the far plane).
-  if (gl_FragCoord.z < texelFetch(contourDepth, ivec2(gl_FragCoord.xy), 0).r)
+  // (as VTK's GPU mapper, whose rays then start at the far plane). The contour's depth is the
+  // target's depth buffer here (GEQUAL: fragments in front of it fail early), so the scene's
+  // depth is tested here.
+  if (gl_FragCoord.z >= texelFetch(sceneDepth, ivec2(gl_FragCoord.xy), 0).r)
   {
     discard;
   }

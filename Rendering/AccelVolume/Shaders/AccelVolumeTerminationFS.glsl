@@ -1,10 +1,12 @@
 //VTK::System::Dec
 // Early ray termination mark pass: pixels whose accumulated front-to-back alpha passed the
-// threshold get depth 0, so the early depth test rejects every later slice fragment there.
+// threshold get a depth (terminatedDepth) that makes the early depth test reject every later
+// slice fragment there.
 //VTK::Output::Dec
 
 uniform sampler2D accumulation;
 uniform float threshold;
+uniform float terminatedDepth; // fails every later slice's depth test
 
 void main()
 {
@@ -12,6 +14,6 @@ void main()
   {
     discard;
   }
-  gl_FragDepth = 0.0;
+  gl_FragDepth = terminatedDepth;
   gl_FragData[0] = vec4(0.0);
 }
