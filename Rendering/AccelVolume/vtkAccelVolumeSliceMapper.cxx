@@ -220,11 +220,12 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(
   if (components > 1)
   {
     const bool independent = !property || property->GetIndependentComponents();
-    if (this->BlendMode == ISOSURFACE_BLEND || this->BlendMode == SLICE_BLEND)
+    if (this->BlendMode == SLICE_BLEND || (this->BlendMode == ISOSURFACE_BLEND && !independent))
     {
       vtkErrorMacro("Scalars with " << components
                                     << " components render with composite, maximum, minimum, "
-                                       "additive and average blending");
+                                       "additive and average blending (and iso-surfaces of "
+                                       "independent components)");
       return false;
     }
     if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
@@ -420,9 +421,9 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // whose voxels a crossing reads holds the value, so it is not transparent then).
   const bool contourCulled = self->UsesDepthPass(this->Frame.Components) &&
     !ContourValuesVisible(property, self->GetDepthPassContourValues());
-  skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D &&
-    !contourCulled && !self->UsesLabelMap() &&
-    this->Frame.Components == 1 && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
+  skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
+    !self->UsesLabelMap() && this->Frame.Components == 1 &&
+    (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     self->UpdateEmptyLeaves(window, input, property, range);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
@@ -475,18 +476,30 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     ? property->GetIsoSurfaceValues()
     : (frame.DepthPassStage ? self->DepthPassContourValues : nullptr);
   frame.IsoSurfaceCount = 0;
+  // Independent components: iso-surfaces of the component of the largest weight (the first of
+  // equals, as VTK), normalised to its own range (VTK 9.1 takes component 0's range there).
+  frame.IsoComponent = 0;
+  for (int c = 1; c < this->Frame.Components; ++c)
+  {
+    if (property->GetComponentWeight(c) > property->GetComponentWeight(frame.IsoComponent))
+    {
+      frame.IsoComponent = c;
+    }
+  }
+  const double* isoRange =
+    this->Frame.Components > 1 ? this->Resources.ComponentRanges[frame.IsoComponent] : range;
   if (values)
   {
     std::vector<double> iso(
       values->GetValues(), values->GetValues() + values->GetNumberOfContours());
     std::sort(iso.begin(), iso.end());
-    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    const double width = isoRange[1] > isoRange[0] ? isoRange[1] - isoRange[0] : 1.0;
     for (double value : iso)
     {
       if (frame.IsoSurfaceCount < vtkAccelVolumeSliceFrame::MaximumIsoSurfaces)
       {
         frame.IsoSurfaceValues[frame.IsoSurfaceCount++] =
-          static_cast<float>((value - range[0]) / width);
+          static_cast<float>((value - isoRange[0]) / width);
       }
     }
   }

@@ -52,7 +52,8 @@
  * composite passes), SLICE_BLEND (the property's vtkPlane, drawn as a cut face), the depth pass
  * (UseDepthPass) and 2-4 component scalars (independent with per-component functions, weights
  * and gradient opacities, or dependent luminance-alpha / RGBA; composite, MIP, MinIP, raysum and
- * average as VTK's GPU mapper combines them; one brick, no octree skipping). Where VTK 9.1's
+ * average as VTK's GPU mapper combines them, iso-surfaces of the independent component of the
+ * largest weight; one brick, no octree skipping). Where VTK 9.1's
  * shader slips we differ on purpose: independent MinIP keeps each component's minimum (VTK's
  * its maximum, with alpha 0) and luminance-alpha MIP / MinIP the sample whose alpha is extreme
  * (VTK's the ray's first sample).
@@ -63,8 +64,8 @@
  * composite. Bricked volumes take gradients by central differences (no precomputed gradient
  * texture) and plain slices (SlabSamples is ignored). With depth peeling of volumes the volume
  * is drawn once, before the translucent layers (VTK interleaves them). Multi-component scalars
- * past GL_MAX_3D_TEXTURE_SIZE are not bricked (a clear error), nor drawn as iso-surfaces or a
- * slice plane.
+ * past GL_MAX_3D_TEXTURE_SIZE are not bricked (a clear error), nor drawn as a slice plane or
+ * (dependent ones) iso-surfaces.
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h

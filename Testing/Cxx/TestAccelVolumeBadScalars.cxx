@@ -67,9 +67,13 @@ bool Components(MapperKind kind)
            "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not 3",
            [](Probe& probe) { probe.Volume->GetProperty()->SetIndependentComponents(false); }) &&
       ok;
-    ok = ExpectError(kind, "2 components, iso-surface", withComponents(2),
+    ok = ExpectError(kind, "2 dependent components, iso-surface", withComponents(2),
            "components render with composite, maximum, minimum, additive and average blending",
-           [](Probe& probe) { probe.Mapper->SetBlendModeToIsoSurface(); }) &&
+           [](Probe& probe)
+           {
+             probe.Mapper->SetBlendModeToIsoSurface();
+             probe.Volume->GetProperty()->SetIndependentComponents(false);
+           }) &&
       ok;
     return ok;
   }

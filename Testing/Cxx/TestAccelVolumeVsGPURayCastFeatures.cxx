@@ -166,7 +166,8 @@ struct MultiCase
   bool UnsignedChar;
   int Blend = vtkVolumeMapper::COMPOSITE_BLEND;
   bool GradientOpacity = false;
-  bool Shaded = false; // each component with its own ambient and diffuse coefficients
+  bool Shaded = false;  // each component with its own ambient and diffuse coefficients
+  double Weight1 = 0.5; // component 1's weight
 };
 
 // One multi-component frame. `mirrored`: every function point x moves to top - x (for data
@@ -219,7 +220,10 @@ std::vector<float> RenderComponents(const MultiCase& m, vtkImageData* image,
       property->SetGradientOpacity(c, gradient);
     }
   }
-  property->SetComponentWeight(1, 0.5);
+  property->SetComponentWeight(1, m.Weight1);
+  // Iso-surfaces (of the component of the largest weight).
+  property->GetIsoSurfaceValues()->SetValue(0, 0.35 * top);
+  property->GetIsoSurfaceValues()->SetValue(1, 0.6 * top);
   property->SetInterpolationTypeToLinear();
   vtkNew<vtkRenderer> renderer;
   renderer->AddVolume(volume);
@@ -238,6 +242,10 @@ bool MultiComponent()
       vtkVolumeMapper::COMPOSITE_BLEND, true },
     { "composite, 2 independent components, shaded with their own coefficients", 2, true, false,
       vtkVolumeMapper::COMPOSITE_BLEND, false, true },
+    { "iso-surfaces of component 1 (the larger weight), shaded", 2, true, false,
+      vtkVolumeMapper::ISOSURFACE_BLEND, false, true, 2.0 },
+    { "iso-surfaces of component 0, 3 independent components", 3, true, true,
+      vtkVolumeMapper::ISOSURFACE_BLEND },
     { "composite, dependent luminance-alpha, gradient opacity", 2, false, false,
       vtkVolumeMapper::COMPOSITE_BLEND, true },
     { "composite, dependent RGBA, gradient opacity", 4, false, true,

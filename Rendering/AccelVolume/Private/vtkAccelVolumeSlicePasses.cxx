@@ -246,6 +246,7 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
   if (frame.IsoSurface || frame.DepthPassStage == 1)
   {
     program->SetUniformi("isoSurfaceCount", frame.IsoSurfaceCount);
+    program->SetUniformi("isoComponent", frame.IsoComponent);
     const float maximum[3] = { std::max(0.0f, frame.Dimensions[0] - 1),
       std::max(0.0f, frame.Dimensions[1] - 1), std::max(0.0f, frame.Dimensions[2] - 1) };
     program->SetUniform3f("volumeIndexMaximum", maximum);

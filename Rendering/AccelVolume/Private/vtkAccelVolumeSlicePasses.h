@@ -111,6 +111,7 @@ struct vtkAccelVolumeSliceFrame
   // UseDepthPass (composite): 1 = the contour-depth stage, 2 = the accumulation after it (rays
   // start at the contour); the contour values are IsoSurfaceValues then. 0 = no depth pass.
   int DepthPassStage = 0;
+  int IsoComponent = 0; // independent components: the one iso-surfaces are drawn of
   int IsoSurfaceCount = 0;
   float IsoSurfaceValues[MaximumIsoSurfaces] = {};
   // 2-4 component scalars: the resources' ComponentVolume and ComponentTables.

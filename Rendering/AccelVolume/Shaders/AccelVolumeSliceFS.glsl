@@ -251,75 +251,6 @@ vec3 shade(vec3 rgb, vec3 eyeGradient, vec3 rayDirection)
 }
 #endif
 
-#if ACCELVOLUME_ISOSURFACE || ACCELVOLUME_DEPTH_PASS == 1
-// ISOSURFACE_BLEND as vtkGPUVolumeRayCastMapper: where the value crosses one of the
-// property's iso-values between the previous sample along the ray and this one, that value's
-// colour and (uncorrected) opacity, lit at this sample, composited front to back.
-uniform int isoSurfaceCount;
-uniform vec3 volumeIndexMaximum;    // the whole volume's largest voxel index per axis
-uniform float isoSurfaceValues[16]; // normalised, ascending
-
-vec4 isoSurfaceSample(vec3 position, vec3 previous, vec3 rayDirection)
-{
-  float value = normalizedScalarAt(position);
-  float before = normalizedScalarAt(previous);
-  float low = min(value, before);
-  float high = max(value, before);
-  vec4 accumulated = vec4(0.0);
-#if ACCELVOLUME_SHADE
-  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
-  vec3 eyeGradient = normalMatrix * centralDifferences(center);
-#endif
-  // Crossings in ray order: ascending values when the ray climbs, descending when it falls.
-  bool rising = value >= before;
-  for (int k = 0; k < isoSurfaceCount; ++k)
-  {
-    int i = rising ? k : isoSurfaceCount - 1 - k;
-    float iso = isoSurfaceValues[i];
-    if (iso > low && iso <= high)
-    {
-      vec4 colour = classify(iso);
-#if ACCELVOLUME_SHADE
-      colour.rgb = shade(colour.rgb, eyeGradient, rayDirection);
-#endif
-      accumulated += (1.0 - accumulated.a) * vec4(colour.rgb * colour.a, colour.a);
-    }
-  }
-  return accumulated;
-}
-
-// The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
-// in the volume and inside the clip planes (cropping is not tested here).
-bool previousSampleInside(vec3 previous)
-{
-  bool inside = all(greaterThanEqual(previous, vec3(0.0))) &&
-    all(lessThanEqual(previous, volumeIndexMaximum));
-  for (int i = 0; i < clipPlaneCount; ++i)
-  {
-    inside = inside && dot(clipPlanes[i].xyz, previous) + clipPlanes[i].w >= 0.0;
-  }
-  return inside;
-}
-
-// The fraction of the way from `previous` to `position` where the first contour value is
-// crossed (linear between the two samples), or 2 when none is.
-float firstCrossing(vec3 position, vec3 previous)
-{
-  float value = normalizedScalarAt(position);
-  float before = normalizedScalarAt(previous);
-  float first = 2.0;
-  for (int i = 0; i < isoSurfaceCount; ++i)
-  {
-    float iso = isoSurfaceValues[i];
-    if (iso > min(value, before) && iso <= max(value, before))
-    {
-      first = min(first, (iso - before) / (value - before));
-    }
-  }
-  return first;
-}
-#endif
-
 #if ACCELVOLUME_COMPONENTS > 1
 // Multi-component scalars, each normalised to its own data range on upload (as VTK's GPU
 // mapper): independent components classified by their own tables and combined with the
@@ -408,6 +339,123 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
 #endif
 }
 #endif
+
+#if ACCELVOLUME_ISOSURFACE || ACCELVOLUME_DEPTH_PASS == 1
+// ISOSURFACE_BLEND as vtkGPUVolumeRayCastMapper: where the value crosses one of the
+// property's iso-values between the previous sample along the ray and this one, that value's
+// colour and (uncorrected) opacity, lit at this sample, composited front to back.
+uniform int isoSurfaceCount;
+uniform vec3 volumeIndexMaximum;    // the whole volume's largest voxel index per axis
+uniform float isoSurfaceValues[16]; // normalised, ascending
+
+#if ACCELVOLUME_COMPONENTS > 1
+// Independent components: the iso-values apply to the component of the largest weight (VTK's
+// choice), normalised to that component's range, coloured and lit by its own functions.
+uniform int isoComponent;
+
+float isoValueAt(vec3 position)
+{
+  return texture(volumeTexture, ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions)[isoComponent];
+}
+
+vec4 isoClassify(float value)
+{
+  return componentLookup(isoComponent, value);
+}
+
+#if ACCELVOLUME_SHADE
+vec3 isoShade(vec3 rgb, vec3 center, vec3 rayDirection)
+{
+  vec3 texel = 1.0 / volumeDimensions;
+  vec3 gradient = 0.5 *
+    vec3(texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0))[isoComponent] -
+        texture(volumeTexture, center - vec3(texel.x, 0.0, 0.0))[isoComponent],
+      texture(volumeTexture, center + vec3(0.0, texel.y, 0.0))[isoComponent] -
+        texture(volumeTexture, center - vec3(0.0, texel.y, 0.0))[isoComponent],
+      texture(volumeTexture, center + vec3(0.0, 0.0, texel.z))[isoComponent] -
+        texture(volumeTexture, center - vec3(0.0, 0.0, texel.z))[isoComponent]);
+  return shadeWith(rgb, normalMatrix * gradient, rayDirection, componentLighting[isoComponent]);
+}
+#endif
+#else
+float isoValueAt(vec3 position)
+{
+  return normalizedScalarAt(position);
+}
+
+vec4 isoClassify(float value)
+{
+  return classify(value);
+}
+
+#if ACCELVOLUME_SHADE
+vec3 isoShade(vec3 rgb, vec3 center, vec3 rayDirection)
+{
+  return shade(rgb, normalMatrix * centralDifferences(center), rayDirection);
+}
+#endif
+#endif
+
+vec4 isoSurfaceSample(vec3 position, vec3 previous, vec3 rayDirection)
+{
+  float value = isoValueAt(position);
+  float before = isoValueAt(previous);
+  float low = min(value, before);
+  float high = max(value, before);
+  vec4 accumulated = vec4(0.0);
+#if ACCELVOLUME_SHADE
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
+#endif
+  // Crossings in ray order: ascending values when the ray climbs, descending when it falls.
+  bool rising = value >= before;
+  for (int k = 0; k < isoSurfaceCount; ++k)
+  {
+    int i = rising ? k : isoSurfaceCount - 1 - k;
+    float iso = isoSurfaceValues[i];
+    if (iso > low && iso <= high)
+    {
+      vec4 colour = isoClassify(iso);
+#if ACCELVOLUME_SHADE
+      colour.rgb = isoShade(colour.rgb, center, rayDirection);
+#endif
+      accumulated += (1.0 - accumulated.a) * vec4(colour.rgb * colour.a, colour.a);
+    }
+  }
+  return accumulated;
+}
+
+// The first sample of a ray has nothing to cross from (as VTK's): the previous sample must lie
+// in the volume and inside the clip planes (cropping is not tested here).
+bool previousSampleInside(vec3 previous)
+{
+  bool inside = all(greaterThanEqual(previous, vec3(0.0))) &&
+    all(lessThanEqual(previous, volumeIndexMaximum));
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    inside = inside && dot(clipPlanes[i].xyz, previous) + clipPlanes[i].w >= 0.0;
+  }
+  return inside;
+}
+
+// The fraction of the way from `previous` to `position` where the first contour value is
+// crossed (linear between the two samples), or 2 when none is.
+float firstCrossing(vec3 position, vec3 previous)
+{
+  float value = normalizedScalarAt(position);
+  float before = normalizedScalarAt(previous);
+  float first = 2.0;
+  for (int i = 0; i < isoSurfaceCount; ++i)
+  {
+    float iso = isoSurfaceValues[i];
+    if (iso > min(value, before) && iso <= max(value, before))
+    {
+      first = min(first, (iso - before) / (value - before));
+    }
+  }
+  return first;
+}
+#endif
+
 
 // Render-to-image: the window depth of the nearest contributing sample (MIN-blended second
 // target), as vtkGPUVolumeRayCastMapper's depth image.
