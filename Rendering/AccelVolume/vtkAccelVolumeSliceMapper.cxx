@@ -419,8 +419,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.
   // ... nor where a depth pass's contour lies, unless every contour value is visible (a leaf
   // whose voxels a crossing reads holds the value, so it is not transparent then).
-  const bool contourCulled = self->UsesDepthPass(this->Frame.Components) &&
-    !ContourValuesVisible(property, self->GetDepthPassContourValues());
+  const bool contourCulled =
+    self->UsesDepthPass() && !ContourValuesVisible(property, self->GetDepthPassContourValues());
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
     !self->UsesLabelMap() && this->Frame.Components == 1 &&
     (self->EmptySpaceSkipping & SKIP_OCTREE) &&
@@ -469,7 +469,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   frame.BlendMode = composite ? COMPOSITE_BLEND : self->BlendMode;
   frame.IsoSurface = self->BlendMode == ISOSURFACE_BLEND;
-  frame.DepthPassStage = self->UsesDepthPass(this->Frame.Components) ? 2 : 0;
+  frame.DepthPassStage = self->UsesDepthPass() ? 2 : 0;
   // The property's iso-values (or the depth pass's contour values) normalised to the data
   // range, ascending (VTK's order).
   vtkContourValues* values = frame.IsoSurface
@@ -478,8 +478,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.IsoSurfaceCount = 0;
   // Independent components: iso-surfaces of the component of the largest weight (the first of
   // equals, as VTK), normalised to its own range (VTK 9.1 takes component 0's range there).
+  // The depth pass contours component 0 (vtkContourFilter's default).
   frame.IsoComponent = 0;
-  for (int c = 1; c < this->Frame.Components; ++c)
+  for (int c = 1; c < this->Frame.Components && frame.IsoSurface; ++c)
   {
     if (property->GetComponentWeight(c) > property->GetComponentWeight(frame.IsoComponent))
     {

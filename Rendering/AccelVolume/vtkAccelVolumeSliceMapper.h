@@ -311,15 +311,15 @@ public:
 
   ///@{
   /**
-   * vtkGPUVolumeRayCastMapper's depth pass (default off; composite blending, one-component
-   * scalars): rays start where they first cross one of the DepthPassContourValues and pixels
+   * vtkGPUVolumeRayCastMapper's depth pass (default off; composite blending; multi-component
+   * scalars: the contour of component 0, as vtkContourFilter's): rays start where they first cross one of the DepthPassContourValues and pixels
    * whose ray crosses none draw nothing, as VTK's. VTK renders the contour's polygons
    * (vtkContourFilter) for that depth; here the crossing is found along the ray between
    * successive slices (linear between the two samples), so the start differs from VTK's by
    * less than a voxel where marching cubes and trilinear interpolation disagree. Octree
    * skipping stays on when every contour value has a non-zero opacity (else the contour may
-   * lie in transparent space and it is off). With no contour value or more components it
-   * warns once and the volume is drawn without it.
+   * lie in transparent space and it is off). With no contour value it warns once and the
+   * volume is drawn without it.
    */
   vtkSetClampMacro(UseDepthPass, vtkTypeBool, 0, 1);
   vtkGetMacro(UseDepthPass, vtkTypeBool);
@@ -519,8 +519,8 @@ private:
     vtkVolume* volume);
   // Warns once for each VTK setting in use that this mapper does not apply.
   void WarnUnappliedSettings(int components);
-  // UseDepthPass applies: composite, one component, at least one contour value.
-  bool UsesDepthPass(int components) const;
+  // UseDepthPass applies: composite, at least one contour value.
+  bool UsesDepthPass() const;
   // A label-map mask that changes composite colours (then no opacity-based skipping applies).
   bool UsesLabelMap() const;
   // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.

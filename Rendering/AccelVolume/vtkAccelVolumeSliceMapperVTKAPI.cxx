@@ -92,18 +92,18 @@ int vtkAccelVolumeSliceMapper::IsRenderSupported(
   return 1;
 }
 
-bool vtkAccelVolumeSliceMapper::UsesDepthPass(int components) const
+bool vtkAccelVolumeSliceMapper::UsesDepthPass() const
 {
-  return this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && components == 1 &&
-    this->DepthPassContourValues && this->DepthPassContourValues->GetNumberOfContours() > 0;
+  return this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && this->DepthPassContourValues &&
+    this->DepthPassContourValues->GetNumberOfContours() > 0;
 }
 
 void vtkAccelVolumeSliceMapper::WarnUnappliedSettings(int components)
 {
-  if (this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && !this->UsesDepthPass(components))
+  if (this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && !this->UsesDepthPass())
   {
-    this->WarnNotApplicable("UseDepthPass without contour values or with multi-component scalars",
-      "the volume is drawn without a depth pass");
+    this->WarnNotApplicable(
+      "UseDepthPass without contour values", "the volume is drawn without a depth pass");
   }
   if (!this->ReportProgress)
   {

@@ -441,8 +441,8 @@ bool previousSampleInside(vec3 previous)
 // crossed (linear between the two samples), or 2 when none is.
 float firstCrossing(vec3 position, vec3 previous)
 {
-  float value = normalizedScalarAt(position);
-  float before = normalizedScalarAt(previous);
+  float value = isoValueAt(position);
+  float before = isoValueAt(previous);
   float first = 2.0;
   for (int i = 0; i < isoSurfaceCount; ++i)
   {
