@@ -17,6 +17,7 @@
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
@@ -279,8 +280,10 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
       property->GetIndependentComponents() != 0);
     this->Resources.UpdateTransferTable(window, property, range); // bound by every pass
     this->Frame.Components = scalars->GetNumberOfComponents();
+    this->UpdateOpacityComponent(input, scalars, property);
     return true;
   }
+  this->OpacityComponent = nullptr;
   this->Frame.Components = 1;
   // Partitions: bricks no larger than a block plus the voxel neighbours share.
   int brickSize = self->MaximumBrickSize;
@@ -302,6 +305,34 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
   }
   this->Resources.UpdateTransferTable(window, property, range);
   return true;
+}
+
+void vtkAccelVolumeSliceMapper::vtkInternals::UpdateOpacityComponent(
+  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property)
+{
+  if (property->GetIndependentComponents())
+  {
+    this->OpacityComponent = nullptr;
+    return;
+  }
+  const vtkMTimeType time = std::max(input->GetMTime(), scalars->GetMTime());
+  if (this->OpacityComponent && this->OpacityComponentSource == scalars &&
+    this->OpacityComponentTime == time)
+  {
+    return;
+  }
+  const int last = scalars->GetNumberOfComponents() - 1;
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+  {
+    values->SetValue(i, static_cast<float>(scalars->GetComponent(i, last)));
+  }
+  this->OpacityComponent = vtkSmartPointer<vtkImageData>::New();
+  this->OpacityComponent->CopyStructure(input);
+  this->OpacityComponent->GetPointData()->SetScalars(values);
+  this->OpacityComponentSource = scalars;
+  this->OpacityComponentTime = time;
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMapper* self,
@@ -421,10 +452,16 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // whose voxels a crossing reads holds the value, so it is not transparent then).
   const bool contourCulled =
     self->UsesDepthPass() && !ContourValuesVisible(property, self->GetDepthPassContourValues());
+  // Dependent components take their opacity from the last one alone: its octree classifies
+  // them exactly (independent ones would need one per component: not skipped).
+  const bool dependent = this->Frame.Components > 1 && this->OpacityComponent;
+  const double* octreeRange =
+    dependent ? this->Resources.ComponentRanges[this->Frame.Components - 1] : range;
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
-    !self->UsesLabelMap() && this->Frame.Components == 1 &&
+    !self->UsesLabelMap() && (this->Frame.Components == 1 || dependent) &&
     (self->EmptySpaceSkipping & SKIP_OCTREE) &&
-    self->UpdateEmptyLeaves(window, input, property, range);
+    self->UpdateEmptyLeaves(
+      window, dependent ? this->OpacityComponent.GetPointer() : input, property, octreeRange);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
   geometry.Regions = &view.Regions;

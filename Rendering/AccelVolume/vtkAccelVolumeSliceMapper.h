@@ -53,7 +53,8 @@
  * (UseDepthPass) and 2-4 component scalars (independent with per-component functions, weights
  * and gradient opacities, or dependent luminance-alpha / RGBA; composite, MIP, MinIP, raysum and
  * average as VTK's GPU mapper combines them, iso-surfaces of the independent component of the
- * largest weight; one brick, no octree skipping). Where VTK 9.1's
+ * largest weight; one brick; octree skipping for dependent components, by their opacity
+ * component, not for independent ones). Where VTK 9.1's
  * shader slips we differ on purpose: independent MinIP keeps each component's minimum (VTK's
  * its maximum, with alpha 0) and luminance-alpha MIP / MinIP the sample whose alpha is extreme
  * (VTK's the ray's first sample).

@@ -318,6 +318,41 @@ bool DependentLuminanceAlphaExtremes()
   return ok;
 }
 
+// Dependent components: the octree of their opacity component skips transparent leaves; the
+// picture must stay that of no skipping (within 1/255, TestAccelVolumeEmptySpaceSkipping's
+// bound) while leaves are actually skipped.
+bool DependentOctreeSkipping()
+{
+  bool ok = true;
+  for (const MultiCase& m :
+    { MultiCase{ "luminance-alpha", 2, false, false }, MultiCase{ "RGBA", 4, false, true } })
+  {
+    auto image = Components(m.Components, m.UnsignedChar);
+    auto skipping = Fixed<vtkAccelVolumeSliceMapper>(0.5);
+    auto plain = Fixed<vtkAccelVolumeSliceMapper>(0.5);
+    plain->SetEmptySpaceSkipping(vtkAccelVolumeSliceMapper::SKIP_NONE);
+    // Early termination off, as TestAccelVolumeEmptySpaceSkipping: skipping alone is exact.
+    skipping->SetEarlyRayTermination(false);
+    plain->SetEarlyRayTermination(false);
+    const std::vector<float> skipped =
+      RenderComponents(m, image, skipping, vtkVolumeMapper::COMPOSITE_BLEND, false, false);
+    const std::vector<float> reference =
+      RenderComponents(m, image, plain, vtkVolumeMapper::COMPOSITE_BLEND, false, false);
+    const double fraction = skipping->GetLastTransparentLeafFraction();
+    const std::string name = std::string("slice, octree skipping of dependent ") + m.Name +
+      " = no skipping (transparent leaves " + std::to_string(fraction) + ")";
+    const accelvolume_test::ImageDifference d =
+      accelvolume_test::CompareImages(skipped, reference, 1.0 / 255.0);
+    ok = accelvolume_test::Report(name.c_str(), d, 1.0 / 255.0, 0.0) && ok;
+    if (!(fraction > 0.05))
+    {
+      std::cerr << "FAILED no transparent leaves found for dependent " << m.Name << "\n";
+      ok = false;
+    }
+  }
+  return ok;
+}
+
 // Independent MinIP is not compared with VTK 9.1's GPU mapper, whose shader keeps each
 // component's maximum there and leaves alpha 0 (two slips in vtkVolumeShaderComposer.h). It is
 // checked against an identity instead: the minimum of the data under functions f is the maximum
@@ -442,5 +477,6 @@ int TestAccelVolumeVsGPURayCastFeatures(int, char*[])
   ok = MultiComponent() && ok;
   ok = IndependentMinimumMirrorsMaximum() && ok;
   ok = DependentLuminanceAlphaExtremes() && ok;
+  ok = DependentOctreeSkipping() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -60,6 +60,11 @@ public:
   vtkAccelVolumeSliceMask Mask;
   vtkAccelVolumeSliceFrame Frame;
   vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
+  // Dependent multi-component scalars: their opacity component alone (what the octree
+  // classifies), refreshed with the scalars; null otherwise.
+  vtkSmartPointer<vtkImageData> OpacityComponent;
+  vtkDataArray* OpacityComponentSource = nullptr;
+  vtkMTimeType OpacityComponentTime = 0;
   // What the uploaded leaf texture reflects.
   vtkMTimeType LeavesScalarsTime = 0;
   vtkMTimeType LeavesFunctionTime = 0;
@@ -105,6 +110,9 @@ public:
     vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
     vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
     bool skipEmptyLeaves);
+  // Refreshes OpacityComponent for dependent components (clears it for independent ones).
+  void UpdateOpacityComponent(
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property);
   // Components (weights, unit distances), masks (vtkAccelVolumeSliceFrameFill.cxx).
   void FillComponentsAndMasks(vtkAccelVolumeSliceMapper* self, vtkDataArray* scalars,
     vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view);

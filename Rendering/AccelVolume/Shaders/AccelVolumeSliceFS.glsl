@@ -284,6 +284,26 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
 {
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
   vec4 values = texture(volumeTexture, center);
+  // A transparent sample (every component's opacity 0) needs no gradient and no lighting.
+#if ACCELVOLUME_INDEPENDENT
+  bool visible = false;
+  for (int c = 0; c < ACCELVOLUME_COMPONENTS; ++c)
+  {
+    visible = visible || componentLookup(c, values[c]).a > 0.0;
+  }
+#elif ACCELVOLUME_COMPONENTS == 2
+  vec3 rgb = componentLookup(0, values.x).rgb;
+  float opacityValue = componentLookup(0, values.y).a;
+  bool visible = opacityValue > 0.0;
+#else
+  vec3 rgb = values.rgb;
+  float opacityValue = componentLookup(0, values.a).a;
+  bool visible = opacityValue > 0.0;
+#endif
+  if (!visible)
+  {
+    return vec4(0.0);
+  }
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY
   vec3 texel = 1.0 / volumeDimensions;
   vec4 dx = 0.5 * (texture(volumeTexture, center + vec3(texel.x, 0.0, 0.0)) -
@@ -321,13 +341,6 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
   }
   return totalAlpha > 0.0 ? vec4(rgbSum, alphaSquares / totalAlpha) : vec4(0.0);
 #else
-#if ACCELVOLUME_COMPONENTS == 2
-  vec3 rgb = componentLookup(0, values.x).rgb;
-  float opacityValue = componentLookup(0, values.y).a;
-#else
-  vec3 rgb = values.rgb;
-  float opacityValue = componentLookup(0, values.a).a;
-#endif
 #if ACCELVOLUME_GRADIENT_OPACITY
   opacityValue *= componentGradientOpacity(0, vec3(dx.x, dy.x, dz.x)); // component 0's, as VTK
 #endif
@@ -661,6 +674,14 @@ void main()
   gl_FragData[0] = premultiplied;
   ACCELVOLUME_WRITE_DEPTH(true);
 #elif ACCELVOLUME_COMPONENTS > 1
+#if ACCELVOLUME_SKIP_OCTREE
+  // Dependent components: the octree of their opacity component marks transparent leaves.
+  vec3 leaf = clamp(floor(samplePosition / leafSize), vec3(0.0), leafGridMaximum);
+  if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
+  {
+    discard;
+  }
+#endif
   vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step);
   if (premultiplied.a <= 0.0)
   {
