@@ -27,12 +27,14 @@ constexpr int ExitUsage = 2;
 class CliError : public std::runtime_error
 {
 public:
-  CliError(int code, const std::string& message)
+  CliError(int code, const std::string& message, bool agreed = false)
     : std::runtime_error(message)
     , Code(code)
+    , Agreed(agreed)
   {
   }
   int Code;
+  bool Agreed; // --mpi: every rank knows of this failure (rank 0 reports it)
 };
 
 enum class MapperKind

@@ -326,9 +326,10 @@ void ThrowIfAnyRankFailed(
   }
   if (failure.Rank == mpi->GetRank())
   {
-    throw CliError(failure.Code, message);
+    throw CliError(failure.Code, message, true);
   }
-  throw CliError(failure.Code, "rank " + std::to_string(failure.Rank) + ": " + failure.Message);
+  throw CliError(
+    failure.Code, "rank " + std::to_string(failure.Rank) + ": " + failure.Message, true);
 }
 
 void CheckCrop(const Options& options, vtkImageData* image)

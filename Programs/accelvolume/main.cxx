@@ -406,7 +406,10 @@ int main(int argc, char* argv[])
     {
       std::cerr << "accelvolume: error: " << failure.what() << std::endl;
     }
-    return failure.Code;
+    // A failure all ranks agreed on is the job's through rank 0's status: the others end
+    // cleanly, or the launcher could abort the job on their status before rank 0 has printed
+    // the error line (it prints after MPI is finalised).
+    return SilentRank && failure.Agreed ? 0 : failure.Code;
   }
   catch (const std::bad_alloc&)
   {
