@@ -42,6 +42,7 @@ set(_av_private_sources
 set(_av_shaders
   AccelVolumeSliceVS
   AccelVolumeSliceFS
+  AccelVolumeSliceComponentsFS
   AccelVolumeResolveVS
   AccelVolumeResolveFS
   AccelVolumeImageFS

@@ -19,6 +19,7 @@
 #include "vtk_glew.h"
 
 #include "AccelVolumeResolveVS.h"
+#include "AccelVolumeSliceComponentsFS.h"
 #include "AccelVolumeSliceFS.h"
 #include "AccelVolumeSliceVS.h"
 #include "AccelVolumeTerminationFS.h"
@@ -171,6 +172,12 @@ std::string vtkAccelVolumeSliceShaderVariant(
 
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
+  const std::string part = "//ACCELVOLUME::ComponentsAndIsoSurfaces::Dec";
+  const size_t partAt = text.find(part);
+  if (partAt != std::string::npos)
+  {
+    text.replace(partAt, part.size(), AccelVolumeSliceComponentsFS);
+  }
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
@@ -515,6 +522,32 @@ bool DrawContourDepth(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResource
   return ok;
 }
 
+// The tables and textures the slice shaders of this frame sample: activated (bound to
+// texture units) before the passes, deactivated after.
+void ActivateFrameTextures(
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame, bool active)
+{
+  vtkTextureObject* textures[] = { resources.TransferTable, resources.SceneDepth,
+    frame.GradientOpacity ? resources.GradientOpacityTable.GetPointer() : nullptr,
+    frame.SkipEmptyLeaves ? resources.EmptyLeaves.GetPointer() : nullptr,
+    frame.TransferFunction2D ? resources.TransferTable2D.GetPointer() : nullptr,
+    frame.GradientTexture ? resources.Gradients.GetPointer() : nullptr,
+    frame.Components > 1 ? resources.ComponentTables.GetPointer() : nullptr,
+    frame.MaskMode != 0 ? frame.MaskTexture : nullptr,
+    frame.MaskMode == 2 ? frame.LabelTable : nullptr };
+  for (vtkTextureObject* texture : textures)
+  {
+    if (texture && active)
+    {
+      texture->Activate();
+    }
+    else if (texture)
+    {
+      texture->Deactivate();
+    }
+  }
+}
+
 // Pass 1: MAX / MIN / additive blending of one value per fragment into the float target.
 bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame, std::string& error)
@@ -595,36 +628,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   }
 
   resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
-  resources.TransferTable->Activate();
-  resources.SceneDepth->Activate();
-  if (frame.GradientOpacity)
-  {
-    resources.GradientOpacityTable->Activate();
-  }
-  if (frame.SkipEmptyLeaves)
-  {
-    resources.EmptyLeaves->Activate();
-  }
-  if (frame.TransferFunction2D)
-  {
-    resources.TransferTable2D->Activate();
-  }
-  if (frame.GradientTexture)
-  {
-    resources.Gradients->Activate();
-  }
-  if (frame.Components > 1)
-  {
-    resources.ComponentTables->Activate();
-  }
-  if (frame.MaskMode != 0)
-  {
-    frame.MaskTexture->Activate();
-    if (frame.MaskMode == 2)
-    {
-      frame.LabelTable->Activate();
-    }
-  }
+  ActivateFrameTextures(resources, frame, true);
   // Per brick, slices then faces: every blend here but composite's is order-independent, and
   // composite has no faces.
   bool ok = frame.DepthPassStage == 0 || DrawContourDepth(window, resources, frame, error);
@@ -641,36 +645,7 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     resources.AttachAuxiliaryDepth(false);
     state->vtkglDepthFunc(GL_LESS);
   }
-  resources.TransferTable->Deactivate();
-  resources.SceneDepth->Deactivate();
-  if (frame.GradientOpacity)
-  {
-    resources.GradientOpacityTable->Deactivate();
-  }
-  if (frame.SkipEmptyLeaves)
-  {
-    resources.EmptyLeaves->Deactivate();
-  }
-  if (frame.TransferFunction2D)
-  {
-    resources.TransferTable2D->Deactivate();
-  }
-  if (frame.GradientTexture)
-  {
-    resources.Gradients->Deactivate();
-  }
-  if (frame.Components > 1)
-  {
-    resources.ComponentTables->Deactivate();
-  }
-  if (frame.MaskMode != 0)
-  {
-    frame.MaskTexture->Deactivate();
-    if (frame.MaskMode == 2)
-    {
-      frame.LabelTable->Deactivate();
-    }
-  }
+  ActivateFrameTextures(resources, frame, false);
   if (frame.RenderToImage)
   {
     if (ok && frame.DepthImage)
