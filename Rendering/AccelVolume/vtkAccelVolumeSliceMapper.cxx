@@ -677,7 +677,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     return;
   }
-  this->WarnUnappliedSettings(scalars->GetNumberOfComponents());
+  this->WarnUnappliedSettings();
   double range[2];
   vtkAccelVolumeScalarRange(scalars, range);
 

@@ -519,7 +519,7 @@ private:
   bool ValidateInput(vtkImageData* input, vtkDataArray* scalars, const std::string& inputError,
     vtkVolume* volume);
   // Warns once for each VTK setting in use that this mapper does not apply.
-  void WarnUnappliedSettings(int components);
+  void WarnUnappliedSettings();
   // UseDepthPass applies: composite, at least one contour value.
   bool UsesDepthPass() const;
   // A label-map mask that changes composite colours (then no opacity-based skipping applies).

@@ -98,7 +98,7 @@ bool vtkAccelVolumeSliceMapper::UsesDepthPass() const
     this->DepthPassContourValues->GetNumberOfContours() > 0;
 }
 
-void vtkAccelVolumeSliceMapper::WarnUnappliedSettings(int components)
+void vtkAccelVolumeSliceMapper::WarnUnappliedSettings()
 {
   if (this->UseDepthPass && this->BlendMode == COMPOSITE_BLEND && !this->UsesDepthPass())
   {
