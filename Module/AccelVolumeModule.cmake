@@ -70,6 +70,8 @@ list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctr
 list(APPEND _av_sources "${_av_vtk_dir}/vtkAccelVolumeSliceMapperVTKAPI.cxx")
 # ... and its frame settings for shading, components and masks (members of its vtkInternals).
 list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeSliceFrameFill.cxx")
+# The CPU mappers' multi-component tables (vtkAccelVolumeCPUInputs members, MapperSupport.h).
+list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeCPUComponents.cxx")
 
 if (NOT COMMAND vtk_encode_string)
   include("${VTK_DIR}/vtkEncodeString.cmake" OPTIONAL RESULT_VARIABLE _av_encode_found)
@@ -109,6 +111,10 @@ vtk_module_add_module(VTK::RenderingAccelVolume
   SOURCES         ${_av_class_files} ${_av_sources}
   HEADERS         ${_av_headers}
   PRIVATE_HEADERS ${_av_private_headers})
+
+# Inline functions (Core's implicit destructors and copies among them) stay inside the module:
+# Core's symbols must not be exported (Testing/Symbols/CheckHiddenCore.py).
+vtk_module_compile_options(VTK::RenderingAccelVolume PRIVATE -fvisibility-inlines-hidden)
 
 vtk_module_include(VTK::RenderingAccelVolume
   PUBLIC  "$<BUILD_INTERFACE:${_av_vtk_dir}>"

@@ -126,6 +126,7 @@ vtkStandardNewMacro(vtkAccelVolumeRayCastMapper);
 vtkAccelVolumeRayCastMapper::vtkAccelVolumeRayCastMapper()
   : Internals(new vtkInternals)
 {
+  this->InputAdapter->SetMaximumComponents(4);
 }
 
 vtkAccelVolumeRayCastMapper::~vtkAccelVolumeRayCastMapper() = default;
@@ -171,6 +172,26 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
       self, "SLICE_BLEND needs a vtkPlane as the volume property's slice function");
     return false;
   }
+  const int components = scalars->GetNumberOfComponents();
+  if (components > 1)
+  {
+    const bool independent = property->GetIndependentComponents() != 0;
+    if (self->BlendMode == SLICE_BLEND || self->BlendMode == ISOSURFACE_BLEND)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Scalars with " << components
+                        << " components render with composite, maximum, minimum, additive and "
+                           "average blending in the ray caster (vtkAccelVolumeSliceMapper also "
+                           "draws iso-surfaces of independent components)");
+      return false;
+    }
+    if (!independent && components != 2 && components != 4)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not " << components);
+      return false;
+    }
+  }
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D &&
     self->BlendMode == COMPOSITE_BLEND && !this->ReportedError)
   {
@@ -196,6 +217,7 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   in.LockedSampleDistance = self->SpacingAdjustedSampleDistance(spacing, extent);
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
   this->Inputs.UpdateTransfer(property, in.Range, composite, input, in.Transfer, in.High);
+  this->Inputs.UpdateComponents(property, this->Inputs.GetScalars(), composite, in.Transfer);
   return true;
 }
 
@@ -323,7 +345,12 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::FillSettings(vtkAccelVolumeRayCa
   const bool shade =
     (composite || self->BlendMode == SLICE_BLEND || self->BlendMode == ISOSURFACE_BLEND) &&
     property->GetShade(0) != 0;
-  if (shade || !in.Transfer.gradientOpacity.empty())
+  bool gradientOpacity = !in.Transfer.gradientOpacity.empty();
+  for (const accelvolume::RayCastComponentTable& table : in.Transfer.components.tables)
+  {
+    gradientOpacity = gradientOpacity || !table.gradientOpacity.empty();
+  }
+  if (shade || gradientOpacity)
   {
     // Gradient opacity needs the normal matrix too (gradients in world units).
     vtkAccelVolumeCPULighting(renderer, property, in.IndexToWorld, in.View.dims,

@@ -56,7 +56,7 @@ bool Components(MapperKind kind)
     scalars->SetNumberOfComponents(components);
     return WithScalars(scalars);
   };
-  if (kind == MapperKind::Slice || kind == MapperKind::Smart)
+  if (kind != MapperKind::ShearWarp)
   {
     // 2-4 components render (TestAccelVolumeVsGPURayCastFeatures); the rest is
     // refused clearly.

@@ -94,24 +94,25 @@ bool HasNonFinite(const T* values, vtkIdType count)
   return found;
 }
 
+// count values of `components` interleaved components; component c's non-finite values become
+// the ends of ranges[c].
 template <typename T>
-void ReplaceNonFinite(T* values, vtkIdType count, const double range[2])
+void ReplaceNonFinite(T* values, vtkIdType count, int components, const double (*ranges)[2])
 {
-  const T low = static_cast<T>(range[0]);
-  const T high = static_cast<T>(range[1]);
   vtkSMPTools::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)
       {
         const T v = values[i];
+        const double* range = ranges[i % components];
         if (std::isnan(v) || v == -std::numeric_limits<T>::infinity())
         {
-          values[i] = low;
+          values[i] = static_cast<T>(range[0]);
         }
         else if (v == std::numeric_limits<T>::infinity())
         {
-          values[i] = high;
+          values[i] = static_cast<T>(range[1]);
         }
       }
     });
@@ -201,7 +202,20 @@ bool vtkAccelVolumeCheckGeometry(vtkVolumeMapper* mapper, std::string& error)
 vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
   vtkDataArray* scalars, const double range[2])
 {
-  const vtkIdType count = scalars->GetNumberOfTuples();
+  const int components = std::max(1, std::min(scalars->GetNumberOfComponents(), 4));
+  const vtkIdType count = scalars->GetNumberOfTuples() * components;
+  // Component 0 keeps the given range; the others their own finite ranges.
+  double ranges[4][2] = { { range[0], range[1] } };
+  for (int c = 1; c < components; ++c)
+  {
+    scalars->GetFiniteRange(ranges[c], c);
+    if (!(ranges[c][0] <= ranges[c][1]) || !std::isfinite(ranges[c][0]) ||
+      !std::isfinite(ranges[c][1]))
+    {
+      ranges[c][0] = 0.0;
+      ranges[c][1] = 1.0;
+    }
+  }
   vtkSmartPointer<vtkDataArray> finite;
   switch (scalars->GetDataType())
   {
@@ -210,7 +224,7 @@ vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
       {
         finite = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
         finite->DeepCopy(scalars);
-        ReplaceNonFinite(static_cast<float*>(finite->GetVoidPointer(0)), count, range);
+        ReplaceNonFinite(static_cast<float*>(finite->GetVoidPointer(0)), count, components, ranges);
       }
       break;
     case VTK_DOUBLE:
@@ -218,7 +232,7 @@ vtkSmartPointer<vtkDataArray> vtkAccelVolumeFiniteScalars(
       {
         finite = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
         finite->DeepCopy(scalars);
-        ReplaceNonFinite(static_cast<double*>(finite->GetVoidPointer(0)), count, range);
+        ReplaceNonFinite(static_cast<double*>(finite->GetVoidPointer(0)), count, components, ranges);
       }
       break;
     default:
@@ -589,11 +603,11 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
   transfer.rgba = vtkAccelVolumeTransferTable(property, range, TableSize);
   transfer.opacityUnitDistance = std::max(1.0e-6, property->GetScalarOpacityUnitDistance(0));
   transfer.gradientOpacity.clear();
+  vtkAccelVolumeGradientAxisScale(input, transfer.gradientAxisScale); // multi-component too
   if (composite && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
   {
     // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type).
     transfer.gradientOpacityMaximum = 0.25 * (high - range[0]);
-    vtkAccelVolumeGradientAxisScale(input, transfer.gradientAxisScale);
     transfer.gradientOpacity.resize(TableSize);
     property->GetGradientOpacity(0)->GetTable(
       0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());

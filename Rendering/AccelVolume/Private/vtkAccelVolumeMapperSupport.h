@@ -127,6 +127,11 @@ public:
   // bumps TransferVersion on change.
   void UpdateTransfer(vtkVolumeProperty* property, const double range[2], bool composite,
     vtkImageData* input, accelvolume::RayCastTransfer& transfer, double& high);
+  // Multi-component scalars: fills transfer.components as vtkGPUVolumeRayCastMapper classifies
+  // them (vtkAccelVolumeCPUComponents.cxx; count 1 for one component) and bumps
+  // TransferVersion on change. Call after UpdateTransfer.
+  void UpdateComponents(vtkVolumeProperty* property, vtkDataArray* scalars, bool composite,
+    accelvolume::RayCastTransfer& transfer);
 
   std::uint64_t VolumeVersion = 0;
   std::uint64_t TransferVersion = 0;
@@ -139,7 +144,13 @@ private:
   std::vector<float> Table;
   std::vector<float> GradientTable;
   double TableRange[2] = { 0, 0 };
+  accelvolume::RayCastComponents Components;
 };
+
+// Dependent RGBA colours as VTK's GPU mapper reads them (no scale or bias for dependent 3-4
+// components): normalised integer textures for 8- and 16-bit types, floats as they are; 0 for
+// wider integers (VTK normalises them to their range).
+double vtkAccelVolumeColourComponentScale(int dataType);
 
 // Gradient magnitude in VTK's GPU mapper's units: per index axis, the factor taking the data
 // value's central difference per index step to VTK's (mean spacing / spacing of that axis).

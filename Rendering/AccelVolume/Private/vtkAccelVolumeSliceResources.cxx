@@ -394,33 +394,6 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
   return true;
 }
 
-namespace
-{
-// Dependent RGBA colours as VTK's GPU mapper reads them (no scale or bias for dependent 3-4
-// components): normalised integer textures for 8- and 16-bit types, floats as they are. Wider
-// integers it normalises to their range on the CPU (0 here: keep the range).
-double ColourComponentScale(int dataType)
-{
-  switch (dataType)
-  {
-    case VTK_UNSIGNED_CHAR:
-      return 1.0 / 255.0;
-    case VTK_CHAR:
-    case VTK_SIGNED_CHAR:
-      return 1.0 / 127.0;
-    case VTK_SHORT:
-      return 1.0 / 32767.0;
-    case VTK_UNSIGNED_SHORT:
-      return 1.0 / 65535.0;
-    case VTK_FLOAT:
-    case VTK_DOUBLE:
-      return 1.0;
-    default:
-      return 0.0;
-  }
-}
-}
-
 bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(vtkOpenGLRenderWindow* window,
   vtkImageData* image, vtkDataArray* scalars, bool colourComponents, std::string& error)
 {
@@ -461,7 +434,7 @@ bool vtkAccelVolumeSliceResources::PrepareMultiComponentVolume(vtkOpenGLRenderWi
     this->ComponentRanges[c][0] = range[0];
     this->ComponentRanges[c][1] = range[1];
     const double colourScale =
-      colourComponents && c < 3 ? ColourComponentScale(scalars->GetDataType()) : 0.0;
+      colourComponents && c < 3 ? vtkAccelVolumeColourComponentScale(scalars->GetDataType()) : 0.0;
     const double scale = colourScale > 0.0 ? colourScale : 1.0 / (range[1] - range[0]);
     const double offset = colourScale > 0.0 ? 0.0 : range[0];
     for (vtkIdType i = 0; i < count; ++i)

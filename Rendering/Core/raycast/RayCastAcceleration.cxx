@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 #if defined(__linux__)
@@ -194,7 +195,185 @@ void ResizeWithHugePages(std::vector<T>& v, std::size_t n)
   v.resize(n);
 }
 
+// The components whose opacity can make a multi-component sample visible, each with the table
+// it is classified by: independent, those of positive weight; dependent, the last one.
+struct OpacitySource
+{
+  int component;
+  const RayCastComponentTable* table;
+};
+
+std::vector<OpacitySource> OpacitySources(const RayCastComponents& components)
+{
+  std::vector<OpacitySource> sources;
+  if (!components.independent)
+  {
+    sources.push_back({ components.count - 1, &components.tables[0] });
+    return sources;
+  }
+  for (int c = 0; c < components.count; ++c)
+  {
+    if (components.tables[c].weight > 0)
+    {
+      sources.push_back({ c, &components.tables[c] });
+    }
+  }
+  return sources;
+}
+
+std::vector<float> TableOpacities(const RayCastComponentTable& table)
+{
+  std::vector<float> alphas(table.rgba.size() / 4);
+  for (std::size_t i = 0; i < alphas.size(); ++i)
+  {
+    alphas[i] = table.rgba[4 * i + 3];
+  }
+  return alphas;
+}
+
+// Component c of interleaved scalars as a contiguous single-component volume in `buffer`.
+VolumeView ComponentView(const VolumeView& volume, int count, int component,
+  std::vector<std::uint8_t>& buffer, const ParallelFor& parallel)
+{
+  VolumeView view = volume;
+  const std::size_t voxels =
+    static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
+  DispatchScalarType(volume,
+    [&](const auto* data)
+    {
+      using T = std::remove_const_t<std::remove_pointer_t<decltype(data)>>;
+      buffer.resize(voxels * sizeof(T));
+      T* out = reinterpret_cast<T*>(buffer.data());
+      parallel(voxels,
+        [&](std::size_t begin, std::size_t end)
+        {
+          for (std::size_t i = begin; i < end; ++i)
+          {
+            out[i] = data[i * count + component];
+          }
+        });
+    });
+  view.data = buffer.data();
+  return view;
+}
+
 } // namespace
+
+bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
+  std::uint64_t volumeVersion, std::uint64_t transferVersion, const RayCastComponents& components,
+  const RayCastSettings& settings, const ParallelFor& parallel, PrepareProgress& progress,
+  std::string& error)
+{
+  if (!this->OctreeBuilt || this->OctreeVolume != volumeVersion ||
+    this->OctreeLeafSize != settings.octreeLeafSize ||
+    this->ComponentOctrees.size() != static_cast<std::size_t>(components.count))
+  {
+    this->OctreeBuilt = this->OctreeClassified = false;
+    this->ComponentOctrees.assign(components.count, MinMaxOctree());
+    std::vector<std::uint8_t> buffer;
+    for (int c = 0; c < components.count; ++c)
+    {
+      const VolumeView view = ComponentView(volume, components.count, c, buffer, parallel);
+      if (!this->ComponentOctrees[c].Configure(volume.dims, settings.octreeLeafSize, error) ||
+        !this->ComponentOctrees[c].BuildParallel(view, parallel, error))
+      {
+        return false;
+      }
+    }
+    this->OctreeBuilt = true;
+    this->OctreeVolume = volumeVersion;
+    this->OctreeLeafSize = settings.octreeLeafSize;
+    progress.Rebuilt();
+  }
+  if (!this->OctreeClassified || this->OctreeTransfer != transferVersion)
+  {
+    const std::vector<OpacitySource> sources = OpacitySources(components);
+    this->Octree = this->ComponentOctrees[0];
+    if (sources.empty())
+    {
+      this->Octree.Classify({}, 0.0, 1.0); // nothing can be seen
+    }
+    for (std::size_t s = 0; s < sources.size(); ++s)
+    {
+      const RayCastComponentTable& table = *sources[s].table;
+      MinMaxOctree& octree = this->ComponentOctrees[sources[s].component];
+      octree.Classify(TableOpacities(table), table.opacityRange[0], table.opacityRange[1]);
+      if (s == 0)
+      {
+        this->Octree = octree;
+      }
+      else
+      {
+        this->Octree.IntersectTransparency(octree);
+      }
+    }
+    this->OctreeOpaqueBox = NonTransparentLeafBox(this->Octree, volume.dims);
+    this->OctreeClassified = true;
+    this->OctreeTransfer = transferVersion;
+    progress.Rebuilt();
+  }
+  return true;
+}
+
+void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
+  std::uint64_t volumeVersion, std::uint64_t transferVersion, const RayCastComponents& components,
+  const ParallelFor& parallel, PrepareProgress& progress)
+{
+  if (this->CellsBuilt && this->CellsVolume == volumeVersion &&
+    this->CellsTransfer == transferVersion && !this->Packed)
+  {
+    return;
+  }
+  std::vector<std::uint16_t>().swap(this->CellInfo);
+  const std::vector<OpacitySource> sources = OpacitySources(components);
+  CellClassification cells;
+  std::vector<std::uint8_t> nonEmpty;
+  std::vector<std::uint8_t> buffer;
+  for (const OpacitySource& source : sources)
+  {
+    const VolumeView view = ComponentView(volume, components.count, source.component, buffer, parallel);
+    const OpacityRange range(
+      TableOpacities(*source.table), source.table->opacityRange[0], source.table->opacityRange[1]);
+    ClassifyCells(view, range, 0.0, parallel, cells);
+    if (nonEmpty.empty())
+    {
+      nonEmpty.swap(cells.nonEmpty);
+      continue;
+    }
+    const std::uint8_t* flags = cells.nonEmpty.data();
+    std::uint8_t* merged = nonEmpty.data();
+    parallel(nonEmpty.size(),
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          merged[i] = static_cast<std::uint8_t>(merged[i] | flags[i]);
+        }
+      });
+  }
+  std::vector<std::uint8_t>().swap(buffer);
+  for (int a = 0; a < 3; ++a)
+  {
+    cells.cellDims[a] = std::max(volume.dims[a] - 1, 1);
+  }
+  if (nonEmpty.empty())
+  {
+    nonEmpty.assign(static_cast<std::size_t>(cells.cellDims[0]) * cells.cellDims[1] *
+        cells.cellDims[2],
+      0); // no component can be seen
+  }
+  cells.nonEmpty.swap(nonEmpty);
+  std::vector<std::uint8_t>().swap(cells.configuration);
+  this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
+  ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, this->DistanceOnly);
+  this->Packed = false;
+  std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
+  this->CellInfoHasDistance = true;
+  this->CellsBuilt = true;
+  this->CellsVolume = volumeVersion;
+  this->CellsTransfer = transferVersion;
+  progress.Rebuilt();
+}
 
 bool RayCaster::Internals::UpdateOctree(const VolumeView& volume, std::uint64_t volumeVersion,
   std::uint64_t transferVersion, const std::vector<float>& alphas, double rangeMin, double rangeMax,

@@ -170,6 +170,45 @@ void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
   }
 }
 
+bool CheckComponents(
+  const RayCastComponents& components, const RayCastSettings& settings, std::string& error)
+{
+  const int count = components.count;
+  if (count == 1)
+  {
+    return true;
+  }
+  if (count < 1 || count > 4 || (!components.independent && count != 2 && count != 4))
+  {
+    error = "multi-component scalars need 2-4 independent components, or 2 or 4 dependent ones";
+    return false;
+  }
+  if (components.tables.size() != static_cast<std::size_t>(components.independent ? count : 1))
+  {
+    error = "multi-component scalars need one table per independent component (one when "
+            "dependent)";
+    return false;
+  }
+  for (const RayCastComponentTable& table : components.tables)
+  {
+    if (table.rgba.size() < 8 || table.rgba.size() % 4 != 0 ||
+      (!table.gradientOpacity.empty() && table.gradientOpacity.size() < 2) ||
+      !(table.opacityUnitDistance > 0))
+    {
+      error = "a component table needs at least 2 RGBA entries (gradient opacity too when "
+              "given) and a positive unit distance";
+      return false;
+    }
+  }
+  if (settings.blend == Blend::Isosurface || settings.blend == Blend::Slice)
+  {
+    error = "ISOSURFACE_BLEND and SLICE_BLEND of multi-component scalars are not supported by "
+            "the ray caster (vtkAccelVolumeSliceMapper renders independent iso-surfaces)";
+    return false;
+  }
+  return true;
+}
+
 bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
   const RayCastView& view, const RayCastSettings& settings, std::string& error)
 {
@@ -216,12 +255,12 @@ bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
     error = "unit distances must be positive";
     return false;
   }
-  return true;
+  return CheckComponents(transfer.components, settings, error);
 }
 
 // Which accelerations are exact for this blend mode (see the header).
 LeapPlan PlanLeaping(const RayCastSettings& settings, const OpacityRange& opacityRange,
-  double rangeMin, double rangeMax)
+  double rangeMin, double rangeMax, bool multiComponent)
 {
   LeapPlan plan;
   plan.zeroOpacityAddsNothing =
@@ -239,6 +278,13 @@ LeapPlan PlanLeaping(const RayCastSettings& settings, const OpacityRange& opacit
   plan.leapThreshold = transparentBelow - 1.0e-5 * magnitude;
   plan.useCellLeap = settings.cellLeap && plan.zeroOpacityAddsNothing && !settings.nearest &&
     transparentBelow > -std::numeric_limits<double>::infinity();
+  if (multiComponent)
+  {
+    // Cells classify each component's range; the Marching Cubes table and the extremes' value
+    // ranges are single-component rules.
+    plan.useCellLeap = false;
+    plan.useOctree = plan.useOctree && plan.zeroOpacityAddsNothing;
+  }
   return plan;
 }
 
@@ -376,6 +422,77 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   frame.opaqueBox = plan.useDistance ? this->CellsOpaqueBox : this->OctreeOpaqueBox;
 }
 
+void RayCaster::Internals::FillComponentFrame(const RayCastTransfer& transfer,
+  const RayCastLighting& lighting, const RayCastSettings& settings, detail::KernelFrame& frame)
+{
+  const RayCastComponents& components = transfer.components;
+  frame.components = components.count;
+  frame.independent = components.independent;
+  frame.componentTables = static_cast<int>(components.tables.size());
+  const auto positions = [](const double range[2], int size, float& scale, float& bias)
+  {
+    const double width = range[1] - range[0];
+    scale = width > 0 ? static_cast<float>((size - 1) / width) : 0.0f;
+    bias = static_cast<float>(-range[0] * scale);
+  };
+  constexpr int SpecularTableSize = 2048; // FillKernelFrame's
+  for (int t = 0; t < frame.componentTables; ++t)
+  {
+    const RayCastComponentTable& table = components.tables[t];
+    detail::ComponentTableFrame& out = frame.tables[t];
+    const int size = static_cast<int>(table.rgba.size() / 4);
+    out.rgba = table.rgba.data();
+    out.tableSize = size;
+    positions(table.colourRange, size, out.colourScale, out.colourBias);
+    positions(table.opacityRange, size, out.opacityScale, out.opacityBias);
+    const double exponent = settings.sampleDistance / table.opacityUnitDistance;
+    std::vector<float>& corrected = this->ComponentCorrectedAlpha[t];
+    corrected.resize(size);
+    for (int i = 0; i < size; ++i)
+    {
+      const double a = std::min(std::max(static_cast<double>(table.rgba[4 * i + 3]), 0.0), 1.0);
+      corrected[i] = static_cast<float>(1.0 - std::pow(1.0 - a, exponent));
+    }
+    out.correctedAlpha = corrected.data();
+    out.opacityExponent = static_cast<float>(exponent);
+    out.gradientOpacity = table.gradientOpacity.empty() ? nullptr : table.gradientOpacity.data();
+    out.gradientOpacitySize = static_cast<int>(table.gradientOpacity.size());
+    out.weight = static_cast<float>(std::min(std::max(table.weight, 0.0), 1.0));
+    LightModel& model = this->ComponentModels[t];
+    model = lighting.model;
+    model.ambient = table.ambient;
+    model.diffuse = table.diffuse;
+    model.specular = table.specular;
+    model.specularPower = table.specularPower;
+    out.model = &model;
+    std::vector<float>& specular = this->ComponentSpecular[t];
+    specular.resize(SpecularTableSize);
+    for (int i = 0; i < SpecularTableSize; ++i)
+    {
+      specular[i] = static_cast<float>(
+        std::pow(static_cast<double>(i) / (SpecularTableSize - 1), table.specularPower));
+    }
+    out.specularTable = specular.data();
+  }
+  for (int c = 0; c < components.count; ++c)
+  {
+    const double* range = components.ranges[c];
+    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    frame.componentScale[c] = static_cast<float>(1.0 / width);
+    frame.componentBias[c] = static_cast<float>(-range[0] / width);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    frame.colourScale[a] = static_cast<float>(components.colourScale[a]);
+    frame.colourBias[a] = static_cast<float>(components.colourBias[a]);
+    frame.componentAxisScale[a] = static_cast<float>(transfer.gradientAxisScale[a]);
+    for (int b = 0; b < 3; ++b)
+    {
+      frame.componentNormalMatrix[a][b] = static_cast<float>(lighting.normalMatrix[a][b]);
+    }
+  }
+}
+
 bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMax,
   std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
   const RayCastLighting& lighting, const RayCastView& view, const RayCastSettings& settings,
@@ -399,20 +516,41 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   const double width = rangeMax > rangeMin ? rangeMax - rangeMin : 1.0;
 
   const OpacityRange opacityRange(alphas, rangeMin, rangeMax);
-  const LeapPlan plan = PlanLeaping(settings, opacityRange, rangeMin, rangeMax);
-  if (plan.useOctree &&
-    !impl.UpdateOctree(volume, volumeVersion, transferVersion, alphas, rangeMin, rangeMax, settings,
-      plan, parallel, progress, error))
+  const RayCastComponents& components = transfer.components;
+  const bool multiComponent = components.count > 1;
+  const LeapPlan plan = PlanLeaping(settings, opacityRange, rangeMin, rangeMax, multiComponent);
+  if (multiComponent)
   {
-    return false;
+    if (plan.useOctree &&
+      !impl.UpdateComponentOctree(volume, volumeVersion, transferVersion, components, settings,
+        parallel, progress, error))
+    {
+      return false;
+    }
+    if (plan.useDistance)
+    {
+      impl.UpdateComponentCells(
+        volume, volumeVersion, transferVersion, components, parallel, progress);
+    }
   }
-  if (plan.useCellLeap || plan.useDistance)
+  else
   {
-    impl.UpdateCells(
-      volume, volumeVersion, transferVersion, opacityRange, plan, parallel, progress);
+    if (plan.useOctree &&
+      !impl.UpdateOctree(volume, volumeVersion, transferVersion, alphas, rangeMin, rangeMax,
+        settings, plan, parallel, progress, error))
+    {
+      return false;
+    }
+    if (plan.useCellLeap || plan.useDistance)
+    {
+      impl.UpdateCells(
+        volume, volumeVersion, transferVersion, opacityRange, plan, parallel, progress);
+    }
   }
-  const bool useGradients = impl.UpdateGradients(
-    volume, volumeVersion, width, transfer, lighting, settings, parallel, progress);
+  // Multi-component gradients are taken on the fly (six extra samples per shaded one).
+  const bool useGradients = !multiComponent &&
+    impl.UpdateGradients(
+      volume, volumeVersion, width, transfer, lighting, settings, parallel, progress);
 
   // The table opacities hold for the unit distance; samples stand for sampleDistance.
   const double exponent = settings.sampleDistance / transfer.opacityUnitDistance;
@@ -428,6 +566,10 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   detail::KernelFrame frame;
   impl.FillKernelFrame(volume, rangeMin, rangeMax, transfer, lighting, view, settings, plan,
     useGradients, exponent, frame);
+  if (multiComponent)
+  {
+    impl.FillComponentFrame(transfer, lighting, settings, frame);
+  }
   VisiblePixels(ShownBox(settings, frame), view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
 

@@ -14,6 +14,10 @@
 // - semi-transparent cell leaping with the modified Marching Cubes table (CellLeapTable);
 // - early ray termination (composite; changes the image by at most 1 - threshold, identically
 //   with and without leaping).
+// Multi-component scalars (RayCastTransfer::components: composite, MIP, MinIP, raysum, average)
+// leap with the octree or the distance map classified per component (a node or cell is empty
+// when every component that can make a sample visible is transparent there); they have no cell
+// leaping, no octree leaping for MIP / MinIP and no precomputed gradients.
 // Work is split into fixed square tiles; results never depend on the thread count.
 #ifndef accelvolume_RayCastEngine_h
 #define accelvolume_RayCastEngine_h
@@ -40,6 +44,40 @@ enum class LeapMode
   DistanceMap // chessboard distance map (composite / additive only)
 };
 
+// One classification table of multi-component scalars (RayCastComponents), as
+// vtkGPUVolumeRayCastMapper's: colour over colourRange of the colour component's raw values,
+// opacity over opacityRange of the opacity component's raw values, N >= 2 entries each.
+struct RayCastComponentTable
+{
+  std::vector<float> rgba; // 4 N floats
+  double colourRange[2] = { 0, 1 };
+  double opacityRange[2] = { 0, 1 };
+  // Gradient opacity over a normalised gradient magnitude in [0, 1/4] (the magnitude of the
+  // component's central difference per index step, scaled by RayCastTransfer's
+  // gradientAxisScale and divided by its range width); empty: a factor of 1.
+  std::vector<float> gradientOpacity;
+  double opacityUnitDistance = 1.0;
+  double weight = 1.0; // vtkVolumeProperty::ComponentWeight (independent components)
+  // Shading coefficients (vtkVolumeProperty's of this component).
+  float ambient = 0.1f, diffuse = 0.7f, specular = 0.2f, specularPower = 10.0f;
+};
+
+// Multi-component scalars: count (2-4) components per voxel, interleaved (x fastest, component
+// fastest of all). Independent: count tables, table c classifies component c; a sample's
+// colour and opacity combine them with the weights as vtkGPUVolumeRayCastMapper does.
+// Dependent: one table; 2 components: colour of component 0, opacity of component 1; 4: RGB
+// from components 0-2 (raw * colourScale[c] + colourBias[c]), opacity of component 3.
+// count 1: the single-component path (RayCastTransfer's own table).
+struct RayCastComponents
+{
+  int count = 1;
+  bool independent = true;
+  std::vector<RayCastComponentTable> tables;
+  double ranges[4][2] = { { 0, 1 }, { 0, 1 }, { 0, 1 }, { 0, 1 } }; // each component's range
+  double colourScale[3] = { 1, 1, 1 };
+  double colourBias[3] = { 0, 0, 0 };
+};
+
 struct RayCastTransfer
 {
   // 4 N floats: colour and scalar opacity over [rangeMin, rangeMax] of the raw scalars, linearly
@@ -53,6 +91,9 @@ struct RayCastTransfer
   double gradientOpacityMaximum = 1.0;
   double gradientAxisScale[3] = { 1, 1, 1 };
   double opacityUnitDistance = 1.0; // vtkVolumeProperty::ScalarOpacityUnitDistance
+  // Multi-component scalars (count > 1): their tables replace the ones above, which stay
+  // required (N >= 2) but unused.
+  RayCastComponents components;
 };
 
 struct RayCastLighting

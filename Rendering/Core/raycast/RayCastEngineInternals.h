@@ -87,6 +87,13 @@ struct RayCaster::Internals
 
   std::vector<float> CorrectedAlpha;
   std::vector<float> SpecularTable;
+
+  // Multi-component scalars: each component's octree (Octree then holds their combined
+  // classification) and each table's per-frame arrays.
+  std::vector<MinMaxOctree> ComponentOctrees;
+  std::vector<float> ComponentCorrectedAlpha[4];
+  std::vector<float> ComponentSpecular[4];
+  LightModel ComponentModels[4];
   int CastRectangle[4] = { 0, -1, 0, -1 };
   double PrepareSeconds = 0;
 
@@ -100,6 +107,17 @@ struct RayCaster::Internals
   void UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
     std::uint64_t transferVersion, const OpacityRange& opacityRange, const detail::LeapPlan& plan,
     const ParallelFor& parallel, detail::PrepareProgress& progress);
+  // The same for multi-component scalars: a node or cell is empty when every component that
+  // can make a sample visible is transparent in it (each judged on its own range).
+  bool UpdateComponentOctree(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const RayCastComponents& components,
+    const RayCastSettings& settings, const ParallelFor& parallel,
+    detail::PrepareProgress& progress, std::string& error);
+  void UpdateComponentCells(const VolumeView& volume, std::uint64_t volumeVersion,
+    std::uint64_t transferVersion, const RayCastComponents& components,
+    const ParallelFor& parallel, detail::PrepareProgress& progress);
+  void FillComponentFrame(const RayCastTransfer& transfer, const RayCastLighting& lighting,
+    const RayCastSettings& settings, detail::KernelFrame& frame);
   void PackCellInfo(const CellClassification& cells, const std::vector<std::uint8_t>& distance,
     const ParallelFor& parallel);
   bool UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion, double width,

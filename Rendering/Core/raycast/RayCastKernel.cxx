@@ -106,10 +106,14 @@ public:
   RayCasterTile(const KernelFrame& frame, RayCastCounters& counters)
     : Frame(frame)
     , Settings(*frame.settings)
-    , Sampling(frame.volume)
+    , Sampling(frame.volume, frame.components, 0)
     , Counters(counters)
     , Table(GetCellLeapTable())
   {
+    for (int c = 0; c < frame.components && frame.components > 1; ++c)
+    {
+      this->Channels.emplace_back(frame.volume, frame.components, c);
+    }
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -240,6 +244,11 @@ private:
       return;
     }
     ++this->Counters.rays;
+    if (this->Frame.components > 1)
+    {
+      this->CastComponentsRay(pixel, out);
+      return;
+    }
     switch (this->Settings.blend)
     {
       case Blend::Composite:
@@ -265,6 +274,17 @@ private:
   // ISOSURFACE_BLEND and SLICE_BLEND rays (RayCastKernelPlanes.inl).
   void IsoSurfaces(const PixelRay& pixel, float* out);
   void SlicePlane(const PixelRay& pixel, float* out);
+
+  // Multi-component rays (RayCastKernelComponents.inl).
+  void CastComponentsRay(const PixelRay& pixel, float* out);
+  void SampleComponents(const double p[3], const SampleCell& cell, float values[4]) const;
+  void ComponentGradients(const double p[3], int count, float gradients[4][3]) const;
+  float ComponentGradientOpacity(const ComponentTableFrame& table, const float gradient[3]) const;
+  bool ClassifyComponents(const PixelRay& pixel, const double p[3], const float values[4],
+    bool needGradient, float premultiplied[4]) const;
+  void CompositeComponents(const PixelRay& pixel, float* out);
+  void ExtremeComponents(const PixelRay& pixel, float* out);
+  void IntegrateComponents(const PixelRay& pixel, float* out);
 
   // Walks the samples of every interval; visit(p, cell, value) returns false to stop the ray.
   // Zero-opacity leaping (octree, distance map, cell table) happens here when `leapTransparent`.
@@ -647,10 +667,17 @@ private:
     return Lerp(this->Frame.gradientOpacity[i], this->Frame.gradientOpacity[i + 1], u - i);
   }
 
-  // Phong with VTK's coefficients, two-sided, lights as directions (the slice mapper's shader).
-  // VTK's light model (common/Lighting.h) at index point p.
+  // VTK's light model (common/Lighting.h) at index point p, with the frame's coefficients.
   void Shade(
     const PixelRay& pixel, const double p[3], const float eyeGradient[3], float rgb[3]) const
+  {
+    this->ShadeWith(this->Frame.lighting->model, this->Frame.specularTable, pixel, p, eyeGradient,
+      rgb);
+  }
+
+  // The same with a model's coefficients and its tabulated specular power.
+  void ShadeWith(const LightModel& model, const float* table, const PixelRay& pixel,
+    const double p[3], const float eyeGradient[3], float rgb[3]) const
   {
     const RayCastLighting& l = *this->Frame.lighting;
     float factor[3];
@@ -663,7 +690,7 @@ private:
       const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
         eyeGradient[2] * inverse };
       float eye[3] = { 0, 0, 0 };
-      if (l.model.anyPositional)
+      if (model.anyPositional)
       {
         for (int r = 0; r < 3; ++r)
         {
@@ -671,7 +698,6 @@ private:
             l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r]);
         }
       }
-      const float* table = this->Frame.specularTable;
       const int size = this->Frame.specularTableSize;
       const auto power = [table, size](float x)
       {
@@ -679,11 +705,11 @@ private:
         const int k = std::min(static_cast<int>(u), size - 2);
         return Lerp(table[k], table[k + 1], u - static_cast<float>(k));
       };
-      LightingTerms(l.model, normal, eye, pixel.toViewer, power, factor, highlight);
+      LightingTerms(model, normal, eye, pixel.toViewer, power, factor, highlight);
     }
     else
     {
-      AmbientTerms(l.model, factor, highlight);
+      AmbientTerms(model, factor, highlight);
     }
     for (int c = 0; c < 3; ++c)
     {
@@ -694,6 +720,7 @@ private:
   const KernelFrame& Frame;
   const RayCastSettings& Settings;
   Sampler<T> Sampling;
+  std::vector<Sampler<T>> Channels; // multi-component scalars: one per component
   RayCastCounters& Counters;
   const std::array<CellLeapCase, 256>& Table;
   DistanceTemplate Template;
@@ -705,6 +732,7 @@ private:
 };
 
 #include "raycast/RayCastKernelPlanes.inl"
+#include "raycast/RayCastKernelComponents.inl"
 
 }
 

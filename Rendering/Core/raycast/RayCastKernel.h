@@ -13,9 +13,38 @@ namespace accelvolume
 namespace detail
 {
 
+// A multi-component classification table (RayCastComponentTable), prepared per frame.
+struct ComponentTableFrame
+{
+  const float* rgba = nullptr;           // 4 * tableSize
+  const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
+  int tableSize = 0;
+  // Table positions of raw values: u = value * scale + bias (colour, then opacity component).
+  float colourScale = 0, colourBias = 0;
+  float opacityScale = 0, opacityBias = 0;
+  const float* gradientOpacity = nullptr; // over normalised gradient magnitudes [0, 1/4]
+  int gradientOpacitySize = 0;
+  float opacityExponent = 1;
+  float weight = 1;
+  const LightModel* model = nullptr; // the frame's lights with this table's coefficients
+  const float* specularTable = nullptr;
+};
+
 // Everything a tile reads, prepared once per frame by RayCaster::Render.
 struct KernelFrame
 {
+  // Multi-component scalars (components > 1, interleaved): RayCastComponents' tables; the
+  // single-component tables below are then unused.
+  int components = 1;
+  bool independent = true;
+  int componentTables = 0;
+  ComponentTableFrame tables[4];
+  // Per data component: its normalised value s = value * scale + bias (raysum / average).
+  float componentScale[4] = { 1, 1, 1, 1 }, componentBias[4] = { 0, 0, 0, 0 };
+  float colourScale[3] = { 1, 1, 1 }, colourBias[3] = { 0, 0, 0 }; // dependent RGBA
+  float componentAxisScale[3] = { 1, 1, 1 };                       // gradientAxisScale
+  float componentNormalMatrix[3][3] = {}; // index gradient (normalised units) -> eye space
+
   VolumeView volume;
   // Table position of a raw value: u = value * tableScale + tableBias, in [0, tableSize - 1].
   float tableScale = 1, tableBias = 0;

@@ -35,17 +35,19 @@ template <typename T>
 class Sampler
 {
 public:
-  Sampler(const VolumeView& volume)
-    : Data(static_cast<const T*>(volume.data))
+  // Component `component` of `components` interleaved per voxel: samplers of one volume's
+  // components share Locate's cells (their strides are equal).
+  explicit Sampler(const VolumeView& volume, int components = 1, int component = 0)
+    : Data(static_cast<const T*>(volume.data) + component)
   {
     for (int a = 0; a < 3; ++a)
     {
       this->Dims[a] = volume.dims[a];
       this->CellDims[a] = std::max(volume.dims[a] - 1, 1);
     }
-    this->Stride[0] = 1;
-    this->Stride[1] = volume.dims[0];
-    this->Stride[2] = static_cast<std::ptrdiff_t>(volume.dims[0]) * volume.dims[1];
+    this->Stride[0] = components;
+    this->Stride[1] = static_cast<std::ptrdiff_t>(volume.dims[0]) * components;
+    this->Stride[2] = static_cast<std::ptrdiff_t>(volume.dims[0]) * volume.dims[1] * components;
   }
 
   void Locate(const double p[3], SampleCell& s) const

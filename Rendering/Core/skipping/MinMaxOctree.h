@@ -97,6 +97,10 @@ public:
     return this->Transparent[level];
   }
   bool IsTransparent(int level, std::uint64_t index) const;
+  // Keeps a node transparent only where `other` (classified, the same layout: another
+  // component of the same volume) is transparent too, so that several components' opacities
+  // classify one octree. Does nothing unless both are classified with equal depths.
+  void IntersectTransparency(const MinMaxOctree& other);
 
   // --- Queries (need Classify; unclassified, everything counts as non-transparent) ---
   // The largest transparent node whose box contains the index-space point; false if the

@@ -58,6 +58,24 @@ bool MinMaxOctree::IsTransparent(int level, std::uint64_t index) const
   return index >= flags.size() || flags[index] != 0;
 }
 
+void MinMaxOctree::IntersectTransparency(const MinMaxOctree& other)
+{
+  if (!this->IsClassified() || !other.IsClassified() ||
+    other.Transparent.size() != this->Transparent.size())
+  {
+    return;
+  }
+  for (std::size_t level = 0; level < this->Transparent.size(); ++level)
+  {
+    std::vector<std::uint8_t>& flags = this->Transparent[level];
+    const std::vector<std::uint8_t>& others = other.Transparent[level];
+    for (std::size_t i = 0; i < flags.size() && i < others.size(); ++i)
+    {
+      flags[i] = static_cast<std::uint8_t>(flags[i] && others[i]);
+    }
+  }
+}
+
 int MinMaxOctree::LocateLeaf(double p, double d, int axis) const
 {
   const int grid = this->Levels[0].gridSize[axis];
