@@ -17,8 +17,19 @@
  * function semantics of vtkAccelVolumeSliceMapper (1024-entry tables over the data range,
  * opacity corrected from ScalarOpacityUnitDistance to the sample distance), VTK cropping
  * (every region flag pattern) and any number of clipping planes, parallel and perspective
- * cameras, trilinear or nearest interpolation, one-component scalars of type
- * char, unsigned char, short, unsigned short, int, float or double.
+ * cameras, trilinear or nearest interpolation, scalars of any integer or floating type.
+ *
+ * 2-4 scalar components render in composite, MIP, MinIP, additive and average blending as
+ * vtkGPUVolumeRayCastMapper renders them (and vtkAccelVolumeSliceMapper): independent
+ * components each classified by their own colour, opacity and gradient-opacity functions over
+ * their own range, lit with their own coefficients and combined with the component weights;
+ * dependent 2 components (colour of component 0, opacity of component 1) and RGBA (colour as is,
+ * 8/16-bit integers normalised to their type, opacity of component 3). The octree and the
+ * distance map classify each component (a node or cell is empty when every component of
+ * positive weight, or the dependent opacity component, is transparent there); cell leaping does
+ * not apply to them, their gradients are taken on the fly. ISOSURFACE_BLEND and SLICE_BLEND of
+ * multi-component scalars are a clear error (the slice mapper draws independent iso-surfaces).
+ * Masks (SetMaskInput) are not provided, as by vtkFixedPointVolumeRayCastMapper.
  *
  * Samples sit at the middle of each step of the ray inside the volume (the midpoint rule of
  * the ray integral); VTK's fixed-point mapper starts at the entry point, which differs visibly
@@ -37,7 +48,7 @@
  * - LEAP_OCTREE: a min-max octree (OctreeLeafSize^3 leaves, built in parallel in Morton order
  *   when the scalars change, classified when the transfer function changes). Composite and
  *   additive rays leap over transparent nodes; MIP / MinIP rays leap over nodes whose range
- *   cannot beat the ray's current extreme. The step count out of a node comes from a per-tile
+ *   cannot beat the ray's current extreme (multi-component: every component's own octree). The step count out of a node comes from a per-tile
  *   distance template instead of a ray-box intersection.
  * - LEAP_DISTANCE_MAP: per cell, the chessboard distance to the nearest cell that may be
  *   opaque (rebuilt when the transfer function changes); composite and additive only.

@@ -158,6 +158,11 @@ int TestAccelVolumeRayCastExact(int, char*[])
                   vtkVolumeMapper::COMPOSITE_BLEND },
     { "4 independent components, raysum", 4, true, true, vtkVolumeMapper::ADDITIVE_BLEND },
     { "3 independent components, MIP", 3, true, true, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND },
+    { "2 independent components, MinIP", 2, true, false,
+      vtkVolumeMapper::MINIMUM_INTENSITY_BLEND },
+    { "dependent RGBA, MIP", 4, false, true, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND },
+    { "dependent luminance-alpha, MinIP", 2, false, false,
+      vtkVolumeMapper::MINIMUM_INTENSITY_BLEND },
     { "dependent luminance-alpha, shaded composite", 2, false, false,
       vtkVolumeMapper::COMPOSITE_BLEND },
     { "dependent RGBA, shaded composite", 4, false, true, vtkVolumeMapper::COMPOSITE_BLEND },
@@ -173,6 +178,12 @@ int TestAccelVolumeRayCastExact(int, char*[])
     if (cells != 0)
     {
       std::cout << m.Name << ": the cell table leaped multi-component samples  FAILED\n";
+      ok = false;
+    }
+    if (!leaps && m.Blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND &&
+      Render(scene, vtkAccelVolumeRayCastMapper::LEAP_OCTREE, false, 0).Octree == 0)
+    {
+      std::cout << m.Name << ": the components' octrees never leaped  FAILED\n";
       ok = false;
     }
   }

@@ -261,8 +261,8 @@ VolumeView ComponentView(const VolumeView& volume, int count, int component,
 
 bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
   std::uint64_t volumeVersion, std::uint64_t transferVersion, const RayCastComponents& components,
-  const RayCastSettings& settings, const ParallelFor& parallel, PrepareProgress& progress,
-  std::string& error)
+  const RayCastSettings& settings, bool classify, const ParallelFor& parallel,
+  PrepareProgress& progress, std::string& error)
 {
   if (!this->OctreeBuilt || this->OctreeVolume != volumeVersion ||
     this->OctreeLeafSize != settings.octreeLeafSize ||
@@ -285,7 +285,7 @@ bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
     this->OctreeLeafSize = settings.octreeLeafSize;
     progress.Rebuilt();
   }
-  if (!this->OctreeClassified || this->OctreeTransfer != transferVersion)
+  if (classify && (!this->OctreeClassified || this->OctreeTransfer != transferVersion))
   {
     const std::vector<OpacitySource> sources = OpacitySources(components);
     this->Octree = this->ComponentOctrees[0];

@@ -280,10 +280,9 @@ LeapPlan PlanLeaping(const RayCastSettings& settings, const OpacityRange& opacit
     transparentBelow > -std::numeric_limits<double>::infinity();
   if (multiComponent)
   {
-    // Cells classify each component's range; the Marching Cubes table and the extremes' value
-    // ranges are single-component rules.
+    // Cells classify each component's range; the Marching Cubes table is a single-component
+    // rule. Extremes leap by every component's octree (ExtremeComponents).
     plan.useCellLeap = false;
-    plan.useOctree = plan.useOctree && plan.zeroOpacityAddsNothing;
   }
   return plan;
 }
@@ -423,9 +422,19 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
 }
 
 void RayCaster::Internals::FillComponentFrame(const RayCastTransfer& transfer,
-  const RayCastLighting& lighting, const RayCastSettings& settings, detail::KernelFrame& frame)
+  const RayCastLighting& lighting, const RayCastSettings& settings, const LeapPlan& plan,
+  detail::KernelFrame& frame)
 {
   const RayCastComponents& components = transfer.components;
+  if (plan.useOctree && plan.extremum)
+  {
+    // Each component's own min-max octree (one layout): the extremes leap by their ranges.
+    frame.octree = &this->ComponentOctrees[0];
+    for (int c = 0; c < components.count; ++c)
+    {
+      frame.componentOctrees[c] = &this->ComponentOctrees[c];
+    }
+  }
   frame.components = components.count;
   frame.independent = components.independent;
   frame.componentTables = static_cast<int>(components.tables.size());
@@ -523,7 +532,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   {
     if (plan.useOctree &&
       !impl.UpdateComponentOctree(volume, volumeVersion, transferVersion, components, settings,
-        parallel, progress, error))
+        plan.zeroOpacityAddsNothing, parallel, progress, error))
     {
       return false;
     }
@@ -568,7 +577,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     useGradients, exponent, frame);
   if (multiComponent)
   {
-    impl.FillComponentFrame(transfer, lighting, settings, frame);
+    impl.FillComponentFrame(transfer, lighting, settings, plan, frame);
   }
   VisiblePixels(ShownBox(settings, frame), view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);

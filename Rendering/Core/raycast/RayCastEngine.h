@@ -17,7 +17,8 @@
 // Multi-component scalars (RayCastTransfer::components: composite, MIP, MinIP, raysum, average)
 // leap with the octree or the distance map classified per component (a node or cell is empty
 // when every component that can make a sample visible is transparent there); they have no cell
-// leaping, no octree leaping for MIP / MinIP and no precomputed gradients.
+// leaping and no precomputed gradients; MIP / MinIP leap by every component's own octree (a
+// node whose ranges cannot beat the ray's extremes).
 // Work is split into fixed square tiles; results never depend on the thread count.
 #ifndef accelvolume_RayCastEngine_h
 #define accelvolume_RayCastEngine_h

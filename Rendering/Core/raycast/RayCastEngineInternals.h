@@ -111,13 +111,13 @@ struct RayCaster::Internals
   // can make a sample visible is transparent in it (each judged on its own range).
   bool UpdateComponentOctree(const VolumeView& volume, std::uint64_t volumeVersion,
     std::uint64_t transferVersion, const RayCastComponents& components,
-    const RayCastSettings& settings, const ParallelFor& parallel,
+    const RayCastSettings& settings, bool classify, const ParallelFor& parallel,
     detail::PrepareProgress& progress, std::string& error);
   void UpdateComponentCells(const VolumeView& volume, std::uint64_t volumeVersion,
     std::uint64_t transferVersion, const RayCastComponents& components,
     const ParallelFor& parallel, detail::PrepareProgress& progress);
   void FillComponentFrame(const RayCastTransfer& transfer, const RayCastLighting& lighting,
-    const RayCastSettings& settings, detail::KernelFrame& frame);
+    const RayCastSettings& settings, const detail::LeapPlan& plan, detail::KernelFrame& frame);
   void PackCellInfo(const CellClassification& cells, const std::vector<std::uint8_t>& distance,
     const ParallelFor& parallel);
   bool UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion, double width,

@@ -44,6 +44,8 @@ struct KernelFrame
   float colourScale[3] = { 1, 1, 1 }, colourBias[3] = { 0, 0, 0 }; // dependent RGBA
   float componentAxisScale[3] = { 1, 1, 1 };                       // gradientAxisScale
   float componentNormalMatrix[3][3] = {}; // index gradient (normalised units) -> eye space
+  // MIP / MinIP with octree leaping: each component's min-max octree (octree is the first).
+  const MinMaxOctree* componentOctrees[4] = { nullptr, nullptr, nullptr, nullptr };
 
   VolumeView volume;
   // Table position of a raw value: u = value * tableScale + tableBias, in [0, tableSize - 1].

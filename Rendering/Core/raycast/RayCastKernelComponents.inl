@@ -301,6 +301,25 @@ void RayCasterTile<T>::ExtremeComponents(const PixelRay& pixel, float* out)
   bool hit = false;
   const IndexRay& ray = pixel.index;
   const double h = this->Settings.sampleDistance;
+  const Vec3 step = ray.direction * h;
+  const bool leap = this->Frame.useOctree && frame.componentOctrees[0];
+  const MinMaxOctree* const* trees = frame.componentOctrees;
+  const bool independent = frame.independent;
+  // A node leaps when no component that decides can beat its extreme there (independent: every
+  // component; dependent: the last one, which picks the kept sample; ties keep the earlier one).
+  const auto cannotBeat = [&](int level, std::uint64_t index)
+  {
+    for (int c = independent ? 0 : n - 1; c < n; ++c)
+    {
+      const OctreeLevel& l = trees[c]->GetLevel(level);
+      if (maximum ? !(l.maximum[index] <= extreme[c]) : !(l.minimum[index] >= extreme[c]))
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  this->ForgetRejectedLeaf();
   SampleCell cell;
   for (const Interval& interval : this->RayIntervals)
   {
@@ -311,26 +330,59 @@ void RayCasterTile<T>::ExtremeComponents(const PixelRay& pixel, float* out)
       const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
       const double p[3] = { ray.origin.x + t * ray.direction.x, ray.origin.y + t * ray.direction.y,
         ray.origin.z + t * ray.direction.z };
+      if (leap && hit)
+      {
+        const std::int64_t more = this->OctreeLeap(p, step, cannotBeat);
+        if (more >= 0)
+        {
+          const std::int64_t skipped = std::min(more + 1, count - k);
+          this->Counters.leapedOctree += static_cast<std::uint64_t>(skipped);
+          ++this->Counters.octreeLeaps;
+          k += skipped - 1;
+          continue;
+        }
+      }
       ++this->Counters.samples;
       this->Sampling.Locate(p, cell);
       float values[4];
+      if (!independent && hit)
+      {
+        // Only the last component decides; the others are read when it wins.
+        const Sampler<T>& last = this->Channels[n - 1];
+        const float decider = this->Settings.nearest ? last.Nearest(p) : last.Trilinear(cell);
+        if (!(maximum ? decider > extreme[n - 1] : decider < extreme[n - 1]))
+        {
+          continue;
+        }
+      }
       this->SampleComponents(p, cell, values);
       if (!hit)
       {
         std::copy(values, values + n, extreme);
         hit = true;
+        this->ForgetRejectedLeaf();
         continue;
       }
-      if (frame.independent)
+      bool changed = false;
+      if (independent)
       {
         for (int c = 0; c < n; ++c)
         {
-          extreme[c] = maximum ? std::max(extreme[c], values[c]) : std::min(extreme[c], values[c]);
+          if (maximum ? values[c] > extreme[c] : values[c] < extreme[c])
+          {
+            extreme[c] = values[c];
+            changed = true;
+          }
         }
       }
       else if (maximum ? values[n - 1] > extreme[n - 1] : values[n - 1] < extreme[n - 1])
       {
         std::copy(values, values + n, extreme);
+        changed = true;
+      }
+      if (changed)
+      {
+        this->ForgetRejectedLeaf(); // the leaf cache holds for one extreme
       }
     }
   }
