@@ -110,6 +110,11 @@ void vtkAccelVolumeGetLights(vtkRenderer* renderer, vtkVolumeProperty* property,
 // The CPU mappers' inputs to their engines: the transfer tables (TableSize entries over the data
 // range, gradient opacity, unit distance) and versions that change when the scalars or the
 // tables do, so engines rebuild their caches only then.
+// (Its Components member is of a hidden Core type: harmless, the class never leaves the module.)
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wattributes"
+#endif
 class vtkAccelVolumeCPUInputs
 {
 public:
@@ -146,6 +151,9 @@ private:
   double TableRange[2] = { 0, 0 };
   accelvolume::RayCastComponents Components;
 };
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 // Dependent RGBA colours as VTK's GPU mapper reads them (no scale or bias for dependent 3-4
 // components): normalised integer textures for 8- and 16-bit types, floats as they are; 0 for

@@ -35,6 +35,15 @@
 #include <string>
 #include <vector>
 
+// Types with non-trivial members that the VTK module instantiates templates of (vector copies):
+// hidden, so those instantiations are not exported from the module either
+// (Testing/Symbols/CheckHiddenCore.py).
+#if defined(__GNUC__)
+#define ACCELVOLUME_CORE_HIDDEN __attribute__((visibility("hidden")))
+#else
+#define ACCELVOLUME_CORE_HIDDEN
+#endif
+
 namespace accelvolume
 {
 
@@ -48,7 +57,7 @@ enum class LeapMode
 // One classification table of multi-component scalars (RayCastComponents), as
 // vtkGPUVolumeRayCastMapper's: colour over colourRange of the colour component's raw values,
 // opacity over opacityRange of the opacity component's raw values, N >= 2 entries each.
-struct RayCastComponentTable
+struct ACCELVOLUME_CORE_HIDDEN RayCastComponentTable
 {
   std::vector<float> rgba; // 4 N floats
   double colourRange[2] = { 0, 1 };
@@ -69,7 +78,7 @@ struct RayCastComponentTable
 // Dependent: one table; 2 components: colour of component 0, opacity of component 1; 4: RGB
 // from components 0-2 (raw * colourScale[c] + colourBias[c]), opacity of component 3.
 // count 1: the single-component path (RayCastTransfer's own table).
-struct RayCastComponents
+struct ACCELVOLUME_CORE_HIDDEN RayCastComponents
 {
   int count = 1;
   bool independent = true;
@@ -79,7 +88,7 @@ struct RayCastComponents
   double colourBias[3] = { 0, 0, 0 };
 };
 
-struct RayCastTransfer
+struct ACCELVOLUME_CORE_HIDDEN RayCastTransfer
 {
   // 4 N floats: colour and scalar opacity over [rangeMin, rangeMax] of the raw scalars, linearly
   // interpolated (OpacityTable::Lookup convention). N >= 2.
