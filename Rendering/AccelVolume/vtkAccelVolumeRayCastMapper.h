@@ -29,7 +29,6 @@
  * positive weight, or the dependent opacity component, is transparent there); cell leaping does
  * not apply to them, their gradients are taken on the fly. ISOSURFACE_BLEND and SLICE_BLEND of
  * multi-component scalars are a clear error (the slice mapper draws independent iso-surfaces).
- * Masks (SetMaskInput) are not provided, as by vtkFixedPointVolumeRayCastMapper.
  *
  * Samples sit at the middle of each step of the ray inside the volume (the midpoint rule of
  * the ray integral); VTK's fixed-point mapper starts at the entry point, which differs visibly
@@ -184,6 +183,34 @@ public:
   ///@}
 
   ///@{
+  /**
+   * As vtkGPUVolumeRayCastMapper and vtkAccelVolumeSliceMapper (VTK's fixed-point mapper has no
+   * mask): a mask image with the volume's dimensions, its type (BinaryMaskType, or
+   * LabelMapMaskType: the default) and the label blend factor (default 1), each read at the
+   * voxel nearest to a sample. Binary (nonzero = inside): samples outside are skipped in every
+   * blend mode, and cells all outside are empty space for the distance map (exact: a mask only
+   * removes samples). Label map (composite, one component): a voxel with label L > 0 takes the
+   * colour and opacity of the property's SetLabelColor(L) / SetLabelScalarOpacity(L) (the
+   * property's own functions where a label has none), mixed with the unlabelled classification
+   * by MaskBlendFactor (0: no effect); leaping is off then, since labels may make transparent
+   * values visible.
+   */
+  void SetMaskInput(vtkImageData* mask);
+  vtkGetObjectMacro(MaskInput, vtkImageData);
+  enum MaskTypes
+  {
+    BinaryMaskType = 0,
+    LabelMapMaskType = 1
+  };
+  vtkSetClampMacro(MaskType, int, BinaryMaskType, LabelMapMaskType);
+  vtkGetMacro(MaskType, int);
+  void SetMaskTypeToBinary() { this->SetMaskType(BinaryMaskType); }
+  void SetMaskTypeToLabelMap() { this->SetMaskType(LabelMapMaskType); }
+  vtkSetClampMacro(MaskBlendFactor, float, 0.0f, 1.0f);
+  vtkGetMacro(MaskBlendFactor, float);
+  ///@}
+
+  ///@{
   /** Last frame: rays that met the volume, samples interpolated, and samples leaped. */
   vtkGetMacro(LastNumberOfRays, vtkTypeInt64);
   vtkGetMacro(LastNumberOfSamples, vtkTypeInt64);
@@ -230,6 +257,9 @@ protected:
   vtkTypeBool AutoAdjustSampleDistances = 1;
   int NumberOfThreads = 0;
   double AdditiveUnitDistance = 0.0;
+  vtkImageData* MaskInput = nullptr;
+  int MaskType = LabelMapMaskType;
+  float MaskBlendFactor = 1.0f;
 
   vtkTypeInt64 LastNumberOfRays = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;

@@ -257,6 +257,39 @@ VolumeView ComponentView(const VolumeView& volume, int count, int component,
   return view;
 }
 
+// A binary mask as a skipping source: a cell whose 8 voxels are all hidden holds no visible
+// sample (samples read the nearest voxel, one of the cell's corners), so it is empty.
+void MaskCells(const std::uint8_t* mask, const int dims[3], const int cellDims[3],
+  std::vector<std::uint8_t>& nonEmpty, const ParallelFor& parallel)
+{
+  if (!mask)
+  {
+    return;
+  }
+  const std::ptrdiff_t sx = 1, sy = dims[0], sz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const std::ptrdiff_t ox = dims[0] > 1 ? sx : 0, oy = dims[1] > 1 ? sy : 0,
+                       oz = dims[2] > 1 ? sz : 0;
+  parallel(static_cast<std::size_t>(cellDims[2]),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        for (int j = 0; j < cellDims[1]; ++j)
+        {
+          std::uint8_t* flags =
+            nonEmpty.data() + (k * cellDims[1] + static_cast<std::size_t>(j)) * cellDims[0];
+          const std::uint8_t* m = mask + static_cast<std::ptrdiff_t>(k) * sz + j * sy;
+          for (int i = 0; i < cellDims[0]; ++i, ++m)
+          {
+            const bool shown = m[0] | m[ox] | m[oy] | m[oy + ox] | m[oz] | m[oz + ox] |
+              m[oz + oy] | m[oz + oy + ox];
+            flags[i] = static_cast<std::uint8_t>(flags[i] && shown);
+          }
+        }
+      }
+    });
+}
+
 } // namespace
 
 bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
@@ -317,7 +350,7 @@ bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
 
 void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
   std::uint64_t volumeVersion, std::uint64_t transferVersion, const RayCastComponents& components,
-  const ParallelFor& parallel, PrepareProgress& progress)
+  const std::uint8_t* mask, const ParallelFor& parallel, PrepareProgress& progress)
 {
   if (this->CellsBuilt && this->CellsVolume == volumeVersion &&
     this->CellsTransfer == transferVersion && !this->Packed)
@@ -363,6 +396,7 @@ void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
       0); // no component can be seen
   }
   cells.nonEmpty.swap(nonEmpty);
+  MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
   std::vector<std::uint8_t>().swap(cells.configuration);
   this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
   ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, this->DistanceOnly);
@@ -408,7 +442,7 @@ bool RayCaster::Internals::UpdateOctree(const VolumeView& volume, std::uint64_t 
 
 void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
   std::uint64_t transferVersion, const OpacityRange& opacityRange, const LeapPlan& plan,
-  const ParallelFor& parallel, PrepareProgress& progress)
+  const std::uint8_t* mask, const ParallelFor& parallel, PrepareProgress& progress)
 {
   const bool useCellLeap = plan.useCellLeap;
   const bool useDistance = plan.useDistance;
@@ -436,6 +470,7 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     ResizeWithHugePages(this->DistanceOnly, cellCount);
     cells.configuration.swap(this->DistanceOnly);
     ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
     ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
     this->DistanceOnly.swap(cells.configuration);
@@ -444,6 +479,7 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
   {
     std::vector<std::uint8_t>().swap(this->DistanceOnly);
     ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
+    MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
     std::vector<std::uint8_t> distance;
     if (useDistance)

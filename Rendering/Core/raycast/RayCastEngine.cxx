@@ -255,6 +255,11 @@ bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
     error = "unit distances must be positive";
     return false;
   }
+  if (settings.labelTables && (!settings.mask || transfer.components.count > 1))
+  {
+    error = "a label map needs a mask and one-component scalars";
+    return false;
+  }
   return CheckComponents(transfer.components, settings, error);
 }
 
@@ -278,6 +283,11 @@ LeapPlan PlanLeaping(const RayCastSettings& settings, const OpacityRange& opacit
   plan.leapThreshold = transparentBelow - 1.0e-5 * magnitude;
   plan.useCellLeap = settings.cellLeap && plan.zeroOpacityAddsNothing && !settings.nearest &&
     transparentBelow > -std::numeric_limits<double>::infinity();
+  if (settings.labelTables && settings.mask && settings.blend == Blend::Composite)
+  {
+    // Labels may make values the transfer function hides visible: nothing is known empty.
+    plan.useOctree = plan.useDistance = plan.useCellLeap = false;
+  }
   if (multiComponent)
   {
     // Cells classify each component's range; the Marching Cubes table is a single-component
@@ -419,6 +429,10 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   // Composite / additive only: there transparent samples add nothing.
   frame.useOpaqueBox = plan.zeroOpacityAddsNothing && (plan.useOctree || plan.useDistance);
   frame.opaqueBox = plan.useDistance ? this->CellsOpaqueBox : this->OctreeOpaqueBox;
+  frame.mask = settings.mask;
+  frame.labelMap = settings.mask && settings.labelTables; // applies to composite only
+  frame.labelTables = frame.labelMap ? settings.labelTables : nullptr;
+  frame.labelBlend = std::min(std::max(settings.labelBlend, 0.0f), 1.0f);
 }
 
 void RayCaster::Internals::FillComponentFrame(const RayCastTransfer& transfer,
@@ -539,7 +553,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     if (plan.useDistance)
     {
       impl.UpdateComponentCells(
-        volume, volumeVersion, transferVersion, components, parallel, progress);
+        volume, volumeVersion, transferVersion, components, settings.mask, parallel, progress);
     }
   }
   else
@@ -552,8 +566,8 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     }
     if (plan.useCellLeap || plan.useDistance)
     {
-      impl.UpdateCells(
-        volume, volumeVersion, transferVersion, opacityRange, plan, parallel, progress);
+      impl.UpdateCells(volume, volumeVersion, transferVersion, opacityRange, plan, settings.mask,
+        parallel, progress);
     }
   }
   // Multi-component gradients are taken on the fly (six extra samples per shaded one).

@@ -150,6 +150,17 @@ struct RayCastSettings
   std::vector<HalfSpace> clip; // index space
   HalfSpace slicePlane;        // Blend::Slice: the plane Dot(normal, p) + offset == 0, index space
   std::vector<double> isoValues; // Blend::Isosurface: raw scalar values, ascending
+  // Optional mask (vtkGPUVolumeRayCastMapper's SetMaskInput): one byte per voxel, read at the
+  // voxel nearest to a sample. Binary (no label tables): 0 hides the sample in every blend mode,
+  // and cells whose 8 voxels are all hidden are empty space for the distance map (exact: a
+  // mask only removes samples). Label map (composite, one component): a sample whose voxel has
+  // label l > 0 takes row l of labelTables (256 rows laid out as RayCastTransfer::rgba, over the
+  // same range), mixed with the transfer function by labelBlend; no leaping then (the labels'
+  // functions may make transparent values visible); other blend modes ignore a label map.
+  // Change volumeVersion when the mask changes.
+  const std::uint8_t* mask = nullptr;
+  const float* labelTables = nullptr;
+  float labelBlend = 1.0f;
 };
 
 struct RayCastCounters

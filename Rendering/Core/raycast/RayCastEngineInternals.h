@@ -106,7 +106,7 @@ struct RayCaster::Internals
     const ParallelFor& parallel, detail::PrepareProgress& progress, std::string& error);
   void UpdateCells(const VolumeView& volume, std::uint64_t volumeVersion,
     std::uint64_t transferVersion, const OpacityRange& opacityRange, const detail::LeapPlan& plan,
-    const ParallelFor& parallel, detail::PrepareProgress& progress);
+    const std::uint8_t* mask, const ParallelFor& parallel, detail::PrepareProgress& progress);
   // The same for multi-component scalars: a node or cell is empty when every component that
   // can make a sample visible is transparent in it (each judged on its own range).
   bool UpdateComponentOctree(const VolumeView& volume, std::uint64_t volumeVersion,
@@ -115,7 +115,7 @@ struct RayCaster::Internals
     detail::PrepareProgress& progress, std::string& error);
   void UpdateComponentCells(const VolumeView& volume, std::uint64_t volumeVersion,
     std::uint64_t transferVersion, const RayCastComponents& components,
-    const ParallelFor& parallel, detail::PrepareProgress& progress);
+    const std::uint8_t* mask, const ParallelFor& parallel, detail::PrepareProgress& progress);
   void FillComponentFrame(const RayCastTransfer& transfer, const RayCastLighting& lighting,
     const RayCastSettings& settings, const detail::LeapPlan& plan, detail::KernelFrame& frame);
   void PackCellInfo(const CellClassification& cells, const std::vector<std::uint8_t>& distance,

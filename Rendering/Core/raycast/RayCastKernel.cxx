@@ -231,6 +231,28 @@ private:
     return this->Template.StepsInside(box, Vec3{ p[0], p[1], p[2] }, step);
   }
 
+  // The mask value of the voxel nearest to p (as the slice mapper's texelFetch), 1 without one.
+  int MaskAt(const double p[3]) const
+  {
+    const int* dims = this->Frame.volume.dims;
+    std::size_t at = 0;
+    std::size_t stride = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double q = std::floor(p[a] + 0.5);
+      const int i = q > 0 ? (q < dims[a] - 1 ? static_cast<int>(q) : dims[a] - 1) : 0;
+      at += static_cast<std::size_t>(i) * stride;
+      stride *= static_cast<std::size_t>(dims[a]);
+    }
+    return this->Frame.mask[at];
+  }
+
+  // A binary mask hides the sample.
+  bool Hidden(const double p[3]) const
+  {
+    return this->Frame.mask && !this->Frame.labelMap && this->MaskAt(p) == 0;
+  }
+
   void ForgetRejectedLeaf()
   {
     this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1;
@@ -409,6 +431,11 @@ private:
             continue;
           }
         }
+        if (this->Hidden(p))
+        {
+          this->LastContributed = false;
+          continue;
+        }
         ++this->Counters.samples;
         const float value =
           this->Settings.nearest ? this->Sampling.Nearest(p) : this->Sampling.Trilinear(cell);
@@ -443,7 +470,7 @@ private:
         float fraction;
         TablePosition(frame, value, i, fraction);
         float a = Lerp(frame.correctedAlpha[i], frame.correctedAlpha[i + 1], fraction);
-        if (a <= 0.0f)
+        if (a <= 0.0f && !frame.labelMap)
         {
           return true;
         }
@@ -451,6 +478,29 @@ private:
         const float* e1 = e0 + 4;
         float rgb[3] = { Lerp(e0[0], e1[0], fraction), Lerp(e0[1], e1[1], fraction),
           Lerp(e0[2], e1[2], fraction) };
+        float labelledAlpha = -1.0f; // the label's mixed table opacity, when labelled
+        if (frame.labelMap)
+        {
+          const int label = this->MaskAt(p);
+          if (label > 0)
+          {
+            // vtkGPUVolumeRayCastMapper's rule: mix(classified, label's classified, blend).
+            const float* l0 = frame.labelTables + 4 * (static_cast<std::size_t>(label) * frame.tableSize + i);
+            const float* l1 = l0 + 4;
+            const float blend = frame.labelBlend;
+            for (int c = 0; c < 3; ++c)
+            {
+              rgb[c] += blend * (Lerp(l0[c], l1[c], fraction) - rgb[c]);
+            }
+            const float own = Lerp(e0[3], e1[3], fraction);
+            labelledAlpha = own + blend * (Lerp(l0[3], l1[3], fraction) - own);
+            a = 1.0f - std::pow(std::max(1.0f - labelledAlpha, 0.0f), frame.opacityExponent);
+          }
+        }
+        if (a <= 0.0f)
+        {
+          return true;
+        }
         if (needGradient)
         {
           float eyeGradient[3];
@@ -463,7 +513,8 @@ private:
                         gz = indexGradient[2] * scale[2];
             const float magnitude = std::sqrt(gx * gx + gy * gy + gz * gz) * frame.rangeWidth;
             const float tableAlpha =
-              Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
+              (labelledAlpha >= 0.0f ? labelledAlpha : Lerp(e0[3], e1[3], fraction)) *
+              this->GradientOpacity(magnitude);
             a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
             if (a <= 0.0f)
             {
@@ -531,6 +582,10 @@ private:
             k += skipped - 1;
             continue;
           }
+        }
+        if (this->Hidden(p))
+        {
+          continue;
         }
         ++this->Counters.samples;
         const float value = this->Sampling.Sample(p, this->Settings.nearest);

@@ -33,6 +33,11 @@ struct ComponentTableFrame
 // Everything a tile reads, prepared once per frame by RayCaster::Render.
 struct KernelFrame
 {
+  // RayCastSettings' mask: binary (hides samples) or a label map (composite).
+  const std::uint8_t* mask = nullptr;
+  bool labelMap = false;
+  const float* labelTables = nullptr;
+  float labelBlend = 1.0f;
   // Multi-component scalars (components > 1, interleaved): RayCastComponents' tables; the
   // single-component tables below are then unused.
   int components = 1;

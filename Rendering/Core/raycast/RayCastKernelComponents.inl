@@ -342,6 +342,10 @@ void RayCasterTile<T>::ExtremeComponents(const PixelRay& pixel, float* out)
           continue;
         }
       }
+      if (this->Hidden(p))
+      {
+        continue;
+      }
       ++this->Counters.samples;
       this->Sampling.Locate(p, cell);
       float values[4];
