@@ -23,6 +23,7 @@ set(_av_classes
 # installation.
 set(_av_private_sources
   vtkAccelVolumeBrickCache
+  vtkAccelVolumeCPUMask
   vtkAccelVolumeDepthCopy
   vtkAccelVolumeDepthPeeling
   vtkAccelVolumeImageDisplay

@@ -1,6 +1,7 @@
 // CPU ray casting volume mapper with octree / distance-map and semi-transparent cell leaping.
 #include "vtkAccelVolumeRayCastMapper.h"
 
+#include "vtkAccelVolumeCPUMask.h"
 #include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeDepthPeeling.h"
 #include "vtkAccelVolumeImageDisplay.h"
@@ -101,6 +102,7 @@ public:
   std::vector<float> Depth;
   std::vector<float> RayDepth;
   vtkAccelVolumeCPUInputs Inputs; // tables and the versions the caster's caches were built from
+  vtkAccelVolumeCPUMask Mask;     // the mask input or the ghost arrays, as bytes
   bool ReportedError = false;
 
   // Steps of Render, in order.
@@ -108,6 +110,9 @@ public:
   // when the frame cannot be cast.
   bool PrepareInputs(vtkAccelVolumeRayCastMapper* self, vtkImageData* input, vtkDataArray* scalars,
     vtkVolumeProperty* property, vtkVolume* volume, RayCastFrameInputs& in);
+  // The mask bytes and label tables for this frame (part of PrepareInputs).
+  bool PrepareMask(vtkAccelVolumeRayCastMapper* self, vtkImageData* input,
+    vtkVolumeProperty* property, int components, RayCastFrameInputs& in);
   // The rays' image size and camera; false when the viewport is empty.
   bool SetUpRays(vtkAccelVolumeRayCastMapper* self, vtkRenderer* renderer,
     vtkOpenGLRenderWindow* window, vtkVolume* volume, RayCastFrameInputs& in);
@@ -129,7 +134,28 @@ vtkAccelVolumeRayCastMapper::vtkAccelVolumeRayCastMapper()
   this->InputAdapter->SetMaximumComponents(4);
 }
 
-vtkAccelVolumeRayCastMapper::~vtkAccelVolumeRayCastMapper() = default;
+vtkAccelVolumeRayCastMapper::~vtkAccelVolumeRayCastMapper()
+{
+  this->SetMaskInput(nullptr);
+}
+
+void vtkAccelVolumeRayCastMapper::SetMaskInput(vtkImageData* mask)
+{
+  if (mask == this->MaskInput)
+  {
+    return;
+  }
+  if (this->MaskInput)
+  {
+    this->MaskInput->UnRegister(this);
+  }
+  this->MaskInput = mask;
+  if (mask)
+  {
+    mask->Register(this);
+  }
+  this->Modified();
+}
 
 void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -148,6 +174,9 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";
+  os << indent << "MaskInput: " << this->MaskInput << "\n";
+  os << indent << "MaskType: " << this->MaskType << "\n";
+  os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
   os << indent << "LastNumberOfRays: " << this->LastNumberOfRays << "\n";
   os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
@@ -218,6 +247,39 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   const bool composite = self->BlendMode == COMPOSITE_BLEND;
   this->Inputs.UpdateTransfer(property, in.Range, composite, input, in.Transfer, in.High);
   this->Inputs.UpdateComponents(property, this->Inputs.GetScalars(), composite, in.Transfer);
+  return this->PrepareMask(self, input, property, components, in);
+}
+
+bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareMask(vtkAccelVolumeRayCastMapper* self,
+  vtkImageData* input, vtkVolumeProperty* property, int components, RayCastFrameInputs& in)
+{
+  // As vtkAccelVolumeSliceMapper: a label map colours composite one-component frames and is
+  // ignored otherwise; a binary mask (and the ghost arrays' hidden points) hides samples.
+  const bool labelType = self->MaskInput && self->MaskType == LabelMapMaskType;
+  const bool labelMap =
+    labelType && self->MaskBlendFactor > 0 && self->BlendMode == COMPOSITE_BLEND;
+  if (labelMap && components > 1)
+  {
+    self->WarnNotApplicable("a label-map mask of multi-component scalars",
+      "label maps colour one-component scalars (as vtkGPUVolumeRayCastMapper)");
+  }
+  bool changed = false;
+  std::string error;
+  if (!this->Mask.Update(input, self->MaskInput, self->MaskType == BinaryMaskType,
+        labelMap && components == 1, changed, error))
+  {
+    vtkErrorWithObjectMacro(self, << error);
+    return false;
+  }
+  if (changed)
+  {
+    ++this->Inputs.VolumeVersion; // the distance map holds the mask's empty cells
+  }
+  this->Mask.UpdateLabelTables(property, in.Range, in.High, vtkAccelVolumeCPUInputs::TableSize);
+  in.Settings.mask = this->Mask.GetBytes();
+  in.Settings.maskNeighbours = this->Mask.GetNeighbours();
+  in.Settings.labelTables = this->Mask.GetLabelTables();
+  in.Settings.labelBlend = self->MaskBlendFactor;
   return true;
 }
 
@@ -434,11 +496,6 @@ void vtkAccelVolumeRayCastMapper::Render(vtkRenderer* renderer, vtkVolume* volum
   if (peel == vtkAccelVolumePeelStage::Later)
   {
     return; // drawn whole in the first volumetric stage of depth peeling
-  }
-  if (this->HasHiddenPoints(input))
-  {
-    this->WarnNotApplicable("blanking (hidden points of the ghost array)",
-      "the CPU mappers draw hidden points; vtkAccelVolumeSliceMapper hides them");
   }
   RayCastFrameInputs in;
   if (!internals.PrepareInputs(this, input, scalars, property, volume, in) ||

@@ -193,7 +193,9 @@ public:
    * colour and opacity of the property's SetLabelColor(L) / SetLabelScalarOpacity(L) (the
    * property's own functions where a label has none), mixed with the unlabelled classification
    * by MaskBlendFactor (0: no effect); leaping is off then, since labels may make transparent
-   * values visible.
+   * values visible. Ghost arrays (blanked points, ghost cells) hide samples as in the slice
+   * mapper (intersected with a binary mask; a label map takes precedence). ISOSURFACE_BLEND
+   * crosses no iso-value across a hidden sample.
    */
   void SetMaskInput(vtkImageData* mask);
   vtkGetObjectMacro(MaskInput, vtkImageData);

@@ -22,8 +22,8 @@ vtkAccelVolumeSliceMask::vtkAccelVolumeSliceMask() = default;
 
 vtkAccelVolumeSliceMask::~vtkAccelVolumeSliceMask() = default;
 
-bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData* mask,
-  const int dims[3], bool labelMap, std::string& error)
+bool vtkAccelVolumeMaskBytes(vtkImageData* mask, const int dims[3], bool labelMap,
+  std::vector<unsigned char>& bytes, std::string& error)
 {
   int maskDims[3];
   mask->GetDimensions(maskDims);
@@ -43,20 +43,37 @@ bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData
     error = "The mask input needs one-component point scalars, one per voxel";
     return false;
   }
-  const unsigned long time = std::max(mask->GetMTime(), values->GetMTime());
-  if (this->Texture->GetHandle() && this->Uploaded == mask && this->UploadTime == time &&
-    this->UploadedLabelMap == labelMap)
-  {
-    return true;
-  }
   const vtkIdType count = values->GetNumberOfTuples();
-  std::vector<unsigned char> bytes(static_cast<size_t>(count));
+  bytes.resize(static_cast<size_t>(count));
   for (vtkIdType i = 0; i < count; ++i)
   {
     const double v = values->GetComponent(i, 0);
     bytes[static_cast<size_t>(i)] = labelMap
       ? static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::floor(v + 0.5))))
       : static_cast<unsigned char>(v != 0.0 && !std::isnan(v) ? 255 : 0);
+  }
+  return true;
+}
+
+unsigned long vtkAccelVolumeMaskTime(vtkImageData* mask)
+{
+  vtkDataArray* values = mask->GetPointData()->GetScalars();
+  return std::max(mask->GetMTime(), values ? values->GetMTime() : 0);
+}
+
+bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData* mask,
+  const int dims[3], bool labelMap, std::string& error)
+{
+  const unsigned long time = vtkAccelVolumeMaskTime(mask);
+  if (this->Texture->GetHandle() && this->Uploaded == mask && this->UploadTime == time &&
+    this->UploadedLabelMap == labelMap)
+  {
+    return true;
+  }
+  std::vector<unsigned char> bytes;
+  if (!vtkAccelVolumeMaskBytes(mask, dims, labelMap, bytes, error))
+  {
+    return false;
   }
   this->Texture->SetContext(window);
   this->Texture->ResetFormatAndType();
@@ -75,6 +92,31 @@ bool vtkAccelVolumeSliceMask::Update(vtkOpenGLRenderWindow* window, vtkImageData
   return true;
 }
 
+std::vector<float> vtkAccelVolumeLabelTables(
+  vtkVolumeProperty* property, const double range[2], int size)
+{
+  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  std::vector<float> table(static_cast<size_t>(size) * vtkAccelVolumeSliceMask::Labels * 4, 0.0f);
+  std::vector<float> colour(3 * static_cast<size_t>(size));
+  std::vector<float> opacity(static_cast<size_t>(size));
+  for (int label = 1; label < vtkAccelVolumeSliceMask::Labels; ++label)
+  {
+    vtkColorTransferFunction* colours = property->GetLabelColor(label);
+    colours = colours ? colours : property->GetRGBTransferFunction(0);
+    vtkPiecewiseFunction* opacities = property->GetLabelScalarOpacity(label);
+    opacities = opacities ? opacities : property->GetScalarOpacity(0);
+    colours->GetTable(range[0], high, size, colour.data());
+    opacities->GetTable(range[0], high, size, opacity.data());
+    float* row = &table[static_cast<size_t>(label) * size * 4];
+    for (int i = 0; i < size; ++i)
+    {
+      std::copy(&colour[3 * i], &colour[3 * i] + 3, row + 4 * i);
+      row[4 * i + 3] = opacity[i];
+    }
+  }
+  return table;
+}
+
 void vtkAccelVolumeSliceMask::UpdateLabelTable(
   vtkOpenGLRenderWindow* window, vtkVolumeProperty* property, const double range[2])
 {
@@ -85,25 +127,7 @@ void vtkAccelVolumeSliceMask::UpdateLabelTable(
   {
     return;
   }
-  const double high = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  std::vector<float> table(static_cast<size_t>(TableSize) * Labels * 4, 0.0f);
-  std::vector<float> colour(3 * TableSize);
-  std::vector<float> opacity(TableSize);
-  for (int label = 1; label < Labels; ++label)
-  {
-    vtkColorTransferFunction* colours = property->GetLabelColor(label);
-    colours = colours ? colours : property->GetRGBTransferFunction(0);
-    vtkPiecewiseFunction* opacities = property->GetLabelScalarOpacity(label);
-    opacities = opacities ? opacities : property->GetScalarOpacity(0);
-    colours->GetTable(range[0], high, TableSize, colour.data());
-    opacities->GetTable(range[0], high, TableSize, opacity.data());
-    float* row = &table[static_cast<size_t>(label) * TableSize * 4];
-    for (int i = 0; i < TableSize; ++i)
-    {
-      std::copy(&colour[3 * i], &colour[3 * i] + 3, row + 4 * i);
-      row[4 * i + 3] = opacity[i];
-    }
-  }
+  std::vector<float> table = vtkAccelVolumeLabelTables(property, range, TableSize);
   this->LabelTable->SetContext(window);
   this->LabelTable->Create2DFromRaw(TableSize, Labels, 4, VTK_FLOAT, table.data());
   this->LabelTable->SetWrapS(vtkTextureObject::ClampToEdge);

@@ -9,6 +9,7 @@
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include <string>
+#include <vector>
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
@@ -52,6 +53,23 @@ private:
   unsigned long TableTime = 0;
   double TableRange[2] = { 0, 0 };
 };
+
+/**
+ * One byte per voxel of `mask` (binary: 255 inside, 0 outside; label map: the value rounded and
+ * clamped to 0..255). False with a user-facing message when its dimensions differ from `dims`
+ * or its scalars are not one component per point.
+ */
+bool vtkAccelVolumeMaskBytes(vtkImageData* mask, const int dims[3], bool labelMap,
+  std::vector<unsigned char>& bytes, std::string& error);
+/** The newest of the mask image's and its scalars' modification times. */
+unsigned long vtkAccelVolumeMaskTime(vtkImageData* mask);
+/**
+ * Label-map tables as vtkGPUVolumeRayCastMapper builds them: 256 rows (labels 0..255, row 0
+ * unused) of `size` RGBA entries over [range[0], range[1]], from each label's colour and opacity
+ * functions or the property's first ones.
+ */
+std::vector<float> vtkAccelVolumeLabelTables(
+  vtkVolumeProperty* property, const double range[2], int size);
 
 /**
  * The input's hidden points (ghost array HIDDENPOINT, as vtkUniformGrid blanking sets) as a binary

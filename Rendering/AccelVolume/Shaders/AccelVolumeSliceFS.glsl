@@ -314,10 +314,17 @@ void main()
   }
 #endif
 #if ACCELVOLUME_MASK == 1
-  // Binary mask: samples outside it are skipped, whatever the blend mode.
+  // Binary mask: samples outside it are skipped, whatever the blend mode. A raysum still covers
+  // its pixel (VTK's GPU mapper draws black where every sample of a ray is masked).
   if (maskHides(indexPosition))
   {
+#if defined(ACCELVOLUME_BLEND_ADDITIVE)
+    gl_FragData[0] = vec4(0.0, 1.0, 0.0, 0.0);
+    ACCELVOLUME_WRITE_DEPTH(false);
+    return;
+#else
     discard;
+#endif
   }
 #endif
 #if defined(ACCELVOLUME_BLEND_MAXIMUM) || defined(ACCELVOLUME_BLEND_MINIMUM)

@@ -431,6 +431,7 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   frame.opaqueBox = plan.useDistance ? this->CellsOpaqueBox : this->OctreeOpaqueBox;
   frame.mask = settings.mask;
   frame.labelMap = settings.mask && settings.labelTables; // applies to composite only
+  frame.maskNeighbours = settings.maskNeighbours && !frame.labelMap;
   frame.labelTables = frame.labelMap ? settings.labelTables : nullptr;
   frame.labelBlend = std::min(std::max(settings.labelBlend, 0.0f), 1.0f);
 }

@@ -157,8 +157,11 @@ struct RayCastSettings
   // label l > 0 takes row l of labelTables (256 rows laid out as RayCastTransfer::rgba, over the
   // same range), mixed with the transfer function by labelBlend; no leaping then (the labels'
   // functions may make transparent values visible); other blend modes ignore a label map.
+  // maskNeighbours (a binary mask from ghost arrays): a sample is also hidden when a point half
+  // a voxel away along an axis is. ISOSURFACE_BLEND crosses no iso-value across a hidden sample.
   // Change volumeVersion when the mask changes.
   const std::uint8_t* mask = nullptr;
+  bool maskNeighbours = false;
   const float* labelTables = nullptr;
   float labelBlend = 1.0f;
 };

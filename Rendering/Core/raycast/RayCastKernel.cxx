@@ -247,10 +247,34 @@ private:
     return this->Frame.mask[at];
   }
 
-  // A binary mask hides the sample.
+  // A binary mask hides the sample; a ghost mask also when a point half a voxel away along an
+  // axis is hidden (the slice mapper's rule: the points of the cells that share the sample).
   bool Hidden(const double p[3]) const
   {
-    return this->Frame.mask && !this->Frame.labelMap && this->MaskAt(p) == 0;
+    if (!this->Frame.mask || this->Frame.labelMap)
+    {
+      return false;
+    }
+    if (this->MaskAt(p) == 0)
+    {
+      return true;
+    }
+    if (this->Frame.maskNeighbours)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        for (const double offset : { -0.5, 0.5 })
+        {
+          double q[3] = { p[0], p[1], p[2] };
+          q[a] += offset;
+          if (this->MaskAt(q) == 0)
+          {
+            return true;
+          }
+        }
+      }
+    }
+    return false;
   }
 
   void ForgetRejectedLeaf()
@@ -434,6 +458,7 @@ private:
         if (this->Hidden(p))
         {
           this->LastContributed = false;
+          ++this->HiddenSamples;
           continue;
         }
         ++this->Counters.samples;
@@ -784,6 +809,7 @@ private:
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
   bool LastContributed = false;         // the ray's last sample added something
+  std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };
 
 #include "raycast/RayCastKernelPlanes.inl"

@@ -36,6 +36,7 @@ struct KernelFrame
   // RayCastSettings' mask: binary (hides samples) or a label map (composite).
   const std::uint8_t* mask = nullptr;
   bool labelMap = false;
+  bool maskNeighbours = false; // RayCastSettings::maskNeighbours
   const float* labelTables = nullptr;
   float labelBlend = 1.0f;
   // Multi-component scalars (components > 1, interleaved): RayCastComponents' tables; the

@@ -17,14 +17,19 @@ void RayCasterTile<T>::IsoSurfaces(const PixelRay& pixel, float* out)
   float alpha = 0;
   bool havePrevious = false;
   float previous = 0;
+  std::uint64_t hiddenBefore = this->HiddenSamples;
   this->Walk(pixel, false,
     [&](const double p[3], const SampleCell& cell, float value)
     {
+      // A masked sample between two visible ones: nothing is crossed across it.
+      const bool afterHidden = this->HiddenSamples != hiddenBefore;
+      hiddenBefore = this->HiddenSamples;
       if (value != value)
       {
         havePrevious = false;
         return true;
       }
+      havePrevious = havePrevious && !afterHidden;
       const float before = previous;
       const bool crossedFrom = havePrevious;
       previous = value;
@@ -106,6 +111,10 @@ void RayCasterTile<T>::SlicePlane(const PixelRay& pixel, float* out)
   }
   const double p[3] = { ray.origin.x + t * ray.direction.x, ray.origin.y + t * ray.direction.y,
     ray.origin.z + t * ray.direction.z };
+  if (this->Hidden(p))
+  {
+    return;
+  }
   SampleCell cell;
   this->Sampling.Locate(p, cell);
   ++this->Counters.samples;
