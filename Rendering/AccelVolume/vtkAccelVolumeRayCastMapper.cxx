@@ -205,15 +205,6 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::PrepareInputs(vtkAccelVolumeRayC
   if (components > 1)
   {
     const bool independent = property->GetIndependentComponents() != 0;
-    if (self->BlendMode == SLICE_BLEND || self->BlendMode == ISOSURFACE_BLEND)
-    {
-      vtkErrorWithObjectMacro(self,
-        "Scalars with " << components
-                        << " components render with composite, maximum, minimum, additive and "
-                           "average blending in the ray caster (vtkAccelVolumeSliceMapper also "
-                           "draws iso-surfaces of independent components)");
-      return false;
-    }
     if (!independent && components != 2 && components != 4)
     {
       vtkErrorWithObjectMacro(self,

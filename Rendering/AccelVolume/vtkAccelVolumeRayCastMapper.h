@@ -19,16 +19,19 @@
  * (every region flag pattern) and any number of clipping planes, parallel and perspective
  * cameras, trilinear or nearest interpolation, scalars of any integer or floating type.
  *
- * 2-4 scalar components render in composite, MIP, MinIP, additive and average blending as
- * vtkGPUVolumeRayCastMapper renders them (and vtkAccelVolumeSliceMapper): independent
+ * 2-4 scalar components render in every blend mode as vtkGPUVolumeRayCastMapper renders
+ * them (and vtkAccelVolumeSliceMapper): independent
  * components each classified by their own colour, opacity and gradient-opacity functions over
  * their own range, lit with their own coefficients and combined with the component weights;
  * dependent 2 components (colour of component 0, opacity of component 1) and RGBA (colour as is,
  * 8/16-bit integers normalised to their type, opacity of component 3). The octree and the
  * distance map classify each component (a node or cell is empty when every component of
  * positive weight, or the dependent opacity component, is transparent there); cell leaping does
- * not apply to them, their gradients are taken on the fly. ISOSURFACE_BLEND and SLICE_BLEND of
- * multi-component scalars are a clear error (the slice mapper draws independent iso-surfaces).
+ * not apply to them, their gradients are taken on the fly. ISOSURFACE_BLEND draws the
+ * iso-surfaces of the independent component of the largest weight (the first of equals, as VTK;
+ * normalised to its own range, where VTK 9.1 takes component 0's) or of dependent component 0;
+ * SLICE_BLEND classifies the plane's sample as composite does, without opacity correction
+ * (VTK 9.1's shader fails to compile for independent slices).
  *
  * Samples sit at the middle of each step of the ray inside the volume (the midpoint rule of
  * the ray integral); VTK's fixed-point mapper starts at the entry point, which differs visibly

@@ -221,14 +221,6 @@ bool vtkAccelVolumeSliceMapper::ValidateInput(
   if (components > 1)
   {
     const bool independent = !property || property->GetIndependentComponents();
-    if (this->BlendMode == SLICE_BLEND || (this->BlendMode == ISOSURFACE_BLEND && !independent))
-    {
-      vtkErrorMacro("Scalars with " << components
-                                    << " components render with composite, maximum, minimum, "
-                                       "additive and average blending (and iso-surfaces of "
-                                       "independent components)");
-      return false;
-    }
     if (property && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
     {
       vtkErrorMacro("2D transfer functions need one-component scalars");
@@ -514,10 +506,12 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     : (frame.DepthPassStage ? self->DepthPassContourValues : nullptr);
   frame.IsoSurfaceCount = 0;
   // Independent components: iso-surfaces of the component of the largest weight (the first of
-  // equals, as VTK), normalised to its own range (VTK 9.1 takes component 0's range there).
-  // The depth pass contours component 0 (vtkContourFilter's default).
+  // equals, as VTK), normalised to its own range (VTK 9.1 takes component 0's range there);
+  // dependent ones: of component 0 (VTK's). The depth pass contours component 0
+  // (vtkContourFilter's default).
   frame.IsoComponent = 0;
-  for (int c = 1; c < this->Frame.Components && frame.IsoSurface; ++c)
+  const int components = scalars->GetNumberOfComponents(); // Frame.Components is filled below
+  for (int c = 1; c < components && frame.IsoSurface && property->GetIndependentComponents(); ++c)
   {
     if (property->GetComponentWeight(c) > property->GetComponentWeight(frame.IsoComponent))
     {
@@ -525,7 +519,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
     }
   }
   const double* isoRange =
-    this->Frame.Components > 1 ? this->Resources.ComponentRanges[frame.IsoComponent] : range;
+    components > 1 ? this->Resources.ComponentRanges[frame.IsoComponent] : range;
   if (values)
   {
     std::vector<double> iso(

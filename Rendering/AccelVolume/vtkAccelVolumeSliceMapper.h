@@ -53,7 +53,8 @@
  * (UseDepthPass) and 2-4 component scalars (independent with per-component functions, weights
  * and gradient opacities, or dependent luminance-alpha / RGBA; composite, MIP, MinIP, raysum and
  * average as VTK's GPU mapper combines them, iso-surfaces of the independent component of the
- * largest weight; one brick; octree skipping for dependent components, by their opacity
+ * largest weight or of dependent component 0, slice planes classified as composite samples
+ * without opacity correction; one brick; octree skipping for dependent components, by their opacity
  * component, not for independent ones). Where VTK 9.1's
  * shader slips we differ on purpose: independent MinIP keeps each component's minimum (VTK's
  * its maximum, with alpha 0) and luminance-alpha MIP / MinIP the sample whose alpha is extreme
@@ -65,8 +66,7 @@
  * composite. Bricked volumes take gradients by central differences (no precomputed gradient
  * texture) and plain slices (SlabSamples is ignored). With depth peeling of volumes the volume
  * is drawn once, before the translucent layers (VTK interleaves them). Multi-component scalars
- * past GL_MAX_3D_TEXTURE_SIZE are not bricked (a clear error), nor drawn as a slice plane or
- * (dependent ones) iso-surfaces.
+ * past GL_MAX_3D_TEXTURE_SIZE are not bricked (a clear error).
  */
 
 #ifndef vtkAccelVolumeSliceMapper_h

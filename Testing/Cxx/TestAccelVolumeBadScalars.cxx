@@ -67,14 +67,6 @@ bool Components(MapperKind kind)
            "Dependent components must be 2 (luminance, alpha) or 4 (RGBA), not 3",
            [](Probe& probe) { probe.Volume->GetProperty()->SetIndependentComponents(false); }) &&
       ok;
-    ok = ExpectError(kind, "2 dependent components, iso-surface", withComponents(2),
-           "components render with composite, maximum, minimum, additive and average blending",
-           [](Probe& probe)
-           {
-             probe.Mapper->SetBlendModeToIsoSurface();
-             probe.Volume->GetProperty()->SetIndependentComponents(false);
-           }) &&
-      ok;
     return ok;
   }
   for (int components : { 2, 3, 4 })

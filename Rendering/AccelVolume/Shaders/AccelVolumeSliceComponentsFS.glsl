@@ -31,7 +31,9 @@ float componentGradientOpacity(int c, vec3 indexGradient)
 }
 #endif
 
-vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
+// planeSample (SLICE_BLEND): the tables' opacities as they are, no correction and no gradient
+// opacity (as one-component slices).
+vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step, bool planeSample)
 {
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(position) / volumeDimensions;
   vec4 values = texture(volumeTexture, center);
@@ -73,12 +75,14 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
     vec4 colour = componentLookup(c, values[c]);
 #if ACCELVOLUME_GRADIENT_OPACITY
     // VTK's GPU mapper: every component's function at this component's gradient, weighted.
-    for (int i = 0; i < ACCELVOLUME_COMPONENTS; ++i)
+    for (int i = 0; i < ACCELVOLUME_COMPONENTS && !planeSample; ++i)
     {
       colour.a *= componentGradientOpacity(i, vec3(dx[c], dy[c], dz[c])) * componentWeights[i];
     }
 #endif
-    float alpha = 1.0 - pow(max(1.0 - colour.a, 0.0), step / componentUnitDistances[c]);
+    float alpha = planeSample
+      ? colour.a
+      : 1.0 - pow(max(1.0 - colour.a, 0.0), step / componentUnitDistances[c]);
 #if ACCELVOLUME_SHADE
     colour.rgb = shadeWith(
       colour.rgb, normalMatrix * vec3(dx[c], dy[c], dz[c]), rayDirection, componentLighting[c]);
@@ -93,9 +97,14 @@ vec4 multiComponentSample(vec3 position, vec3 rayDirection, float step)
   return totalAlpha > 0.0 ? vec4(rgbSum, alphaSquares / totalAlpha) : vec4(0.0);
 #else
 #if ACCELVOLUME_GRADIENT_OPACITY
-  opacityValue *= componentGradientOpacity(0, vec3(dx.x, dy.x, dz.x)); // component 0's, as VTK
+  if (!planeSample)
+  {
+    opacityValue *= componentGradientOpacity(0, vec3(dx.x, dy.x, dz.x)); // component 0's, as VTK
+  }
 #endif
-  float alpha = 1.0 - pow(max(1.0 - opacityValue, 0.0), step / componentUnitDistances.x);
+  float alpha = planeSample
+    ? opacityValue
+    : 1.0 - pow(max(1.0 - opacityValue, 0.0), step / componentUnitDistances.x);
 #if ACCELVOLUME_SHADE
   rgb = shade(rgb, normalMatrix * vec3(dx.x, dy.x, dz.x), rayDirection);
 #endif
@@ -115,6 +124,8 @@ uniform float isoSurfaceValues[16]; // normalised, ascending
 #if ACCELVOLUME_COMPONENTS > 1
 // Independent components: the iso-values apply to the component of the largest weight (VTK's
 // choice), normalised to that component's range, coloured and lit by its own functions.
+// Dependent ones: component 0's values, looked up as VTK's GPU mapper does (colour and opacity
+// at the value's place in the tables; RGBA: grey at the value).
 uniform int isoComponent;
 
 float isoValueAt(vec3 position)
@@ -124,7 +135,11 @@ float isoValueAt(vec3 position)
 
 vec4 isoClassify(float value)
 {
+#if ACCELVOLUME_INDEPENDENT || ACCELVOLUME_COMPONENTS == 2
   return componentLookup(isoComponent, value);
+#else
+  return vec4(vec3(clamp(value, 0.0, 1.0)), componentLookup(0, value).a);
+#endif
 }
 
 #if ACCELVOLUME_SHADE

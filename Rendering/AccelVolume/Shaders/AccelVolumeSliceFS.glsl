@@ -424,7 +424,17 @@ void main()
   float noise = float(hash & 0xffffffu) / 16777216.0;
   samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
 #endif
-#if ACCELVOLUME_SLICE_PLANE
+#if ACCELVOLUME_SLICE_PLANE && ACCELVOLUME_COMPONENTS > 1
+  // SLICE_BLEND of multi-component scalars: the plane's sample classified as composite
+  // classifies it, without opacity correction (VTK 9.1's GPU shader fails on independent ones).
+  vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step, true);
+  if (premultiplied.a <= 0.0)
+  {
+    discard;
+  }
+  gl_FragData[0] = premultiplied;
+  ACCELVOLUME_WRITE_DEPTH(true);
+#elif ACCELVOLUME_SLICE_PLANE
   // SLICE_BLEND (as VTK's GPU mapper): the plane's sample, coloured and opaque as the transfer
   // functions say, no opacity correction (one sample, no step), shaded when the property is.
   vec4 planeSample = classify(normalizedScalarAt(samplePosition));
@@ -472,7 +482,7 @@ void main()
     discard;
   }
 #endif
-  vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step);
+  vec4 premultiplied = multiComponentSample(samplePosition, rayDirection, step, false);
   if (premultiplied.a <= 0.0)
   {
     discard;

@@ -170,8 +170,7 @@ void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
   }
 }
 
-bool CheckComponents(
-  const RayCastComponents& components, const RayCastSettings& settings, std::string& error)
+bool CheckComponents(const RayCastComponents& components, std::string& error)
 {
   const int count = components.count;
   if (count == 1)
@@ -199,12 +198,6 @@ bool CheckComponents(
               "given) and a positive unit distance";
       return false;
     }
-  }
-  if (settings.blend == Blend::Isosurface || settings.blend == Blend::Slice)
-  {
-    error = "ISOSURFACE_BLEND and SLICE_BLEND of multi-component scalars are not supported by "
-            "the ray caster (vtkAccelVolumeSliceMapper renders independent iso-surfaces)";
-    return false;
   }
   return true;
 }
@@ -260,7 +253,7 @@ bool CheckArguments(const VolumeView& volume, const RayCastTransfer& transfer,
     error = "a label map needs a mask and one-component scalars";
     return false;
   }
-  return CheckComponents(transfer.components, settings, error);
+  return CheckComponents(transfer.components, error);
 }
 
 // Which accelerations are exact for this blend mode (see the header).
@@ -497,6 +490,14 @@ void RayCaster::Internals::FillComponentFrame(const RayCastTransfer& transfer,
         std::pow(static_cast<double>(i) / (SpecularTableSize - 1), table.specularPower));
     }
     out.specularTable = specular.data();
+  }
+  frame.isoComponent = 0;
+  for (int c = 1; c < frame.componentTables && components.independent; ++c)
+  {
+    if (components.tables[c].weight > components.tables[frame.isoComponent].weight)
+    {
+      frame.isoComponent = c;
+    }
   }
   for (int c = 0; c < components.count; ++c)
   {

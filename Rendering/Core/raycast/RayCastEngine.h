@@ -14,9 +14,10 @@
 // - semi-transparent cell leaping with the modified Marching Cubes table (CellLeapTable);
 // - early ray termination (composite; changes the image by at most 1 - threshold, identically
 //   with and without leaping).
-// Multi-component scalars (RayCastTransfer::components: composite, MIP, MinIP, raysum, average)
-// leap with the octree or the distance map classified per component (a node or cell is empty
-// when every component that can make a sample visible is transparent there); they have no cell
+// Multi-component scalars (RayCastTransfer::components: every blend mode; iso-surfaces of the
+// independent component of the largest weight, or of dependent component 0) leap with the
+// octree or the distance map classified per component (a node or cell is empty when every
+// component that can make a sample visible is transparent there); they have no cell
 // leaping and no precomputed gradients; MIP / MinIP leap by every component's own octree (a
 // node whose ranges cannot beat the ray's extremes).
 // Work is split into fixed square tiles; results never depend on the thread count.

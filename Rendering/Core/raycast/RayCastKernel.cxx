@@ -319,6 +319,9 @@ private:
 
   // ISOSURFACE_BLEND and SLICE_BLEND rays (RayCastKernelPlanes.inl).
   void IsoSurfaces(const PixelRay& pixel, float* out);
+  void IsoClassify(float v, float rgba[4]) const;
+  void IsoShade(const PixelRay& pixel, const double p[3], const SampleCell& cell,
+    bool& haveGradient, float eyeGradient[3], float rgb[3]) const;
   void SlicePlane(const PixelRay& pixel, float* out);
 
   // Multi-component rays (RayCastKernelComponents.inl).
@@ -327,7 +330,7 @@ private:
   void ComponentGradients(const double p[3], int count, float gradients[4][3]) const;
   float ComponentGradientOpacity(const ComponentTableFrame& table, const float gradient[3]) const;
   bool ClassifyComponents(const PixelRay& pixel, const double p[3], const float values[4],
-    bool needGradient, float premultiplied[4]) const;
+    bool needGradient, float premultiplied[4], bool planeSample = false) const;
   void CompositeComponents(const PixelRay& pixel, float* out);
   void ExtremeComponents(const PixelRay& pixel, float* out);
   void IntegrateComponents(const PixelRay& pixel, float* out);
@@ -812,8 +815,8 @@ private:
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };
 
-#include "raycast/RayCastKernelPlanes.inl"
 #include "raycast/RayCastKernelComponents.inl"
+#include "raycast/RayCastKernelPlanes.inl"
 
 }
 

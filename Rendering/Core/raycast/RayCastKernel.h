@@ -52,6 +52,9 @@ struct KernelFrame
   float componentNormalMatrix[3][3] = {}; // index gradient (normalised units) -> eye space
   // MIP / MinIP with octree leaping: each component's min-max octree (octree is the first).
   const MinMaxOctree* componentOctrees[4] = { nullptr, nullptr, nullptr, nullptr };
+  // ISOSURFACE_BLEND: the component whose values cross the iso-values (independent: the one of
+  // the largest weight, the first of equals, as VTK; dependent: component 0).
+  int isoComponent = 0;
 
   VolumeView volume;
   // Table position of a raw value: u = value * tableScale + tableBias, in [0, tableSize - 1].

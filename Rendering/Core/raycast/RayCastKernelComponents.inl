@@ -32,7 +32,13 @@ void RayCasterTile<T>::CastComponentsRay(const PixelRay& pixel, float* out)
     case Blend::Average:
       this->IntegrateComponents(pixel, out);
       break;
-    default: // the engine admits composite, extremes and the integrals only
+    case Blend::Isosurface:
+      this->IsoSurfaces(pixel, out);
+      break;
+    case Blend::Slice:
+      this->SlicePlane(pixel, out);
+      break;
+    case Blend::Composite:
       this->CompositeComponents(pixel, out);
       break;
   }
@@ -94,12 +100,14 @@ float RayCasterTile<T>::ComponentGradientOpacity(
 }
 
 // One sample's premultiplied colour and opacity (corrected to the sample distance); false when
-// it is transparent. Independent components: each classified, lit and corrected by its own
-// table, combined with the weights (colour: sum of weight x opacity x colour; opacity: sum of
-// the squared opacities over the weighted sum); dependent: one colour, one opacity.
+// it is transparent. A plane sample (SLICE_BLEND) takes the tables' opacities as they are, with
+// no correction and no gradient opacity (as one-component slices). Independent components: each
+// classified, lit and corrected by its own table, combined with the weights (colour: sum of weight
+// x opacity x colour; opacity: sum of the squared opacities over the weighted sum); dependent: one
+// colour, one opacity.
 template <typename T>
 bool RayCasterTile<T>::ClassifyComponents(const PixelRay& pixel, const double p[3],
-  const float values[4], bool needGradient, float premultiplied[4]) const
+  const float values[4], bool needGradient, float premultiplied[4], bool planeSample) const
 {
   const KernelFrame& frame = this->Frame;
   const bool shade = frame.lighting->shade;
@@ -126,7 +134,9 @@ bool RayCasterTile<T>::ClassifyComponents(const PixelRay& pixel, const double p[
     {
       return false;
     }
-    float alpha = Lerp(table.correctedAlpha[i], table.correctedAlpha[i + 1], fraction);
+    float alpha = planeSample
+      ? tableAlpha
+      : Lerp(table.correctedAlpha[i], table.correctedAlpha[i + 1], fraction);
     float rgb[3];
     if (n == 2)
     {
@@ -147,7 +157,7 @@ bool RayCasterTile<T>::ClassifyComponents(const PixelRay& pixel, const double p[
     if (needGradient)
     {
       this->ComponentGradients(p, 1, gradients); // component 0's, as VTK
-      if (table.gradientOpacity)
+      if (table.gradientOpacity && !planeSample)
       {
         const float a = tableAlpha * this->ComponentGradientOpacity(table, gradients[0]);
         alpha = 1.0f - std::pow(std::max(1.0f - a, 0.0f), table.opacityExponent);
@@ -187,7 +197,7 @@ bool RayCasterTile<T>::ClassifyComponents(const PixelRay& pixel, const double p[
     return false; // no gradient, no lighting
   }
   bool gradientOpacity = false;
-  for (int c = 0; c < n; ++c)
+  for (int c = 0; c < n && !planeSample; ++c)
   {
     gradientOpacity = gradientOpacity || frame.tables[c].gradientOpacity;
   }
@@ -214,8 +224,9 @@ bool RayCasterTile<T>::ClassifyComponents(const PixelRay& pixel, const double p[
     }
     else
     {
-      alpha =
-        Lerp(table.correctedAlpha[entry[c]], table.correctedAlpha[entry[c] + 1], fractions[c]);
+      alpha = planeSample
+        ? tableAlpha[c]
+        : Lerp(table.correctedAlpha[entry[c]], table.correctedAlpha[entry[c] + 1], fractions[c]);
     }
     totalAlpha += alpha * table.weight;
     if (table.weight > 0.0f && alpha > 0.0f)
