@@ -71,6 +71,8 @@ list(APPEND _av_private_headers "${_av_vtk_dir}/Private/vtkAccelVolumeMinMaxOctr
 list(APPEND _av_sources "${_av_vtk_dir}/vtkAccelVolumeSliceMapperVTKAPI.cxx")
 # ... and its frame settings for shading, components and masks (members of its vtkInternals).
 list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeSliceFrameFill.cxx")
+# ... and its empty-leaf classification (one octree per contributing component).
+list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeSliceLeaves.cxx")
 # The CPU mappers' multi-component tables (vtkAccelVolumeCPUInputs members, MapperSupport.h).
 list(APPEND _av_sources "${_av_vtk_dir}/Private/vtkAccelVolumeCPUComponents.cxx")
 

@@ -139,62 +139,6 @@ vtkAccelVolumeSliceMapper::~vtkAccelVolumeSliceMapper()
   this->SetTransfer2DYAxisArray(nullptr);
 }
 
-bool vtkAccelVolumeSliceMapper::UpdateEmptyLeaves(vtkOpenGLRenderWindow* window,
-  vtkImageData* input, vtkVolumeProperty* property, const double range[2])
-{
-  vtkInternals& internals = *this->Internals;
-  vtkAccelVolumeMinMaxOctree* octree = internals.Octree;
-  octree->SetInputData(input);
-  octree->SetLeafSize(this->OctreeLeafSize);
-  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
-  if (!octree->Update() || !octree->Classify(opacity, range))
-  {
-    return false;
-  }
-  const vtkMTimeType scalarsTime = std::max(input->GetMTime(),
-    input->GetPointData()->GetScalars() ? input->GetPointData()->GetScalars()->GetMTime() : 0);
-  vtkTextureObject* leaves = internals.Resources.EmptyLeaves;
-  if (!leaves->GetHandle() || scalarsTime != internals.LeavesScalarsTime ||
-    opacity->GetMTime() != internals.LeavesFunctionTime || range[0] != internals.LeavesRange[0] ||
-    range[1] != internals.LeavesRange[1] || this->OctreeLeafSize != internals.LeavesLeafSize)
-  {
-    octree->GetLeafGridSize(internals.LeafGrid);
-    const int* grid = internals.LeafGrid;
-    std::vector<unsigned char> flags(static_cast<size_t>(grid[0]) * grid[1] * grid[2]);
-    size_t at = 0;
-    for (int k = 0; k < grid[2]; ++k)
-    {
-      for (int j = 0; j < grid[1]; ++j)
-      {
-        for (int i = 0; i < grid[0]; ++i)
-        {
-          const auto index = static_cast<vtkIdType>(accelvolume::MortonEncode(i, j, k));
-          flags[at++] = octree->IsNodeTransparent(0, index) ? 255 : 0;
-        }
-      }
-    }
-    leaves->SetContext(window);
-    window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (!leaves->Create3DFromRaw(grid[0], grid[1], grid[2], 1, VTK_UNSIGNED_CHAR, flags.data()))
-    {
-      return false;
-    }
-    leaves->SetMinificationFilter(vtkTextureObject::Nearest);
-    leaves->SetMagnificationFilter(vtkTextureObject::Nearest);
-    internals.LeavesScalarsTime = scalarsTime;
-    internals.LeavesFunctionTime = opacity->GetMTime();
-    internals.LeavesRange[0] = range[0];
-    internals.LeavesRange[1] = range[1];
-    internals.LeavesLeafSize = this->OctreeLeafSize;
-    // Only a new classification changes them: not a per-frame traversal.
-    accelvolume::MinMaxOctree* core = octree->GetInternals()->GetCPUOctree();
-    internals.HaveNonEmptyBoxes = core != nullptr;
-    internals.NonEmptyBoxes = core ? core->NonEmptyBoxes() : std::vector<accelvolume::Box>();
-  }
-  this->LastTransparentLeafFraction = octree->GetTransparentLeafFraction();
-  return true;
-}
-
 const char* vtkAccelVolumeSliceMapper::GetOpenGLRenderer()
 {
   return this->Internals->Renderer.c_str();
@@ -272,10 +216,9 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
       property->GetIndependentComponents() != 0);
     this->Resources.UpdateTransferTable(window, property, range); // bound by every pass
     this->Frame.Components = scalars->GetNumberOfComponents();
-    this->UpdateOpacityComponent(input, scalars, property);
     return true;
   }
-  this->OpacityComponent = nullptr;
+  this->ComponentImages.clear();
   this->Frame.Components = 1;
   // Partitions: bricks no larger than a block plus the voxel neighbours share.
   int brickSize = self->MaximumBrickSize;
@@ -297,34 +240,6 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadVolume(vtkAccelVolumeSliceMa
   }
   this->Resources.UpdateTransferTable(window, property, range);
   return true;
-}
-
-void vtkAccelVolumeSliceMapper::vtkInternals::UpdateOpacityComponent(
-  vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property)
-{
-  if (property->GetIndependentComponents())
-  {
-    this->OpacityComponent = nullptr;
-    return;
-  }
-  const vtkMTimeType time = std::max(input->GetMTime(), scalars->GetMTime());
-  if (this->OpacityComponent && this->OpacityComponentSource == scalars &&
-    this->OpacityComponentTime == time)
-  {
-    return;
-  }
-  const int last = scalars->GetNumberOfComponents() - 1;
-  vtkNew<vtkFloatArray> values;
-  values->SetNumberOfTuples(scalars->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-  {
-    values->SetValue(i, static_cast<float>(scalars->GetComponent(i, last)));
-  }
-  this->OpacityComponent = vtkSmartPointer<vtkImageData>::New();
-  this->OpacityComponent->CopyStructure(input);
-  this->OpacityComponent->GetPointData()->SetScalars(values);
-  this->OpacityComponentSource = scalars;
-  this->OpacityComponentTime = time;
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::SetUpView(vtkAccelVolumeSliceMapper* self,
@@ -422,7 +337,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
 }
 
 void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeSliceMapper* self,
-  vtkOpenGLRenderWindow* window, vtkImageData* input, vtkVolumeProperty* property,
+  vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
+  vtkVolumeProperty* property,
   const double range[2], const vtkAccelVolumeSliceView& view, bool& skipEmptyLeaves,
   vtkAccelVolumeSliceGeometryStats& geometryStats)
 {
@@ -444,16 +360,10 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   // whose voxels a crossing reads holds the value, so it is not transparent then).
   const bool contourCulled =
     self->UsesDepthPass() && !ContourValuesVisible(property, self->GetDepthPassContourValues());
-  // Dependent components take their opacity from the last one alone: its octree classifies
-  // them exactly (independent ones would need one per component: not skipped).
-  const bool dependent = this->Frame.Components > 1 && this->OpacityComponent;
-  const double* octreeRange =
-    dependent ? this->Resources.ComponentRanges[this->Frame.Components - 1] : range;
+  // Multi-component scalars: the octree of each contributing component (see LeafSources).
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
-    !self->UsesLabelMap() && (this->Frame.Components == 1 || dependent) &&
-    (self->EmptySpaceSkipping & SKIP_OCTREE) &&
-    self->UpdateEmptyLeaves(
-      window, dependent ? this->OpacityComponent.GetPointer() : input, property, octreeRange);
+    !self->UsesLabelMap() && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
+    this->UpdateEmptyLeaves(self, window, this->LeafSources(input, scalars, property, range));
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
   geometry.Regions = &view.Regions;
@@ -706,7 +616,7 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   bool skipEmptyLeaves = false;
   vtkAccelVolumeSliceGeometryStats geometryStats;
   internals.BuildProxyGeometry(
-    this, window, input, property, range, view, skipEmptyLeaves, geometryStats);
+    this, window, input, scalars, property, range, view, skipEmptyLeaves, geometryStats);
   progress.Report(0.45); // octree classification and proxy geometry
   this->LastSliceSpacing = view.Spacing;
   this->LastNumberOfSlices = geometryStats.Slices;

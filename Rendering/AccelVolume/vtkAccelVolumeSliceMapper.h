@@ -54,8 +54,8 @@
  * and gradient opacities, or dependent luminance-alpha / RGBA; composite, MIP, MinIP, raysum and
  * average as VTK's GPU mapper combines them, iso-surfaces of the independent component of the
  * largest weight or of dependent component 0, slice planes classified as composite samples
- * without opacity correction; one brick; octree skipping for dependent components, by their opacity
- * component, not for independent ones). Where VTK 9.1's
+ * without opacity correction; one brick; octree skipping by the opacity component of dependent
+ * ones and by every weighted component of independent ones). Where VTK 9.1's
  * shader slips we differ on purpose: independent MinIP keeps each component's minimum (VTK's
  * its maximum, with alpha 0) and luminance-alpha MIP / MinIP the sample whose alpha is extreme
  * (VTK's the ray's first sample).
@@ -524,9 +524,6 @@ private:
   bool UsesDepthPass() const;
   // A label-map mask that changes composite colours (then no opacity-based skipping applies).
   bool UsesLabelMap() const;
-  // Builds / classifies the octree and uploads its leaf transparency; false if unavailable.
-  bool UpdateEmptyLeaves(vtkOpenGLRenderWindow* window, vtkImageData* input,
-    vtkVolumeProperty* property, const double range[2]);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -16,6 +16,8 @@
 
 #include "common/Geometry.h"
 
+class vtkPiecewiseFunction;
+
 #include <string>
 #include <vector>
 
@@ -52,6 +54,14 @@ struct vtkAccelVolumeSliceView
   double Spacing = 0;
 };
 
+// One classified input of the empty-leaf octree.
+struct vtkAccelVolumeLeafSource
+{
+  vtkImageData* Image = nullptr;
+  vtkPiecewiseFunction* Opacity = nullptr;
+  double Range[2] = { 0, 1 };
+};
+
 // Per-mapper state kept out of the public header.
 class vtkAccelVolumeSliceMapper::vtkInternals
 {
@@ -60,16 +70,18 @@ public:
   vtkAccelVolumeSliceMask Mask;
   vtkAccelVolumeSliceFrame Frame;
   vtkNew<vtkAccelVolumeMinMaxOctree> Octree;
-  // Dependent multi-component scalars: their opacity component alone (what the octree
-  // classifies), refreshed with the scalars; null otherwise.
-  vtkSmartPointer<vtkImageData> OpacityComponent;
-  vtkDataArray* OpacityComponentSource = nullptr;
-  vtkMTimeType OpacityComponentTime = 0;
-  // What the uploaded leaf texture reflects.
-  vtkMTimeType LeavesScalarsTime = 0;
-  vtkMTimeType LeavesFunctionTime = 0;
-  double LeavesRange[2] = { 0, 0 };
-  int LeavesLeafSize = 0;
+  // Multi-component scalars: each component alone, as the octrees classify them (dependent:
+  // the opacity component; independent: each weighted one), built on demand and refreshed
+  // with the scalars; null where not needed.
+  std::vector<vtkSmartPointer<vtkImageData>> ComponentImages;
+  vtkDataArray* ComponentImagesSource = nullptr;
+  vtkMTimeType ComponentImagesTime = 0;
+  // The octrees of independent components after the first source (which uses Octree).
+  std::vector<vtkSmartPointer<vtkAccelVolumeMinMaxOctree>> ComponentOctrees;
+  // What the uploaded leaf texture reflects: per source its scalars' time, function's time
+  // and range, then the leaf size.
+  std::vector<double> LeavesKey;
+  double LeavesTransparentFraction = 0.0;
   int LeafGrid[3] = { 0, 0, 0 };
   // The octree's merged non-empty boxes for that classification (slice culling).
   std::vector<accelvolume::Box> NonEmptyBoxes;
@@ -103,16 +115,24 @@ public:
   void ChooseSliceSpacing(vtkAccelVolumeSliceMapper* self, vtkVolume* volume, vtkAccelVolumeSliceView& view);
   // Proxy geometry: per brick (in drawing order), per region, its slices then its cut faces.
   void BuildProxyGeometry(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
-    vtkImageData* input, vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
+    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
     bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& stats);
   // The frame's settings for the passes; false (reported) when the 2D table fails.
   bool FillFrame(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
     vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
     vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
     bool skipEmptyLeaves);
-  // Refreshes OpacityComponent for dependent components (clears it for independent ones).
-  void UpdateOpacityComponent(
-    vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property);
+  // One component of the multi-component scalars as an image of its own (cached).
+  vtkImageData* ComponentImage(vtkImageData* input, vtkDataArray* scalars, int component);
+  // What the octree classifies for this frame: the scalars (one component), the opacity
+  // component (dependent) or each component of non-zero weight (independent, the AND of their
+  // transparency: the weighted sum of their opacities is zero only where all are).
+  std::vector<vtkAccelVolumeLeafSource> LeafSources(vtkImageData* input, vtkDataArray* scalars,
+    vtkVolumeProperty* property, const double range[2]);
+  // Builds / classifies the octrees of the sources, uploads their leaf transparency and keeps
+  // the non-empty boxes; false if unavailable.
+  bool UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    const std::vector<vtkAccelVolumeLeafSource>& sources);
   // Components (weights, unit distances), masks (vtkAccelVolumeSliceFrameFill.cxx).
   void FillComponentsAndMasks(vtkAccelVolumeSliceMapper* self, vtkDataArray* scalars,
     vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view);

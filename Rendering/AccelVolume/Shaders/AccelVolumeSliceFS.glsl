@@ -475,7 +475,7 @@ void main()
   ACCELVOLUME_WRITE_DEPTH(true);
 #elif ACCELVOLUME_COMPONENTS > 1
 #if ACCELVOLUME_SKIP_OCTREE
-  // Dependent components: the octree of their opacity component marks transparent leaves.
+  // Multi-component: the leaves where every contributing component is transparent.
   vec3 leaf = clamp(floor(samplePosition / leafSize), vec3(0.0), leafGridMaximum);
   if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
   {
