@@ -2,7 +2,9 @@
 #include "slicing/CompositeSlices.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <memory>
 
 namespace accelvolume
 {
@@ -26,24 +28,79 @@ std::pair<double, double> DepthRange(const Box& box, const Vec3& depthGradient, 
   return { low, high };
 }
 
-// Bounding box of the boxes whose depth interval contains depth (empty box if none).
-Box BoundsAtDepth(
-  const std::vector<Box>& boxes, const std::vector<std::pair<double, double>>& depths, double depth)
+void Widen(double& lower, double& upper)
 {
-  Box bounds;
-  bounds.lower = { Huge, Huge, Huge };
-  bounds.upper = { -Huge, -Huge, -Huge };
-  for (size_t b = 0; b < boxes.size(); ++b)
+  if (lower == upper)
   {
-    if (depths[b].first <= depth && depth <= depths[b].second)
-    {
-      bounds.lower = { std::min(bounds.lower.x, boxes[b].lower.x),
-        std::min(bounds.lower.y, boxes[b].lower.y), std::min(bounds.lower.z, boxes[b].lower.z) };
-      bounds.upper = { std::max(bounds.upper.x, boxes[b].upper.x),
-        std::max(bounds.upper.y, boxes[b].upper.y), std::max(bounds.upper.z, boxes[b].upper.z) };
-    }
+    lower -= 0.5;
+    upper += 0.5;
   }
-  return bounds;
+}
+
+// Octree boxes span voxel centres, so a one-voxel axis makes them flat, while the regions draw
+// that axis as a slab one voxel thick: a flat axis widens by half a voxel each way (only ever
+// keeping more), else every oblique slice through the slab would be culled.
+std::vector<Box> Widened(const std::vector<Box>& boxes)
+{
+  std::vector<Box> widened = boxes;
+  for (Box& box : widened)
+  {
+    Widen(box.lower.x, box.upper.x);
+    Widen(box.lower.y, box.upper.y);
+    Widen(box.lower.z, box.upper.z);
+  }
+  return widened;
+}
+
+Box EmptyBox()
+{
+  Box box;
+  box.lower = { Huge, Huge, Huge };
+  box.upper = { -Huge, -Huge, -Huge };
+  return box;
+}
+
+void Include(Box& bounds, const Box& box)
+{
+  bounds.lower = { std::min(bounds.lower.x, box.lower.x), std::min(bounds.lower.y, box.lower.y),
+    std::min(bounds.lower.z, box.lower.z) };
+  bounds.upper = { std::max(bounds.upper.x, box.upper.x), std::max(bounds.upper.y, box.upper.y),
+    std::max(bounds.upper.z, box.upper.z) };
+}
+
+Box Intersection(const Box& a, const Box& b)
+{
+  Box box;
+  box.lower = { std::max(a.lower.x, b.lower.x), std::max(a.lower.y, b.lower.y),
+    std::max(a.lower.z, b.lower.z) };
+  box.upper = { std::min(a.upper.x, b.upper.x), std::min(a.upper.y, b.upper.y),
+    std::min(a.upper.z, b.upper.z) };
+  return box;
+}
+
+// The sample indices k with low <= phase + k * spacing <= high, tested with that exact
+// expression (the divisions only give the start).
+void ClosedIndexRange(
+  double low, double high, double phase, double spacing, long long& first, long long& last)
+{
+  first = static_cast<long long>(std::floor((low - phase) / spacing));
+  last = static_cast<long long>(std::ceil((high - phase) / spacing));
+  while (phase + static_cast<double>(first) * spacing < low)
+  {
+    ++first;
+  }
+  while (phase + static_cast<double>(first - 1) * spacing >= low)
+  {
+    --first;
+  }
+  while (phase + static_cast<double>(last) * spacing > high)
+  {
+    --last;
+  }
+  while (phase + static_cast<double>(last + 1) * spacing <= high)
+  {
+    ++last;
+  }
 }
 }
 
@@ -51,30 +108,10 @@ CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
   const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
   double phase, bool frontToBack, const std::vector<Box>* nonEmpty)
 {
-  // Octree boxes span voxel centres, so a one-voxel axis makes them flat, while the regions
-  // draw that axis as a slab one voxel thick: a flat axis widens by half a voxel each way (only
-  // ever keeping more), else every oblique slice through the slab would be culled.
-  std::vector<Box> widened;
-  std::vector<std::pair<double, double>> nonEmptyDepths;
+  std::unique_ptr<SliceBoundsTable> bounds;
   if (nonEmpty)
   {
-    const auto widen = [](double& lower, double& upper)
-    {
-      if (lower == upper)
-      {
-        lower -= 0.5;
-        upper += 0.5;
-      }
-    };
-    widened = *nonEmpty;
-    for (Box& box : widened)
-    {
-      widen(box.lower.x, box.upper.x);
-      widen(box.lower.y, box.upper.y);
-      widen(box.lower.z, box.upper.z);
-      nonEmptyDepths.push_back(DepthRange(box, depthGradient, depthOffset));
-    }
-    nonEmpty = &widened;
+    bounds.reset(new SliceBoundsTable(*nonEmpty, depthGradient, depthOffset, spacing, phase));
   }
   CompositeSlices result;
   double fullArea = 0.0;
@@ -87,10 +124,10 @@ CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
     {
       Polygon polygon = std::move(stack.polygons[k]);
       fullArea += PolygonArea(polygon);
-      if (nonEmpty)
+      if (bounds)
       {
-        const Box bounds = BoundsAtDepth(*nonEmpty, nonEmptyDepths, stack.depths[k]);
-        for (const HalfSpace& half : BoxHalfSpaces(bounds))
+        const long long index = std::llround((stack.depths[k] - phase) / spacing);
+        for (const HalfSpace& half : BoxHalfSpaces(bounds->At(index)))
         {
           polygon = polygon.empty() ? polygon : ClipPolygon(polygon, half);
         }
@@ -109,5 +146,102 @@ CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
     [frontToBack](const auto& a, const auto& b)
     { return frontToBack ? a.first < b.first : a.first > b.first; });
   return result;
+}
+
+SliceBoundsTable::SliceBoundsTable(const std::vector<Box>& boxes, const Vec3& depthGradient,
+  double depthOffset, double spacing, double phase)
+{
+  if (!(spacing > 0) || boxes.empty())
+  {
+    return;
+  }
+  const std::vector<Box> widened = Widened(boxes);
+  std::vector<std::pair<long long, long long>> spans;
+  spans.reserve(widened.size());
+  long long first = std::numeric_limits<long long>::max();
+  long long last = std::numeric_limits<long long>::min();
+  for (const Box& box : widened)
+  {
+    const std::pair<double, double> depths = DepthRange(box, depthGradient, depthOffset);
+    long long k0 = 0;
+    long long k1 = -1;
+    ClosedIndexRange(depths.first, depths.second, phase, spacing, k0, k1);
+    spans.emplace_back(k0, k1);
+    if (k0 <= k1)
+    {
+      first = std::min(first, k0);
+      last = std::max(last, k1);
+    }
+  }
+  if (first > last)
+  {
+    return;
+  }
+  this->First = first;
+  this->Bounds.assign(static_cast<size_t>(last - first + 1), EmptyBox());
+  for (size_t b = 0; b < widened.size(); ++b)
+  {
+    for (long long k = spans[b].first; k <= spans[b].second; ++k)
+    {
+      Include(this->Bounds[static_cast<size_t>(k - first)], widened[b]);
+    }
+  }
+}
+
+Box SliceBoundsTable::At(long long k) const
+{
+  if (k < this->First || k >= this->First + static_cast<long long>(this->Bounds.size()))
+  {
+    return EmptyBox();
+  }
+  return this->Bounds[static_cast<size_t>(k - this->First)];
+}
+
+std::vector<SliceBox> ComputeSliceBoxes(const Box& region, const Vec3& depthGradient,
+  double depthOffset, double spacing, double phase, bool frontToBack,
+  const std::vector<Box>* nonEmpty)
+{
+  std::vector<SliceBox> slices;
+  if (!(spacing > 0) || !(Length(depthGradient) > 0) || !std::isfinite(phase) || region.IsEmpty())
+  {
+    return slices;
+  }
+  const std::pair<double, double> depths = DepthRange(region, depthGradient, depthOffset);
+  if (!(depths.second > depths.first))
+  {
+    return slices;
+  }
+  long long first = 0;
+  long long last = -1;
+  SampleIndexRange(depths.first, depths.second, phase, spacing, first, last);
+  std::unique_ptr<SliceBoundsTable> bounds;
+  if (nonEmpty)
+  {
+    bounds.reset(new SliceBoundsTable(*nonEmpty, depthGradient, depthOffset, spacing, phase));
+  }
+  slices.reserve(static_cast<size_t>(std::max(0LL, last - first + 1)));
+  for (long long n = 0; n <= last - first; ++n)
+  {
+    const long long k = frontToBack ? first + n : last - n;
+    SliceBox slice;
+    slice.depth = phase + static_cast<double>(k) * spacing;
+    slice.box = bounds ? Intersection(region, bounds->At(k)) : region;
+    if (!slice.box.IsEmpty())
+    {
+      slices.push_back(slice);
+    }
+  }
+  return slices;
+}
+
+double PlaneBoxSectionArea(
+  const Vec3& depthGradient, double depthOffset, double depth, const Box& box)
+{
+  if (box.IsEmpty())
+  {
+    return 0.0;
+  }
+  const Polygon section = PlaneRegionPolygon(-depthGradient, depthOffset - depth, box, {});
+  return section.empty() ? 0.0 : PolygonArea(section);
 }
 }

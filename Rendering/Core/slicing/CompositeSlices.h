@@ -28,6 +28,40 @@ struct CompositeSlices
 CompositeSlices ComputeCompositeSlices(const std::vector<Box>& regions,
   const std::vector<HalfSpace>& clip, const Vec3& depthGradient, double depthOffset, double spacing,
   double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
+
+// For each sample index k (slice depth phase + k * spacing), the bounding box of the boxes whose
+// depth interval holds that depth (boxes flat along an axis widened as above). Built in time
+// proportional to the slices each box spans, not boxes x slices.
+class SliceBoundsTable
+{
+public:
+  SliceBoundsTable(const std::vector<Box>& boxes, const Vec3& depthGradient, double depthOffset,
+    double spacing, double phase);
+  // The bounds at slice k; an empty box where no box holds its depth.
+  Box At(long long k) const;
+
+private:
+  long long First = 0;
+  std::vector<Box> Bounds;
+};
+
+// One slice to generate on the GPU: its plane's depth and the box it is drawn across (the
+// region, or the region cut to the non-empty bounds at that depth).
+struct SliceBox
+{
+  double depth = 0.0;
+  Box box;
+};
+
+// The slices of one box-shaped region without clip planes, as ComputeCompositeSlices orders and
+// culls them, each as (depth, box): the slice's polygon is the plane's section of its box, which
+// is exactly the polygon ComputeCompositeSlices clips (up to the slivers it drops). Slices whose
+// box is empty are left out.
+std::vector<SliceBox> ComputeSliceBoxes(const Box& region, const Vec3& depthGradient,
+  double depthOffset, double spacing, double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
+
+// The area of the plane depth = depthGradient . p + depthOffset inside the box (0 if it misses).
+double PlaneBoxSectionArea(const Vec3& depthGradient, double depthOffset, double depth, const Box& box);
 }
 
 #endif
