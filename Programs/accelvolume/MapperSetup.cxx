@@ -37,6 +37,7 @@ void ConfigureSlice(
   slice->SetEmptySpaceSkipping(options.emptySpaceSkipping);
   slice->SetPrecomputeGradients(options.precomputeGradients);
   slice->SetJittering(options.jitter);
+  slice->SetGPUSliceGeneration(options.gpuSlices);
   if (options.slabSamples > 0)
   {
     slice->SetSlabSamples(options.slabSamples);
@@ -203,6 +204,7 @@ void ReadSliceResult(vtkAccelVolumeSliceMapper* mapper, RenderResult& result)
   result.slices = mapper->GetLastNumberOfSlices();
   result.slabSamples = mapper->GetSlabSamples();
   result.terminationPasses = mapper->GetLastNumberOfTerminationPasses();
+  result.slicesGenerated = mapper->GetLastSlicesGenerated();
   result.transparentLeafFraction = mapper->GetLastTransparentLeafFraction();
   result.proxyAreaFraction = mapper->GetLastProxyAreaFraction();
 }

@@ -58,7 +58,6 @@ std::string FormatNumber(double value)
   return stream.str();
 }
 
-
 template <typename Enum>
 Enum ParseChoice(
   const std::string& flag, const std::string& text, const std::map<std::string, Enum>& choices)
@@ -336,6 +335,10 @@ void AddAccelerationFlags(CLI::App& command, Options& options)
     [&](int skipping) { options.emptySpaceSkipping = skipping; });
   AddOnOff(command, "--jitter", "composite per-pixel sample jitter (slice mapper; default off)",
     [&](bool on) { options.jitter = on; });
+  AddOnOff(command, "--gpu-slices",
+    "composite proxy slices generated on the GPU (slice mapper;\n"
+    "default on; off = CPU-clipped slice polygons)",
+    [&](bool on) { options.gpuSlices = on; });
   AddChoice<bool>(command, "--gradients", "texture|on-the-fly",
     "shading gradients precomputed or by central differences\n"
     "(slice mapper; default texture)",

@@ -108,6 +108,7 @@ struct Options
   int emptySpaceSkipping = 3; // vtkAccelVolumeSliceMapper::SKIP_* (both by default)
   bool precomputeGradients = true;
   bool jitter = false;
+  bool gpuSlices = true; // --gpu-slices: composite proxy slices generated in the vertex stage
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

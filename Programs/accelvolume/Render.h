@@ -131,6 +131,7 @@ struct RenderResult
   int slabSamples = -1;             // slice mapper's samples per proxy fragment; -1 for others
   // Slice mapper, composite: what the accelerations did in the last frame (-1 = not used).
   int terminationPasses = -1;
+  bool slicesGenerated = false; // slice mapper: the last frame's slices built on the GPU
   double transparentLeafFraction = -1;
   double proxyAreaFraction = 1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping

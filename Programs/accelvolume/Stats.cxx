@@ -153,6 +153,7 @@ JsonDocument SliceObject(const RenderResult& result)
   o["proxy_polygons"] = s.proxyPolygons;
   o["boundary_faces"] = s.boundaryFaces;
   o["termination_passes"] = result.terminationPasses;
+  o["gpu_slices"] = result.slicesGenerated;
   o["bricks"] = s.bricks;
   o["bricks_drawn"] = s.bricksDrawn;
   o["brick_uploads"] = s.brickUploads;
@@ -223,9 +224,9 @@ void WriteStats(std::ostream& stream, const Options& options, vtkImageData* imag
   d["origin"] = Numbers(image->GetOrigin(), 3);
   d["scalar_range"] = Numbers(result.scalarRange, 2);
   d["window"] = Numbers(result.window, 2);
-  d["raysum_unit"] = optional(
-    options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast || smart,
-    JsonNumber(result.raysumUnit));
+  d["raysum_unit"] =
+    optional(options.mapper == MapperKind::Slice || options.mapper == MapperKind::RayCast || smart,
+      JsonNumber(result.raysumUnit));
   d["sample_distance"] = JsonNumber(result.sampleDistance);
   d["sample_distance_source"] = result.sampleDistanceSource;
   d["slices"] = optional(result.slices >= 0, result.slices);
@@ -291,10 +292,10 @@ std::string Summary(const Options& options, vtkImageData* image, const RenderRes
   if (result.shearWarpUsed)
   {
     const ShearWarpResult& w = result.shearWarp;
-    text << ", axis " << "xyz?"[w.principalAxis >= 0 && w.principalAxis < 3 ? w.principalAxis : 3]
-         << ", " << w.bandMs.size() << " bands on " << w.ranks << " rank"
-         << (w.ranks == 1 ? "" : "s") << ", imbalance " << w.imbalance << ", " << w.samples
-         << " samples";
+    text << ", axis "
+         << "xyz?"[w.principalAxis >= 0 && w.principalAxis < 3 ? w.principalAxis : 3] << ", "
+         << w.bandMs.size() << " bands on " << w.ranks << " rank" << (w.ranks == 1 ? "" : "s")
+         << ", imbalance " << w.imbalance << ", " << w.samples << " samples";
   }
   text << ", " << result.glBackend << " / " << result.glRenderer;
   if (!options.outPath.empty())

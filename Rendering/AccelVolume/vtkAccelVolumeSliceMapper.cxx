@@ -338,9 +338,8 @@ void vtkAccelVolumeSliceMapper::vtkInternals::ChooseSliceSpacing(
 
 void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeSliceMapper* self,
   vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
-  vtkVolumeProperty* property,
-  const double range[2], const vtkAccelVolumeSliceView& view, bool& skipEmptyLeaves,
-  vtkAccelVolumeSliceGeometryStats& geometryStats)
+  vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
+  bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& geometryStats)
 {
   const bool extremum =
     self->BlendMode == MAXIMUM_INTENSITY_BLEND || self->BlendMode == MINIMUM_INTENSITY_BLEND;
@@ -380,6 +379,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   geometry.BoundaryFaces = self->BoundaryRerendering != 0;
   geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
   geometry.Layout = &layout;
+  geometry.GenerateSlices = self->GPUSliceGeneration != 0;
   std::vector<accelvolume::Polygon> slicePlane;
   if (self->BlendMode == SLICE_BLEND)
   {
@@ -391,8 +391,23 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
       self->WarnNotApplicable("SliceFunction", planeError.c_str());
     }
   }
-  vtkAccelVolumeBuildSliceGeometry(geometry, this->Frame, this->Vertices, geometryStats);
-  if (composite)
+  vtkAccelVolumeBuildSliceGeometry(
+    geometry, this->Frame, this->Vertices, this->SliceRecords, geometryStats);
+  self->LastSlicesGenerated = this->Frame.GeneratedSlices;
+  this->AreaFractionPending = false;
+  if (composite && this->Frame.GeneratedSlices)
+  {
+    // Kept for GetLastProxyAreaFraction: the polygons are not clipped here to know it.
+    this->AreaFractionPending = true;
+    this->AreaRegions = view.Regions;
+    this->AreaClip = view.Clip;
+    this->AreaInput = geometry;
+    this->AreaInput.Regions = &this->AreaRegions;
+    this->AreaInput.Clip = &this->AreaClip;
+    this->AreaInput.Layout = nullptr;
+    this->AreaInput.SlicePlane = nullptr;
+  }
+  else if (composite)
   {
     self->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
   }
@@ -529,6 +544,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.ColourImage = this->ColourImage;
   frame.DepthImage = this->DepthImage;
   frame.Vertices = &this->Vertices;
+  frame.SliceRecords = &this->SliceRecords;
   return true;
 }
 

@@ -379,8 +379,26 @@ public:
   vtkGetMacro(OctreeLeafSize, int);
   /** Fraction of octree leaves found transparent in the last frame (-1 when unused). */
   vtkGetMacro(LastTransparentLeafFraction, double);
-  /** Composite: fraction of the slice area kept by the octree culling in the last frame. */
-  vtkGetMacro(LastProxyAreaFraction, double);
+  /**
+   * Composite: fraction of the slice area kept by the octree culling in the last frame (with
+   * slices generated on the GPU it is computed when asked, from the last frame's view).
+   */
+  double GetLastProxyAreaFraction();
+  ///@}
+
+  ///@{
+  /**
+   * Composite: generate the proxy slices in the vertex stage (default on): one instanced draw
+   * per batch of slices, the CPU sending only each slice's depth and its octree-culled box, so
+   * a frame's CPU cost does not grow with the slice polygons. Used for an unbricked volume
+   * without cropping or clip planes; otherwise (and when off) the CPU clips the slice polygons.
+   * Both sample the same points (the fragment stage places samples from the slice depth).
+   */
+  vtkSetMacro(GPUSliceGeneration, vtkTypeBool);
+  vtkGetMacro(GPUSliceGeneration, vtkTypeBool);
+  vtkBooleanMacro(GPUSliceGeneration, vtkTypeBool);
+  /** Whether the last frame's slices were generated on the GPU. */
+  vtkGetMacro(LastSlicesGenerated, bool);
   ///@}
 
   ///@{
@@ -476,6 +494,8 @@ protected:
   int OctreeLeafSize = 8;
   double LastTransparentLeafFraction = -1.0;
   double LastProxyAreaFraction = 1.0;
+  vtkTypeBool GPUSliceGeneration = 1;
+  bool LastSlicesGenerated = false;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 

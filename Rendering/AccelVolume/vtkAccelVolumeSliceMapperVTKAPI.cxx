@@ -76,6 +76,16 @@ bool vtkAccelVolumeSliceMapper::UsesLabelMap() const
     this->BlendMode == COMPOSITE_BLEND;
 }
 
+double vtkAccelVolumeSliceMapper::GetLastProxyAreaFraction()
+{
+  if (this->Internals->AreaFractionPending)
+  {
+    this->Internals->AreaFractionPending = false;
+    this->LastProxyAreaFraction = vtkAccelVolumeSliceKeptAreaFraction(this->Internals->AreaInput);
+  }
+  return this->LastProxyAreaFraction;
+}
+
 void vtkAccelVolumeSliceMapper::GetReductionRatio(double ratio[3])
 {
   ratio[0] = ratio[1] = ratio[2] = 1.0;

@@ -201,6 +201,52 @@ void BuildProjectionBrick(const vtkAccelVolumeSliceGeometryInput& input,
   }
 }
 
+// Composite slices for the vertex stage to generate: per slice its depth and box.
+void BuildGeneratedSlices(const vtkAccelVolumeSliceGeometryInput& input, Frame::BrickDraw& draw,
+  std::vector<float>& records, vtkAccelVolumeSliceGeometryStats& stats)
+{
+  const std::vector<accelvolume::SliceBox> slices =
+    accelvolume::ComputeSliceBoxes(input.Regions->front(), input.Rays.depthGradient,
+      input.Rays.depthOffset, input.Spacing, input.Phase, input.FrontToBack, input.NonEmpty);
+  records.resize(slices.size() * Frame::SliceRecordFloats);
+  float* record = records.data();
+  for (const accelvolume::SliceBox& slice : slices)
+  {
+    // The depth rounded as the CPU polygons' vertices carry it, so both sample alike.
+    record[0] = static_cast<float>(slice.depth - input.ReferenceDepth);
+    const std::array<float, 3> lower = ToFloats(slice.box.lower);
+    const std::array<float, 3> upper = ToFloats(slice.box.upper);
+    std::copy(lower.begin(), lower.end(), record + 1);
+    std::copy(upper.begin(), upper.end(), record + 4);
+    record[7] = 0.0f;
+    record += Frame::SliceRecordFloats;
+  }
+  const int count = static_cast<int>(slices.size());
+  Frame::Cell cell;
+  cell.Lower = ToFloats(input.VolumeBox.lower);
+  cell.Upper = ToFloats(input.VolumeBox.upper);
+  cell.SliceFirst = 0;
+  cell.SliceCount = count;
+  cell.FaceFirst = 0;
+  draw.SliceStarts.resize(static_cast<size_t>(count) + 1);
+  for (int k = 0; k <= count; ++k)
+  {
+    draw.SliceStarts[static_cast<size_t>(k)] = k;
+  }
+  stats.Slices += count;
+  stats.ProxyPolygons += count;
+  if (count > 0)
+  {
+    draw.Cells.push_back(cell);
+  }
+}
+
+bool CanGenerateSlices(const vtkAccelVolumeSliceGeometryInput& input)
+{
+  return input.GenerateSlices && input.Composite && !input.SlicePlane && input.Layout->Single() &&
+    input.Regions->size() == 1 && input.Clip->empty();
+}
+
 // SLICE_BLEND: the plane's polygons as the brick's cut faces (no slices).
 void BuildSlicePlaneBrick(const vtkAccelVolumeSliceGeometryInput& input,
   const accelvolume::Box* drawn, Frame::BrickDraw& draw, std::vector<float>& vertices,
@@ -233,13 +279,32 @@ void BuildSlicePlaneBrick(const vtkAccelVolumeSliceGeometryInput& input,
 }
 
 void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& input,
-  vtkAccelVolumeSliceFrame& frame, std::vector<float>& vertices,
+  vtkAccelVolumeSliceFrame& frame, std::vector<float>& vertices, std::vector<float>& sliceRecords,
   vtkAccelVolumeSliceGeometryStats& stats)
 {
   frame.Bricks.clear();
   vertices.clear();
+  sliceRecords.clear();
   stats = vtkAccelVolumeSliceGeometryStats();
   const accelvolume::BrickLayout& layout = *input.Layout;
+  frame.GeneratedSlices = CanGenerateSlices(input);
+  if (frame.GeneratedSlices)
+  {
+    frame.Bricked = false;
+    const accelvolume::Vec3& g = input.Rays.depthGradient;
+    frame.DepthGradient[0] = static_cast<float>(g.x);
+    frame.DepthGradient[1] = static_cast<float>(g.y);
+    frame.DepthGradient[2] = static_cast<float>(g.z);
+    frame.DepthOffset = static_cast<float>(input.Rays.depthOffset - input.ReferenceDepth);
+    Frame::BrickDraw draw = MakeBrickDraw(0, layout.bricks[0], false);
+    BuildGeneratedSlices(input, draw, sliceRecords, stats);
+    if (!draw.Cells.empty())
+    {
+      frame.Bricks.push_back(std::move(draw));
+    }
+    stats.KeptAreaFraction = -1.0;
+    return;
+  }
   const bool bricked = !layout.Single();
   frame.Bricked = bricked;
   std::vector<std::vector<accelvolume::Polygon>> faces(input.Regions->size());
@@ -295,4 +360,15 @@ void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& in
     }
   }
   stats.KeptAreaFraction = fullArea > 0 ? keptArea / fullArea : 1.0;
+}
+
+double vtkAccelVolumeSliceKeptAreaFraction(const vtkAccelVolumeSliceGeometryInput& input)
+{
+  if (!input.Regions || !input.Clip)
+  {
+    return 1.0;
+  }
+  return accelvolume::ComputeCompositeSlices(*input.Regions, *input.Clip, input.Rays.depthGradient,
+    input.Rays.depthOffset, input.Spacing, input.Phase, input.FrontToBack, input.NonEmpty)
+    .keptAreaFraction;
 }

@@ -88,6 +88,12 @@ public:
   bool HaveNonEmptyBoxes = false;
   std::string Renderer;
   std::vector<float> Vertices;
+  std::vector<float> SliceRecords; // generated slices (see vtkAccelVolumeSliceFrame)
+  // Generated slices: the last frame's view, for GetLastProxyAreaFraction on demand.
+  bool AreaFractionPending = false;
+  vtkAccelVolumeSliceGeometryInput AreaInput;
+  std::vector<accelvolume::Box> AreaRegions;
+  std::vector<accelvolume::HalfSpace> AreaClip;
   // RenderToImage's last images (RGBA8 colour; float window depth, 1 = nothing).
   vtkNew<vtkImageData> ColourImage;
   vtkNew<vtkImageData> DepthImage;

@@ -317,14 +317,50 @@ bool RunTerminationPass(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
   return true;
 }
 
+// The vertex stage: CPU polygons, or (generated slices) the variant that builds them.
+const char* SliceVertexSource(const vtkAccelVolumeSliceFrame& frame)
+{
+  static const std::string generated = []
+  {
+    std::string source = AccelVolumeSliceVS;
+    const std::string marker = "//VTK::System::Dec";
+    return source.replace(
+      source.find(marker), marker.size(), marker + "\n#define ACCELVOLUME_GENERATED_SLICES 1");
+  }();
+  return frame.GeneratedSlices ? generated.c_str() : AccelVolumeSliceVS;
+}
+
+// Generated slices: instance n of the next draw reads slice record first + n.
+void BindSliceRecords(vtkAccelVolumeSliceResources& resources, vtkShaderProgram* program, int first)
+{
+  using Frame = vtkAccelVolumeSliceFrame;
+  constexpr int Stride = Frame::SliceRecordFloats * sizeof(float);
+  const int base = first * Stride;
+  vtkOpenGLVertexArrayObject* array = resources.SliceArray;
+  vtkOpenGLBufferObject* buffer = resources.SliceRecordBuffer;
+  array->AddAttributeArrayWithDivisor(
+    program, buffer, "sliceDepth", base, Stride, VTK_FLOAT, 1, false, 1, false);
+  array->AddAttributeArrayWithDivisor(program, buffer, "sliceLower",
+    base + static_cast<int>(sizeof(float)), Stride, VTK_FLOAT, 3, false, 1, false);
+  array->AddAttributeArrayWithDivisor(program, buffer, "sliceUpper",
+    base + static_cast<int>(4 * sizeof(float)), Stride, VTK_FLOAT, 3, false, 1, false);
+}
+
 // Makes `program` current with the proxy vertex layout (slices and faces use different
 // variants, and the termination pass uses another program in between).
 void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
-  vtkShaderProgram* program, bool faces)
+  const vtkAccelVolumeSliceFrame& frame, vtkShaderProgram* program, bool faces)
 {
   window->GetShaderCache()->ReadyShaderProgram(program);
   resources.SliceArray->ShaderProgramChanged();
   resources.SliceArray->Bind();
+  if (frame.GeneratedSlices && !faces)
+  {
+    program->SetUniform3f("depthGradient", frame.DepthGradient);
+    program->SetUniformf("depthOffset", frame.DepthOffset);
+    BindSliceRecords(resources, program, 0);
+    return;
+  }
   constexpr int Stride = vtkAccelVolumeSliceFrame::VertexFloats * sizeof(float);
   resources.SliceArray->AddAttributeArray(
     program, resources.VertexBuffer, "vertexIndex", 0, Stride, VTK_FLOAT, 3, false);
@@ -334,6 +370,23 @@ void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     resources.SliceArray->AddAttributeArray(program, resources.VertexBuffer, "vertexDepth",
       3 * sizeof(float), Stride, VTK_FLOAT, 1, false);
   }
+}
+
+// Slices [first, first + count) of the frame's proxy geometry (vertices [first, first + count)
+// for CPU polygons).
+void DrawSlices(vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame,
+  vtkShaderProgram* program, int first, int count)
+{
+  if (!frame.GeneratedSlices)
+  {
+    glDrawArrays(GL_TRIANGLES, first, count);
+    return;
+  }
+  if (first != 0)
+  {
+    BindSliceRecords(resources, program, first);
+  }
+  glDrawArraysInstanced(GL_TRIANGLES, 0, vtkAccelVolumeSliceFrame::GeneratedSliceVertices, count);
 }
 
 void SetBrickUniforms(vtkShaderProgram* program, vtkTextureObject* texture,
@@ -347,7 +400,7 @@ void SetBrickUniforms(vtkShaderProgram* program, vtkTextureObject* texture,
 }
 
 // The slices (or cut faces) of one brick's cells, with `program` current.
-void DrawBrickCells(
+void DrawBrickCells(vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame,
   vtkShaderProgram* program, const vtkAccelVolumeSliceFrame::BrickDraw& brick, bool faces)
 {
   for (const vtkAccelVolumeSliceFrame::Cell& cell : brick.Cells)
@@ -358,7 +411,14 @@ void DrawBrickCells(
     {
       program->SetUniform3f("regionLower", cell.Lower.data());
       program->SetUniform3f("regionUpper", cell.Upper.data());
-      glDrawArrays(GL_TRIANGLES, first, count);
+      if (faces)
+      {
+        glDrawArrays(GL_TRIANGLES, first, count);
+      }
+      else
+      {
+        DrawSlices(resources, frame, program, first, count);
+      }
     }
   }
 }
@@ -374,8 +434,8 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
   while (first < sliceCount)
   {
     const int last = std::min(sliceCount, first + frame.TerminationInterval - slicesSinceMark);
-    glDrawArrays(
-      GL_TRIANGLES, brick.SliceStarts[first], brick.SliceStarts[last] - brick.SliceStarts[first]);
+    DrawSlices(resources, frame, program, brick.SliceStarts[first],
+      brick.SliceStarts[last] - brick.SliceStarts[first]);
     slicesSinceMark += last - first;
     slicesLeft -= last - first;
     first = last;
@@ -387,8 +447,7 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
         return false;
       }
       slicesSinceMark = 0;
-      window->GetShaderCache()->ReadyShaderProgram(program);
-      resources.SliceArray->Bind();
+      UseProgram(window, resources, frame, program, false);
     }
   }
   return true;
@@ -403,7 +462,7 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   const std::string sliceSource =
     vtkAccelVolumeSliceShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
   vtkShaderProgram* sliceProgram =
-    cache->ReadyShaderProgram(AccelVolumeSliceVS, sliceSource.c_str(), "");
+    cache->ReadyShaderProgram(SliceVertexSource(frame), sliceSource.c_str(), "");
   if (!sliceProgram)
   {
     error = "the slice shader did not compile";
@@ -447,7 +506,7 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
       return false;
     }
     texture->Activate();
-    UseProgram(window, resources, sliceProgram, false);
+    UseProgram(window, resources, frame, sliceProgram, false);
     SetBrickUniforms(sliceProgram, texture, brick);
     bool ok = true;
     if (terminate)
@@ -457,14 +516,14 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     }
     else
     {
-      DrawBrickCells(sliceProgram, brick, false);
+      DrawBrickCells(resources, frame, sliceProgram, brick, false);
     }
     resources.SliceArray->Release();
     if (ok && faceProgram)
     {
-      UseProgram(window, resources, faceProgram, true);
+      UseProgram(window, resources, frame, faceProgram, true);
       SetBrickUniforms(faceProgram, texture, brick);
-      DrawBrickCells(faceProgram, brick, true);
+      DrawBrickCells(resources, frame, faceProgram, brick, true);
       resources.SliceArray->Release();
     }
     texture->Deactivate();
@@ -627,7 +686,14 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     glDisablei(GL_BLEND, 0); // the depth test keeps the sample
   }
 
-  resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
+  if (!frame.Vertices->empty())
+  {
+    resources.VertexBuffer->Upload(*frame.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
+  }
+  if (frame.GeneratedSlices)
+  {
+    resources.SliceRecordBuffer->Upload(*frame.SliceRecords, vtkOpenGLBufferObject::ArrayBuffer);
+  }
   ActivateFrameTextures(resources, frame, true);
   // Per brick, slices then faces: every blend here but composite's is order-independent, and
   // composite has no faces.

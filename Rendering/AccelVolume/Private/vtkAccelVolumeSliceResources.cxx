@@ -668,6 +668,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->SceneDepthFullFormat = -2;
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->VertexBuffer->ReleaseGraphicsResources();
+  this->SliceRecordBuffer->ReleaseGraphicsResources();
   this->SliceArray->ReleaseGraphicsResources();
   this->ResolveArray->ReleaseGraphicsResources();
   this->UploadedScalars = nullptr;

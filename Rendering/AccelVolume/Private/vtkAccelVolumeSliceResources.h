@@ -159,6 +159,7 @@ public:
   vtkNew<vtkOpenGLFramebufferObject> ImageFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   vtkNew<vtkOpenGLBufferObject> VertexBuffer;
+  vtkNew<vtkOpenGLBufferObject> SliceRecordBuffer; // generated slices' depths and boxes
   vtkNew<vtkOpenGLVertexArrayObject> SliceArray;
   vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
 
