@@ -558,6 +558,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::DrawPasses(
   }
   vtkAccelVolumeSliceFrame& frame = this->Frame;
   this->Resources.Bricks.BeginFrame();
+  this->Resources.BeginFrameTimer(); // the passes' GPU time (ended in Render)
   const bool rendered = vtkAccelVolumeRenderSlicePasses(window, this->Resources, frame, passError);
   self->LastNumberOfTerminationPasses = frame.TerminationPasses;
   self->LastNumberOfBricks = static_cast<int>(this->Resources.GetBrickLayout().bricks.size());
@@ -652,10 +653,12 @@ void vtkAccelVolumeSliceMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   progress.Report(0.6); // passes issued; the GPU may still be working on them
 
-  // Wait for the GPU so the reported time is the frame's real cost.
-  glFinish();
+  // No wait for the GPU: the frame's time is its CPU time, or the GPU time of the latest frame
+  // the timer queries returned when that is longer.
+  internals.Resources.EndFrameTimer();
   timer->StopTimer();
-  this->LastRenderTime = timer->GetElapsedTime();
+  this->LastGPUTime = internals.Resources.GetLastGPUSeconds();
+  this->LastRenderTime = std::max(timer->GetElapsedTime(), this->LastGPUTime);
   if (!rendered && !internals.ReportedError)
   {
     internals.ReportedError = true;

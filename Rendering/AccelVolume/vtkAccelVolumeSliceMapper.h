@@ -464,7 +464,13 @@ public:
   vtkGetMacro(LastNumberOfSlices, int);
   vtkGetMacro(LastNumberOfProxyPolygons, int);
   vtkGetMacro(LastNumberOfBoundaryFaces, int);
-  // GetLastRenderTime (vtkAccelVolumeMapper) includes the GPU work: Render() waits for it.
+  /**
+   * GetLastRenderTime (vtkAccelVolumeMapper): the CPU time of the last Render(), or the GPU time
+   * of the latest frame that GL timer queries have returned (a frame or two back) when that is
+   * longer; Render() never waits for the GPU. GetLastGPUTime: that GPU time in seconds, -1
+   * until a query has returned or without timer queries.
+   */
+  vtkGetMacro(LastGPUTime, double);
   /** GL_RENDERER of the context that rendered last. */
   const char* GetOpenGLRenderer();
 
@@ -495,6 +501,7 @@ protected:
   double LastTransparentLeafFraction = -1.0;
   double LastProxyAreaFraction = 1.0;
   vtkTypeBool GPUSliceGeneration = 1;
+  double LastGPUTime = -1.0;
   bool LastSlicesGenerated = false;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;

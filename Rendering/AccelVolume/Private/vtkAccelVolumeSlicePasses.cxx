@@ -146,9 +146,15 @@ void SetSliceMapUniforms(vtkShaderProgram* program, const vtkAccelVolumeSliceFra
 std::string vtkAccelVolumeSliceShaderVariant(
   const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
 {
-  std::string text = source;
+  return vtkAccelVolumeSliceAssembleShader(
+    source, vtkAccelVolumeSliceShaderPrelude(frame, slabSamples, boundaryFace));
+}
+
+std::string vtkAccelVolumeSliceShaderPrelude(
+  const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace)
+{
   const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
-  const std::string prelude = "#define ACCELVOLUME_BLEND_" + BlendName(frame.BlendMode) +
+  return "#define ACCELVOLUME_BLEND_" + BlendName(frame.BlendMode) +
     "\n#define ACCELVOLUME_SLAB_SAMPLES " + std::to_string(slabSamples) +
     "\n#define ACCELVOLUME_BOUNDARY_FACE " + (boundaryFace ? "1" : "0") +
     "\n#define ACCELVOLUME_SHADE " + (composite && frame.Shade ? "1" : "0") +
@@ -169,9 +175,13 @@ std::string vtkAccelVolumeSliceShaderVariant(
     "\n#define ACCELVOLUME_COMPONENTS " + std::to_string(frame.Components) +
     "\n#define ACCELVOLUME_INDEPENDENT " + (frame.IndependentComponents ? "1" : "0") +
     "\n#define ACCELVOLUME_DEPTH_PASS " + std::to_string(composite ? frame.DepthPassStage : 0) +
-
     "\n#define ACCELVOLUME_MASK " +
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
+}
+
+std::string vtkAccelVolumeSliceAssembleShader(const char* source, const std::string& prelude)
+{
+  std::string text = source;
   const std::string part = "//ACCELVOLUME::ComponentsAndIsoSurfaces::Dec";
   const size_t partAt = text.find(part);
   if (partAt != std::string::npos)
@@ -284,8 +294,8 @@ void SetFrameUniforms(vtkShaderProgram* program, vtkAccelVolumeSliceResources& r
 bool RunTerminationPass(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame)
 {
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    AccelVolumeResolveVS, AccelVolumeTerminationFS, "");
+  vtkShaderProgram* program =
+    resources.ReadyProgram(window, AccelVolumeResolveVS, AccelVolumeTerminationFS, "");
   if (!program)
   {
     return false;
@@ -472,9 +482,8 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   vtkShaderProgram* faceProgram = nullptr;
   if (frame.BoundaryRerendering)
   {
-    const std::string faceSource =
-      vtkAccelVolumeSliceShaderVariant(AccelVolumeSliceFS, frame, 1, true);
-    faceProgram = cache->ReadyShaderProgram(AccelVolumeSliceVS, faceSource.c_str(), "");
+    faceProgram = resources.ReadyProgram(window, AccelVolumeSliceVS, AccelVolumeSliceFS,
+      vtkAccelVolumeSliceShaderPrelude(frame, 1, true));
     if (!faceProgram)
     {
       error = "the cut-face shader did not compile";

@@ -32,10 +32,8 @@ bool vtkAccelVolumeSliceResolve(vtkOpenGLRenderWindow* window,
   state->vtkglDisable(GL_DEPTH_TEST);
   state->vtkglBlendEquation(GL_FUNC_ADD);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  const std::string fragment =
-    vtkAccelVolumeSliceShaderVariant(AccelVolumeResolveFS, frame, 1, false);
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, fragment.c_str(), "");
+  vtkShaderProgram* program = resources.ReadyProgram(window, AccelVolumeResolveVS,
+    AccelVolumeResolveFS, vtkAccelVolumeSliceShaderPrelude(frame, 1, false));
   if (!program)
   {
     return false;
@@ -131,8 +129,8 @@ bool vtkAccelVolumeSliceCopySceneDepth(vtkOpenGLRenderWindow* window,
   vtkAccelVolumeCopyReadDepth(window, resources.SceneDepthFull, resources.DepthFramebuffer,
     depthFormat, frame.LowerLeft[0], frame.LowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   resources.SceneDepthFull->Activate();
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
+  vtkShaderProgram* program =
+    resources.ReadyProgram(window, AccelVolumeResolveVS, AccelVolumeDepthDownsampleFS, "");
   if (!program)
   {
     resources.SceneDepthFull->Deactivate();

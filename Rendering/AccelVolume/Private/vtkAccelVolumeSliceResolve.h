@@ -15,6 +15,11 @@ struct vtkAccelVolumeSliceFrame;
 /** A shader's source with the frame's variant #defines inserted after its #version. */
 std::string vtkAccelVolumeSliceShaderVariant(
   const char* source, const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace);
+/** The frame's variant #defines alone (a short string: the key of a program variant). */
+std::string vtkAccelVolumeSliceShaderPrelude(
+  const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace);
+/** A fragment source with a prelude from vtkAccelVolumeSliceShaderPrelude inserted. */
+std::string vtkAccelVolumeSliceAssembleShader(const char* source, const std::string& prelude);
 /** An accumulation target smaller than the viewport (image sample distance above 1). */
 bool vtkAccelVolumeSliceReducedTarget(const vtkAccelVolumeSliceFrame& frame);
 /** The average of 3-4 independent components needs 8 channels: a second target. */

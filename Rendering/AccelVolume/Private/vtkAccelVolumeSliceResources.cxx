@@ -1,6 +1,8 @@
 // GPU resources of the slice mapper: texture upload with exact integer encodings.
 #include "vtkAccelVolumeSliceResources.h"
 
+#include "vtkAccelVolumeSliceResolve.h"
+
 #include "vtkAccelVolumeDepthCopy.h"
 #include "vtkAccelVolumeMapperSupport.h"
 
@@ -11,7 +13,9 @@
 #include "vtkImageData.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkPiecewiseFunction.h"
@@ -669,9 +673,83 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->VertexBuffer->ReleaseGraphicsResources();
   this->SliceRecordBuffer->ReleaseGraphicsResources();
+  this->Programs.clear(); // the window's shader cache releases them
+  for (auto& timer : this->FrameTimers)
+  {
+    if (timer)
+    {
+      timer->ReleaseGraphicsResources();
+      timer.reset();
+    }
+  }
+  this->RunningTimer = -1;
   this->SliceArray->ReleaseGraphicsResources();
   this->ResolveArray->ReleaseGraphicsResources();
   this->UploadedScalars = nullptr;
   this->TableProperty = nullptr;
   this->Context = nullptr;
+}
+
+vtkShaderProgram* vtkAccelVolumeSliceResources::ReadyProgram(vtkOpenGLRenderWindow* window,
+  const char* vertex, const char* fragment, const std::string& prelude)
+{
+  vtkOpenGLShaderCache* cache = window->GetShaderCache();
+  // The sources are the module's static strings: their addresses name them.
+  const std::string key = std::to_string(reinterpret_cast<std::uintptr_t>(vertex)) + ' ' +
+    std::to_string(reinterpret_cast<std::uintptr_t>(fragment)) + ' ' + prelude;
+  const auto found = this->Programs.find(key);
+  if (found != this->Programs.end() && found->second.Cache == cache)
+  {
+    return cache->ReadyShaderProgram(found->second.Program);
+  }
+  const std::string source =
+    prelude.empty() ? std::string(fragment) : vtkAccelVolumeSliceAssembleShader(fragment, prelude);
+  vtkShaderProgram* program = cache->ReadyShaderProgram(vertex, source.c_str(), "");
+  if (program)
+  {
+    this->Programs[key] = CachedProgram{ cache, program };
+  }
+  return program;
+}
+
+void vtkAccelVolumeSliceResources::BeginFrameTimer()
+{
+  this->EndFrameTimer(); // one a failed frame left running
+  if (!vtkOpenGLRenderTimer::IsSupported())
+  {
+    return;
+  }
+  // Harvest finished queries (Ready never blocks), then time this frame with an idle one; when
+  // all are still in flight this frame goes untimed.
+  for (int t = 0; t < 3; ++t)
+  {
+    std::unique_ptr<vtkOpenGLRenderTimer>& timer = this->FrameTimers[t];
+    if (!timer)
+    {
+      timer.reset(new vtkOpenGLRenderTimer);
+    }
+    if (timer->Stopped() && timer->Ready())
+    {
+      this->LastGPUSeconds = timer->GetElapsedSeconds();
+      timer->Reset();
+    }
+  }
+  for (int t = 0; t < 3; ++t)
+  {
+    if (!this->FrameTimers[t]->Started())
+    {
+      this->FrameTimers[t]->Start();
+      this->RunningTimer = t;
+      return;
+    }
+  }
+}
+
+void vtkAccelVolumeSliceResources::EndFrameTimer()
+{
+  if (this->RunningTimer >= 0)
+  {
+    this->FrameTimers[this->RunningTimer]->Stop();
+    this->RunningTimer = -1;
+  }
 }

@@ -15,6 +15,8 @@
 #include "slicing/Bricking.h"
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,8 +24,11 @@ class vtkDataArray;
 class vtkImageData;
 class vtkOpenGLBufferObject;
 class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderTimer;
 class vtkOpenGLRenderWindow;
+class vtkOpenGLShaderCache;
 class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
@@ -137,6 +142,15 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
+  /**
+   * The program of (vertex source, fragment source, prelude from
+   * vtkAccelVolumeSliceShaderPrelude, "" for none), made through the window's shader cache on
+   * its first use and only bound after that: the cache would otherwise substitute and hash the
+   * whole source on every call, every frame. Null when it does not compile.
+   */
+  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window, const char* vertex,
+    const char* fragment, const std::string& prelude);
+
   vtkAccelVolumeBrickCache Bricks;
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
@@ -164,6 +178,29 @@ public:
   vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
 
   static constexpr int TableSize = 1024;
+
+  /**
+   * GPU time of the frames, from GL timer queries read only once the GPU has them (the render
+   * path never waits): BeginFrameTimer / EndFrameTimer around a frame's GL work; the seconds of
+   * the latest frame whose result came in, or -1 before any did (or without timer queries).
+   */
+  void BeginFrameTimer();
+  void EndFrameTimer();
+  double GetLastGPUSeconds() const { return this->LastGPUSeconds; }
+
+private:
+  std::unique_ptr<vtkOpenGLRenderTimer> FrameTimers[3];
+  int RunningTimer = -1;
+  double LastGPUSeconds = -1.0;
+
+  struct CachedProgram
+  {
+    vtkOpenGLShaderCache* Cache = nullptr;
+    vtkShaderProgram* Program = nullptr;
+  };
+  std::map<std::string, CachedProgram> Programs;
+
+public:
   float ScalarScale = 1.0f;
   float ScalarBias = 0.0f;
   int Dimensions[3] = { 0, 0, 0 };
