@@ -468,11 +468,8 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
 bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame, std::string& error)
 {
-  vtkOpenGLShaderCache* cache = window->GetShaderCache();
-  const std::string sliceSource =
-    vtkAccelVolumeSliceShaderVariant(AccelVolumeSliceFS, frame, frame.SlabSamples, false);
-  vtkShaderProgram* sliceProgram =
-    cache->ReadyShaderProgram(SliceVertexSource(frame), sliceSource.c_str(), "");
+  vtkShaderProgram* sliceProgram = resources.ReadyProgram(window, SliceVertexSource(frame),
+    AccelVolumeSliceFS, vtkAccelVolumeSliceShaderPrelude(frame, frame.SlabSamples, false));
   if (!sliceProgram)
   {
     error = "the slice shader did not compile";
@@ -480,7 +477,14 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   }
   SetFrameUniforms(sliceProgram, resources, frame);
   vtkShaderProgram* faceProgram = nullptr;
-  if (frame.BoundaryRerendering)
+  // Only frames with cut faces (composite has none) need the face program and its uniforms.
+  const bool anyFaces = std::any_of(frame.Bricks.begin(), frame.Bricks.end(),
+    [](const vtkAccelVolumeSliceFrame::BrickDraw& brick)
+    {
+      return std::any_of(brick.Cells.begin(), brick.Cells.end(),
+        [](const vtkAccelVolumeSliceFrame::Cell& cell) { return cell.FaceCount > 0; });
+    });
+  if (frame.BoundaryRerendering && anyFaces)
   {
     faceProgram = resources.ReadyProgram(window, AccelVolumeSliceVS, AccelVolumeSliceFS,
       vtkAccelVolumeSliceShaderPrelude(frame, 1, true));
