@@ -223,5 +223,16 @@ TEST(CompositeSlices, SliceBoxesAreTheClippedPolygons)
       ++g;
     }
     EXPECT_NEAR(cpuArea, gpuArea, 1e-6 * (1 + cpuArea));
+    // Every generated slice has a section; only slivers separate the two counts.
+    for (; g < gpu.size(); ++g)
+    {
+      EXPECT_LT(PlaneBoxSectionArea(gradient, 1.5, gpu[g].depth, gpu[g].box), 1e-6);
+    }
+    size_t withSection = 0;
+    for (const SliceBox& slice : gpu)
+    {
+      withSection += PlaneBoxSectionArea(gradient, 1.5, slice.depth, slice.box) > 1e-6 ? 1 : 0;
+    }
+    EXPECT_EQ(withSection, cpu.slices.size());
   }
 }

@@ -346,7 +346,7 @@ void BindSliceRecords(vtkAccelVolumeSliceResources& resources, vtkShaderProgram*
   using Frame = vtkAccelVolumeSliceFrame;
   constexpr int Stride = Frame::SliceRecordFloats * sizeof(float);
   const int base = first * Stride;
-  vtkOpenGLVertexArrayObject* array = resources.SliceArray;
+  vtkOpenGLVertexArrayObject* array = resources.GeneratedSliceArray;
   vtkOpenGLBufferObject* buffer = resources.SliceRecordBuffer;
   array->AddAttributeArrayWithDivisor(
     program, buffer, "sliceDepth", base, Stride, VTK_FLOAT, 1, false, 1, false);
@@ -362,15 +362,18 @@ void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   const vtkAccelVolumeSliceFrame& frame, vtkShaderProgram* program, bool faces)
 {
   window->GetShaderCache()->ReadyShaderProgram(program);
-  resources.SliceArray->ShaderProgramChanged();
-  resources.SliceArray->Bind();
   if (frame.GeneratedSlices && !faces)
   {
+    // Their own array: instanced attributes (divisor 1) must never meet the polygons' layout.
+    resources.GeneratedSliceArray->ShaderProgramChanged();
+    resources.GeneratedSliceArray->Bind();
     program->SetUniform3f("depthGradient", frame.DepthGradient);
     program->SetUniformf("depthOffset", frame.DepthOffset);
     BindSliceRecords(resources, program, 0);
     return;
   }
+  resources.SliceArray->ShaderProgramChanged();
+  resources.SliceArray->Bind();
   constexpr int Stride = vtkAccelVolumeSliceFrame::VertexFloats * sizeof(float);
   resources.SliceArray->AddAttributeArray(
     program, resources.VertexBuffer, "vertexIndex", 0, Stride, VTK_FLOAT, 3, false);
@@ -379,6 +382,19 @@ void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     // Cut faces sample where they are and never read the slice depth (compiled out there).
     resources.SliceArray->AddAttributeArray(program, resources.VertexBuffer, "vertexDepth",
       3 * sizeof(float), Stride, VTK_FLOAT, 1, false);
+  }
+}
+
+void ReleaseSliceArray(
+  vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame, bool faces)
+{
+  if (frame.GeneratedSlices && !faces)
+  {
+    resources.GeneratedSliceArray->Release();
+  }
+  else
+  {
+    resources.SliceArray->Release();
   }
 }
 
@@ -451,7 +467,7 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
     first = last;
     if (slicesSinceMark == frame.TerminationInterval && slicesLeft > 0)
     {
-      resources.SliceArray->Release();
+      ReleaseSliceArray(resources, frame, false);
       if (!RunTerminationPass(window, resources, frame))
       {
         return false;
@@ -531,7 +547,7 @@ bool DrawBricks(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
     {
       DrawBrickCells(resources, frame, sliceProgram, brick, false);
     }
-    resources.SliceArray->Release();
+    ReleaseSliceArray(resources, frame, false);
     if (ok && faceProgram)
     {
       UseProgram(window, resources, frame, faceProgram, true);

@@ -684,6 +684,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->RunningTimer = -1;
   this->SliceArray->ReleaseGraphicsResources();
+  this->GeneratedSliceArray->ReleaseGraphicsResources();
   this->ResolveArray->ReleaseGraphicsResources();
   this->UploadedScalars = nullptr;
   this->TableProperty = nullptr;

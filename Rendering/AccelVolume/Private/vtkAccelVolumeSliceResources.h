@@ -175,6 +175,7 @@ public:
   vtkNew<vtkOpenGLBufferObject> VertexBuffer;
   vtkNew<vtkOpenGLBufferObject> SliceRecordBuffer; // generated slices' depths and boxes
   vtkNew<vtkOpenGLVertexArrayObject> SliceArray;
+  vtkNew<vtkOpenGLVertexArrayObject> GeneratedSliceArray; // instanced slice records
   vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
 
   static constexpr int TableSize = 1024;

@@ -226,7 +226,16 @@ std::vector<SliceBox> ComputeSliceBoxes(const Box& region, const Vec3& depthGrad
     SliceBox slice;
     slice.depth = phase + static_cast<double>(k) * spacing;
     slice.box = bounds ? Intersection(region, bounds->At(k)) : region;
-    if (!slice.box.IsEmpty())
+    if (slice.box.IsEmpty())
+    {
+      continue;
+    }
+    // The cut box may lie beside the plane (the boxes that reach this depth do so outside the
+    // region): no section, as the CPU path finds its clipped polygon empty. Kept slices then
+    // match, and so do early termination's batches of them.
+    const std::pair<double, double> boxDepths =
+      bounds ? DepthRange(slice.box, depthGradient, depthOffset) : depths;
+    if (boxDepths.first < slice.depth && slice.depth < boxDepths.second)
     {
       slices.push_back(slice);
     }

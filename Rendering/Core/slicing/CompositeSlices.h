@@ -56,7 +56,7 @@ struct SliceBox
 // The slices of one box-shaped region without clip planes, as ComputeCompositeSlices orders and
 // culls them, each as (depth, box): the slice's polygon is the plane's section of its box, which
 // is exactly the polygon ComputeCompositeSlices clips (up to the slivers it drops). Slices whose
-// box is empty are left out.
+// box is empty or not crossed by the plane are left out.
 std::vector<SliceBox> ComputeSliceBoxes(const Box& region, const Vec3& depthGradient,
   double depthOffset, double spacing, double phase, bool frontToBack, const std::vector<Box>* nonEmpty);
 
