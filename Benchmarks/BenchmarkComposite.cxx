@@ -11,10 +11,14 @@
 // and rendering every configuration (interleaved, so load from other processes hits all alike);
 // a frame is Render() plus a 1x1 read-back so the GPU work is included. Image check: grey-level
 // RMS of ERT+both against base (should be ~0: both are exact up to the 0.99 threshold) and
-// against VTK's image, at the fixed oblique view.
+// against VTK's image, at the fixed oblique view. Work per frame (issue 17): one untimed frame
+// per configuration counted by GL queries (fragment-shader invocations, fragments reaching
+// blending) and VTK's pixels x samples per ray; the CPU cost under Mesa's no-op driver from
+// `accelvolume render` children with GALLIUM_NOOP=1 (--noop-frames; 0 skips it).
 // JSON: composite.json of the report (scripts/bench_report/composite.py renders it).
 #include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
+#include "CompositeCounts.h"
 #include "Options.h"
 #include "TransferFunctions.h"
 
@@ -47,7 +51,8 @@ struct Config
   std::string Label;
   bool Vtk = false; // vtkGPUVolumeRayCastMapper instead of the slice mapper
   bool Ert = false;
-  int Ess = 0; // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
+  int Ess = 0;           // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
+  bool GpuSlices = true; // proxy slices generated in the vertex stage (else CPU polygons)
 };
 
 const std::vector<Config>& Configs()
@@ -58,6 +63,7 @@ const std::vector<Config>& Configs()
     { "ess_fragment", "ERT off, ESS fragment", false, false, 1 },
     { "ess_octree", "ERT off, ESS octree", false, false, 2 },
     { "ert_both", "ERT on, ESS both (default)", false, true, 3 },
+    { "cpu_slices", "ERT on, ESS both, CPU slice polygons", false, true, 3, false },
     { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
   };
   return configs;
@@ -71,6 +77,9 @@ struct ConfigResult
   int TerminationPasses = 0;
   double TransparentLeafFraction = -1;
   int Slices = 0;
+  FrameCounts Counts; // one untimed frame at the fixed view
+  RaySamples RayWork; // VTK: pixels x samples per ray at the fixed view
+  double NoOpMs = -1; // CPU cost per frame under GALLIUM_NOOP=1 (child process), -1 = not run
   double Fps() const { return this->FrameMs.empty() ? std::nan("") : 1000.0 / Median(FrameMs); }
   // Median over the interleaved rounds of (other's frame / this frame of the same round): the
   // speed-up over `other`, robust to load from other processes on a shared machine.
@@ -132,6 +141,10 @@ Json CaseJson(const CaseResult& c)
     { "rms_ours_vs_vtk", Round(c.OursVsVtk.Rms(), 3) },
     { "max_ours_vs_vtk", Round(c.OursVsVtk.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
     { "configs", Json::array() } };
+  const double oursNoOp = c.Find("ert_both").NoOpMs;
+  const double vtkNoOp = c.Find("vtk").NoOpMs;
+  out["noop_ours_over_vtk"] =
+    oursNoOp > 0 && vtkNoOp > 0 ? Json(Round(oursNoOp / vtkNoOp, 3)) : Json();
   for (const ConfigResult& r : c.Results)
   {
     Json config = { { "id", r.Cfg.Id }, { "label", r.Cfg.Label },
@@ -143,7 +156,23 @@ Json CaseJson(const CaseResult& c)
       config["slices"] = r.Slices;
       config["termination_passes"] = r.TerminationPasses;
       config["transparent_leaf_fraction"] = Round(r.TransparentLeafFraction, 4);
+      // One fragment = one volume sample; each one that passes is blended into the RGBA32F
+      // accumulation target (16 bytes read, 16 written).
+      config["fragments_shaded"] = r.Counts.FragmentsShaded;
+      config["samples_fetched"] = r.Counts.FragmentsShaded;
+      config["fragments_blended"] = r.Counts.SamplesPassed;
+      config["bytes_blended"] = r.Counts.SamplesPassed < 0 ? -1 : 32 * r.Counts.SamplesPassed;
     }
+    else
+    {
+      // One fragment per covered pixel, its whole ray of samples, one RGBA8 blend.
+      config["fragments_shaded"] = r.Counts.FragmentsShaded;
+      config["ray_pixels"] = r.RayWork.Pixels;
+      config["samples_fetched"] = r.RayWork.Samples;
+      config["fragments_blended"] = r.Counts.SamplesPassed;
+      config["bytes_blended"] = 8 * r.RayWork.Pixels;
+    }
+    config["noop_ms"] = r.NoOpMs > 0 ? Json(Round(r.NoOpMs, 4)) : Json();
     config["frame_ms"] = RoundAll(r.FrameMs, 2);
     out["configs"].push_back(config);
   }
@@ -208,6 +237,18 @@ public:
     {
       this->Slice->SetEarlyRayTermination(cfg.Ert);
       this->Slice->SetEmptySpaceSkipping(cfg.Ess);
+      this->Slice->SetGPUSliceGeneration(cfg.GpuSlices);
+    }
+  }
+
+  // Counts of one frame of `r`'s configuration at the current view.
+  void CountWork(ConfigResult& r, int size, double sampleDistance)
+  {
+    this->Apply(r.Cfg);
+    r.Counts = CountFrame(this->Window);
+    if (r.Cfg.Vtk)
+    {
+      r.RayWork = CountRaySamples(this->Renderer, this->Bounds, size, sampleDistance);
     }
   }
 
@@ -275,6 +316,11 @@ public:
       ->expected(2)
       ->type_name("AZ EL");
     app
+      .add_option("--noop-frames", this->NoOpFrames,
+        "frames per configuration of the no-op-driver CPU column (accelvolume render on EGL "
+        "with GALLIUM_NOOP=1; 0 = skip)")
+      ->check(CLI::NonNegativeNumber);
+    app
       .add_option("--images", this->Images,
         "save PNGs of the quality-check view (base, "
         "ERT+both, VTK)")
@@ -306,6 +352,7 @@ private:
   int LargeFrames = 3;
   std::vector<double> View = { 30.0, 20.0 };
   std::string Images;
+  int NoOpFrames = 40;
 
   int FramesFor(int size) const
   {
@@ -313,7 +360,34 @@ private:
   }
   CaseResult RunCase(Scene& scene, vtkAccelVolumeHeadlessRenderWindow* window,
     const DatasetInfo& info, const std::string& tf, int size) const;
+  void RunNoOp(CaseResult& c, const DatasetInfo& info) const;
 };
+
+// The same case through the CLI under the no-op driver, one child per configuration.
+void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
+{
+  const std::string cli = FindCli();
+  if (this->NoOpFrames <= 0 || cli.empty())
+  {
+    return;
+  }
+  const auto number = [](double v) { return std::to_string(v); };
+  for (ConfigResult& r : c.Results)
+  {
+    std::vector<std::string> args = { "--input", info.File, "--spacing", number(info.Spacing[0]),
+      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", "composite", "--tf", c.Tf,
+      "--shade", "on", "--sample-distance", number(info.MinSpacing), "--size",
+      std::to_string(c.Size), std::to_string(c.Size), "--azimuth", number(this->View[0]),
+      "--elevation", number(this->View[1]) };
+    const std::vector<std::string> mapper = r.Cfg.Vtk
+      ? std::vector<std::string>{ "--mapper", "vtk-gpu" }
+      : std::vector<std::string>{ "--mapper", "slice", "--ert", r.Cfg.Ert ? "on" : "off", "--ess",
+          std::vector<std::string>{ "none", "fragment", "octree", "both" }[r.Cfg.Ess],
+          "--gpu-slices", r.Cfg.GpuSlices ? "on" : "off" };
+    args.insert(args.end(), mapper.begin(), mapper.end());
+    r.NoOpMs = NoOpMsPerFrame(cli, args, this->NoOpFrames);
+  }
+}
 
 CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRenderWindow* window,
   const DatasetInfo& info, const std::string& tf, int size) const
@@ -345,6 +419,10 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
       target = Capture(window, size, size);
     }
   }
+  for (ConfigResult& r : c.Results)
+  {
+    scene.CountWork(r, size, info.MinSpacing);
+  }
   c.ErtBothVsBase = CompareVisible(baseImage, bothImage, size, size);
   c.OursVsVtk = CompareVisible(vtkImage, bothImage, size, size);
   if (!this->Images.empty())
@@ -365,6 +443,7 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
       scene.TimeFrame(r, size);
     }
   }
+  this->RunNoOp(c, info);
   c.Seconds = SecondsSince(caseStart);
   return c;
 }

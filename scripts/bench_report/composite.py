@@ -81,6 +81,7 @@ def build(data, ctx):
                  value_range([c.value for c in section.speedups if c.group == TECHNIQUES[3][1]]) +
                  "; ours vs VTK's GPU ray caster " +
                  value_range([c.value for c in section.peers]) + ".\n")
+    text += _work_table(cases)
     text += _details(data, cases)
     text += f"\n{PAPER}\n"
     chart = ctx.chart_path("composite_speedups.png")
@@ -92,6 +93,44 @@ def build(data, ctx):
         text += f"\n![Composite speed-ups per case]({ctx.link(chart)})\n"
     section.markdown = text
     return section
+
+
+def _count(value):
+    """A count in millions, '-' when the query was not available."""
+    value = number(value)
+    return "-" if value != value or value < 0 else f"{value / 1e6:.2f}M"
+
+
+def _work_table(cases):
+    """The no-op driver's CPU cost per frame and the hardware-independent counts."""
+    rows = []
+    for index, case in enumerate(cases):
+        configs = by_id(case, "configs", "id", f"{FILE} cases[{index}]")
+        ours, vtk = configs.get("ert_both", {}), configs.get("vtk", {})
+        base, cpu = configs.get("base", {}), configs.get("cpu_slices", {})
+        if ours.get("noop_ms") is None and ours.get("fragments_shaded") is None:
+            continue
+        rows.append([case.get("dataset", "?"), case.get("tf", "?"), case.get("size", "?"),
+                     fmt_ms(ours.get("noop_ms")), fmt_ms(cpu.get("noop_ms")),
+                     fmt_ms(base.get("noop_ms")), fmt_ms(vtk.get("noop_ms")),
+                     fmt_x(ratio(ours.get("noop_ms"), vtk.get("noop_ms"))),
+                     _count(ours.get("samples_fetched")), _count(vtk.get("samples_fetched")),
+                     fmt_x(ratio(ours.get("samples_fetched"), vtk.get("samples_fetched"))),
+                     _count(ours.get("bytes_blended")), _count(vtk.get("bytes_blended"))])
+    if not rows:
+        return ""
+    header = ["Dataset", "TF", "Size", "No-op ours ms", "No-op CPU slices ms", "No-op base ms",
+              "No-op VTK ms", "Ours / VTK CPU", "Ours samples", "VTK samples",
+              "Ours / VTK samples", "Ours bytes blended", "VTK bytes blended"]
+    return ("\nPer-frame CPU cost under Mesa's no-op driver (`GALLIUM_NOOP=1`, EGL: every draw "
+            "dropped; `accelvolume render` children, median of `--noop-frames`) and the work of "
+            "one frame at the fixed view: ours counted by GL queries (fragment-shader "
+            "invocations = volume samples; fragments passing to blending x 32 bytes of the "
+            "RGBA32F target), VTK's as covered pixels x samples along each ray's chord (no "
+            "early termination: an upper bound) and one RGBA8 blend per pixel. On llvmpipe the "
+            "invocation count does not fall with early termination (it counts fragments the "
+            "depth test then rejects, and adds the termination passes); the blended count does.\n\n" +
+            table(header, rows, "lll" + "r" * (len(header) - 3)))
 
 
 def _details(data, cases):
