@@ -142,7 +142,7 @@ fi
 # shear-warp ~6 (171 s + 15 s per frame), cropping ~1, gallery ~0.5. Quick: one small case each,
 # one frame, small images.
 if [ "$quick" = 1 ]; then
-  composite_args=(--datasets engine --tfs tf2 --sizes 128 --frames 1 --large-frames 0)
+  composite_args=(--datasets engine --tfs tf2 --sizes 128 --frames 1 --large-frames 0 --noop-frames 10)
   raycast_args=(--quick --frames 1)
   octree_args=(--datasets engine,vessels --repeat 1 --frames 1 --phantom-size 64)
   shearwarp_args=(--datasets cthead --tfs tf2 --sizes 128 --frames 1)
