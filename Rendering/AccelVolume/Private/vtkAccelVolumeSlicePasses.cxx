@@ -385,6 +385,15 @@ void UseProgram(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   }
 }
 
+// Back to `program` after a termination pass: the vertex array keeps its attribute layout and
+// the program its uniforms, so binding both again suffices.
+void ResumeSlices(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, vtkShaderProgram* program)
+{
+  window->GetShaderCache()->ReadyShaderProgram(program);
+  (frame.GeneratedSlices ? resources.GeneratedSliceArray : resources.SliceArray)->Bind();
+}
+
 void ReleaseSliceArray(
   vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame, bool faces)
 {
@@ -408,11 +417,19 @@ void DrawSlices(vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSli
     glDrawArrays(GL_TRIANGLES, first, count);
     return;
   }
+  constexpr int vertices = vtkAccelVolumeSliceFrame::GeneratedSliceVertices;
+  // A base instance offsets the instanced records without re-specifying the attributes (which
+  // costs CPU per batch of early termination).
+  if (glDrawArraysInstancedBaseInstance)
+  {
+    glDrawArraysInstancedBaseInstance(GL_TRIANGLES, 0, vertices, count, static_cast<GLuint>(first));
+    return;
+  }
   if (first != 0)
   {
     BindSliceRecords(resources, program, first);
   }
-  glDrawArraysInstanced(GL_TRIANGLES, 0, vtkAccelVolumeSliceFrame::GeneratedSliceVertices, count);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, vertices, count);
 }
 
 void SetBrickUniforms(vtkShaderProgram* program, vtkTextureObject* texture,
@@ -473,7 +490,7 @@ bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResour
         return false;
       }
       slicesSinceMark = 0;
-      UseProgram(window, resources, frame, program, false);
+      ResumeSlices(window, resources, frame, program);
     }
   }
   return true;

@@ -178,14 +178,58 @@ SliceBoundsTable::SliceBoundsTable(const std::vector<Box>& boxes, const Vec3& de
     return;
   }
   this->First = first;
-  this->Bounds.assign(static_cast<size_t>(last - first + 1), EmptyBox());
+  // Each span is covered by two runs of 2^j slices (j = floor(log2 length)), which may overlap:
+  // the bounds are minima and maxima, so that is harmless. Level j's run at i is then split
+  // into level j - 1's runs at i and i + 2^(j-1), down to single slices: the same bounds as
+  // including each box at every slice of its span, in O(boxes + slices x log span).
+  const size_t count = static_cast<size_t>(last - first + 1);
+  long long longest = 1;
+  for (const auto& span : spans)
+  {
+    longest = std::max(longest, span.second - span.first + 1);
+  }
+  int levels = 1;
+  while ((2LL << (levels - 1)) <= longest)
+  {
+    ++levels;
+  }
+  std::vector<std::vector<Box>> runs(static_cast<size_t>(levels), std::vector<Box>());
+  for (int j = 0; j < levels; ++j)
+  {
+    runs[static_cast<size_t>(j)].assign(count - static_cast<size_t>((1LL << j) - 1), EmptyBox());
+  }
   for (size_t b = 0; b < widened.size(); ++b)
   {
-    for (long long k = spans[b].first; k <= spans[b].second; ++k)
+    const long long k0 = spans[b].first;
+    const long long k1 = spans[b].second;
+    if (k0 > k1)
     {
-      Include(this->Bounds[static_cast<size_t>(k - first)], widened[b]);
+      continue;
+    }
+    int j = 0;
+    while ((2LL << j) <= k1 - k0 + 1)
+    {
+      ++j;
+    }
+    std::vector<Box>& level = runs[static_cast<size_t>(j)];
+    Include(level[static_cast<size_t>(k0 - first)], widened[b]);
+    Include(level[static_cast<size_t>(k1 - (1LL << j) + 1 - first)], widened[b]);
+  }
+  for (int j = levels - 1; j > 0; --j)
+  {
+    const std::vector<Box>& level = runs[static_cast<size_t>(j)];
+    std::vector<Box>& below = runs[static_cast<size_t>(j - 1)];
+    const size_t half = static_cast<size_t>(1LL << (j - 1));
+    for (size_t i = 0; i < level.size(); ++i)
+    {
+      if (!level[i].IsEmpty())
+      {
+        Include(below[i], level[i]);
+        Include(below[i + half], level[i]);
+      }
     }
   }
+  this->Bounds = std::move(runs[0]);
 }
 
 Box SliceBoundsTable::At(long long k) const
