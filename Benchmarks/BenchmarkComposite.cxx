@@ -352,7 +352,7 @@ private:
   int LargeFrames = 3;
   std::vector<double> View = { 30.0, 20.0 };
   std::string Images;
-  int NoOpFrames = 40;
+  int NoOpFrames = 100;
 
   int FramesFor(int size) const
   {
