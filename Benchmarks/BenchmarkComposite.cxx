@@ -51,8 +51,9 @@ struct Config
   std::string Label;
   bool Vtk = false; // vtkGPUVolumeRayCastMapper instead of the slice mapper
   bool Ert = false;
-  int Ess = 0;           // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
-  bool GpuSlices = true; // proxy slices generated in the vertex stage (else CPU polygons)
+  int Ess = 0;            // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
+  bool GpuSlices = true;  // proxy slices generated in the vertex stage (else CPU polygons)
+  bool HalfFloat = false; // 16-bit float accumulation target
 };
 
 const std::vector<Config>& Configs()
@@ -64,6 +65,7 @@ const std::vector<Config>& Configs()
     { "ess_octree", "ERT off, ESS octree", false, false, 2 },
     { "ert_both", "ERT on, ESS both (default)", false, true, 3 },
     { "cpu_slices", "ERT on, ESS both, CPU slice polygons", false, true, 3, false },
+    { "half_float", "ERT on, ESS both, RGBA16F target", false, true, 3, true, true },
     { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
   };
   return configs;
@@ -103,7 +105,7 @@ struct CaseResult
   double Seconds = 0;
   std::vector<ConfigResult> Results; // in Configs() order
   // Grey-level (0..255) differences at the fixed view over pixels non-black in either image.
-  ErrorStats ErtBothVsBase, OursVsVtk;
+  ErrorStats ErtBothVsBase, OursVsVtk, HalfVsFull;
   const ConfigResult& Find(const std::string& id) const
   {
     for (const ConfigResult& r : this->Results)
@@ -139,7 +141,9 @@ Json CaseJson(const CaseResult& c)
     { "rms_ert_both_vs_base", Round(c.ErtBothVsBase.Rms(), 3) },
     { "max_ert_both_vs_base", Round(c.ErtBothVsBase.Max, 1) },
     { "rms_ours_vs_vtk", Round(c.OursVsVtk.Rms(), 3) },
-    { "max_ours_vs_vtk", Round(c.OursVsVtk.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
+    { "max_ours_vs_vtk", Round(c.OursVsVtk.Max, 1) },
+    { "rms_half_vs_full", Round(c.HalfVsFull.Rms(), 3) },
+    { "max_half_vs_full", Round(c.HalfVsFull.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
     { "configs", Json::array() } };
   const double oursNoOp = c.Find("ert_both").NoOpMs;
   const double vtkNoOp = c.Find("vtk").NoOpMs;
@@ -161,7 +165,9 @@ Json CaseJson(const CaseResult& c)
       config["fragments_shaded"] = r.Counts.FragmentsShaded;
       config["samples_fetched"] = r.Counts.FragmentsShaded;
       config["fragments_blended"] = r.Counts.SamplesPassed;
-      config["bytes_blended"] = r.Counts.SamplesPassed < 0 ? -1 : 32 * r.Counts.SamplesPassed;
+      const long long texelBytes = r.Cfg.HalfFloat ? 8 : 16;
+      config["bytes_blended"] =
+        r.Counts.SamplesPassed < 0 ? -1 : 2 * texelBytes * r.Counts.SamplesPassed;
     }
     else
     {
@@ -238,6 +244,7 @@ public:
       this->Slice->SetEarlyRayTermination(cfg.Ert);
       this->Slice->SetEmptySpaceSkipping(cfg.Ess);
       this->Slice->SetGPUSliceGeneration(cfg.GpuSlices);
+      this->Slice->SetHalfFloatTarget(cfg.HalfFloat);
     }
   }
 
@@ -383,7 +390,8 @@ void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
       ? std::vector<std::string>{ "--mapper", "vtk-gpu" }
       : std::vector<std::string>{ "--mapper", "slice", "--ert", r.Cfg.Ert ? "on" : "off", "--ess",
           std::vector<std::string>{ "none", "fragment", "octree", "both" }[r.Cfg.Ess],
-          "--gpu-slices", r.Cfg.GpuSlices ? "on" : "off" };
+          "--gpu-slices", r.Cfg.GpuSlices ? "on" : "off", "--half-float",
+          r.Cfg.HalfFloat ? "on" : "off" };
     args.insert(args.end(), mapper.begin(), mapper.end());
     r.NoOpMs = NoOpMsPerFrame(cli, args, this->NoOpFrames);
   }
@@ -407,15 +415,18 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   // Warm-up (texture upload, octree build / classification, shader compilation) and the
   // quality-check images, both at the fixed view.
   scene.SetView(this->View[0], this->View[1]);
-  std::vector<std::uint8_t> baseImage, bothImage, vtkImage;
+  std::vector<std::uint8_t> baseImage, bothImage, vtkImage, halfImage;
   for (ConfigResult& r : c.Results)
   {
     scene.Apply(r.Cfg);
     scene.RenderAndWait(size);
-    if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk)
+    if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk || r.Cfg.HalfFloat)
     {
       window->Render(); // a second frame: the first may include one-time work
-      auto& target = r.Cfg.Id == "base" ? baseImage : r.Cfg.Vtk ? vtkImage : bothImage;
+      auto& target = r.Cfg.Id == "base" ? baseImage
+        : r.Cfg.Vtk                     ? vtkImage
+        : r.Cfg.HalfFloat               ? halfImage
+                                        : bothImage;
       target = Capture(window, size, size);
     }
   }
@@ -425,6 +436,7 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   }
   c.ErtBothVsBase = CompareVisible(baseImage, bothImage, size, size);
   c.OursVsVtk = CompareVisible(vtkImage, bothImage, size, size);
+  c.HalfVsFull = CompareVisible(bothImage, halfImage, size, size);
   if (!this->Images.empty())
   {
     std::error_code ec;

@@ -38,6 +38,7 @@ void ConfigureSlice(
   slice->SetPrecomputeGradients(options.precomputeGradients);
   slice->SetJittering(options.jitter);
   slice->SetGPUSliceGeneration(options.gpuSlices);
+  slice->SetHalfFloatTarget(options.halfFloatTarget);
   if (options.slabSamples > 0)
   {
     slice->SetSlabSamples(options.slabSamples);
@@ -205,6 +206,7 @@ void ReadSliceResult(vtkAccelVolumeSliceMapper* mapper, RenderResult& result)
   result.slabSamples = mapper->GetSlabSamples();
   result.terminationPasses = mapper->GetLastNumberOfTerminationPasses();
   result.slicesGenerated = mapper->GetLastSlicesGenerated();
+  result.halfFloatTarget = mapper->GetHalfFloatTarget() != 0;
   result.transparentLeafFraction = mapper->GetLastTransparentLeafFraction();
   result.proxyAreaFraction = mapper->GetLastProxyAreaFraction();
 }

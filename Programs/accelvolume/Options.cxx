@@ -339,6 +339,10 @@ void AddAccelerationFlags(CLI::App& command, Options& options)
     "composite proxy slices generated on the GPU (slice mapper;\n"
     "default on; off = CPU-clipped slice polygons)",
     [&](bool on) { options.gpuSlices = on; });
+  AddOnOff(command, "--half-float",
+    "accumulate in a 16-bit float target (slice mapper;\n"
+    "default off = 32-bit float)",
+    [&](bool on) { options.halfFloatTarget = on; });
   AddChoice<bool>(command, "--gradients", "texture|on-the-fly",
     "shading gradients precomputed or by central differences\n"
     "(slice mapper; default texture)",

@@ -109,6 +109,7 @@ struct Options
   bool precomputeGradients = true;
   bool jitter = false;
   bool gpuSlices = true; // --gpu-slices: composite proxy slices generated in the vertex stage
+  bool halfFloatTarget = false; // --half-float: 16-bit float accumulation target
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

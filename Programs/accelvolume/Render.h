@@ -132,6 +132,7 @@ struct RenderResult
   // Slice mapper, composite: what the accelerations did in the last frame (-1 = not used).
   int terminationPasses = -1;
   bool slicesGenerated = false; // slice mapper: the last frame's slices built on the GPU
+  bool halfFloatTarget = false; // slice mapper: 16-bit float accumulation
   double transparentLeafFraction = -1;
   double proxyAreaFraction = 1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping

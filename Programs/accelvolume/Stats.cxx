@@ -154,6 +154,7 @@ JsonDocument SliceObject(const RenderResult& result)
   o["boundary_faces"] = s.boundaryFaces;
   o["termination_passes"] = result.terminationPasses;
   o["gpu_slices"] = result.slicesGenerated;
+  o["half_float_target"] = result.halfFloatTarget;
   o["bricks"] = s.bricks;
   o["bricks_drawn"] = s.bricksDrawn;
   o["brick_uploads"] = s.brickUploads;

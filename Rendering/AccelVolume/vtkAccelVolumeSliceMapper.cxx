@@ -412,6 +412,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
     self->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
   }
   this->Frame.SlabSamples = geometry.SlabSamples;
+  this->Frame.HalfFloatTarget = self->HalfFloatTarget != 0;
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,

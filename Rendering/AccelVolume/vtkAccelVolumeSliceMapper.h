@@ -397,6 +397,21 @@ public:
   vtkSetMacro(GPUSliceGeneration, vtkTypeBool);
   vtkGetMacro(GPUSliceGeneration, vtkTypeBool);
   vtkBooleanMacro(GPUSliceGeneration, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Accumulate into a half-float (16-bit) target instead of 32-bit float (default off): half
+   * the bytes read and written by every slice's blend, which is what framebuffer blending
+   * costs on GPUs with few blending units, at the precision of an 11-bit mantissa. Composite,
+   * MIP and MinIP only: raysum and average sums grow past 1 and keep the 32-bit target. The
+   * difference from the 32-bit target is tested (TestAccelVolumeHalfFloatTarget: at most one
+   * level of 255 on its scenes; real semi-transparent volumes reach about 3 levels, see
+   * docs/benchmarks/slice-gpu.md); off by default until a GPU measurement says it pays.
+   */
+  vtkSetMacro(HalfFloatTarget, vtkTypeBool);
+  vtkGetMacro(HalfFloatTarget, vtkTypeBool);
+  vtkBooleanMacro(HalfFloatTarget, vtkTypeBool);
   /** Whether the last frame's slices were generated on the GPU. */
   vtkGetMacro(LastSlicesGenerated, bool);
   ///@}
@@ -501,6 +516,7 @@ protected:
   double LastTransparentLeafFraction = -1.0;
   double LastProxyAreaFraction = 1.0;
   vtkTypeBool GPUSliceGeneration = 1;
+  vtkTypeBool HalfFloatTarget = 0;
   double LastGPUTime = -1.0;
   bool LastSlicesGenerated = false;
   double AdditiveUnitDistance = 0.0;

@@ -822,7 +822,10 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
   const int channels = fourChannels ? 4 : (extremum ? 1 : 2);
   // One query of the read framebuffer's depth format per frame (targets and copies use it).
   const int depthFormat = vtkAccelVolumeReadDepthFormat();
-  bool ok = resources.PrepareTargets(window, frame.Width, frame.Height, channels, depthFormat) &&
+  // Sums (raysum, average) grow past 1, where an 11-bit mantissa drops whole levels: 32-bit.
+  const bool halfFloat = frame.HalfFloatTarget && (composite || extremum);
+  bool ok = resources.PrepareTargets(
+              window, frame.Width, frame.Height, channels, depthFormat, halfFloat) &&
     resources.PrepareImageTargets(window, frame.Width, frame.Height, frame.RenderToImage) &&
     resources.PrepareExtraTargets(window, frame.Width, frame.Height,
       DependentExtreme(frame) || frame.DepthPassStage != 0,

@@ -51,6 +51,7 @@ struct vtkAccelVolumeSliceFrame
 
   int BlendMode = 0; // vtkVolumeMapper blend mode (MIP, MinIP, additive, average)
   int SlabSamples = 1;
+  bool HalfFloatTarget = false; // accumulation targets in 16-bit floats
   int Width = 0; // accumulation target: the viewport, divided by the image sample distance
   int Height = 0;
   int ViewportWidth = 0; // the renderer's viewport in window pixels

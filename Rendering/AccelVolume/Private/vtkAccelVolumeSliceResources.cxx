@@ -25,6 +25,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -360,10 +361,11 @@ bool vtkAccelVolumeSliceResources::UpdateTransferFunction2D(
   return true;
 }
 
-bool vtkAccelVolumeSliceResources::PrepareTargets(
-  vtkOpenGLRenderWindow* window, int width, int height, int channels, int depthFormat)
+bool vtkAccelVolumeSliceResources::PrepareTargets(vtkOpenGLRenderWindow* window, int width,
+  int height, int channels, int depthFormat, bool halfFloat)
 {
   if (!this->Accumulation->GetHandle() || this->SceneDepthFormat != depthFormat ||
+    this->AccumulationHalfFloat != halfFloat ||
     static_cast<int>(this->Accumulation->GetWidth()) != width ||
     static_cast<int>(this->Accumulation->GetHeight()) != height ||
     this->Accumulation->GetComponents() != channels)
@@ -372,10 +374,16 @@ bool vtkAccelVolumeSliceResources::PrepareTargets(
     // vtkTextureObject keeps the first internal format it chose: a new channel count (another
     // blend mode) needs it forgotten, or a 4-channel target stays R32F (an all-black frame).
     this->Accumulation->ResetFormatAndType();
+    if (halfFloat)
+    {
+      static const unsigned int halfFormats[4] = { GL_R16F, GL_RG16F, GL_RGB16F, GL_RGBA16F };
+      this->Accumulation->SetInternalFormat(halfFormats[std::clamp(channels, 1, 4) - 1]);
+    }
     if (!this->Accumulation->Create2D(width, height, channels, VTK_FLOAT, false))
     {
       return false;
     }
+    this->AccumulationHalfFloat = halfFloat;
     this->Accumulation->SetMinificationFilter(vtkTextureObject::Nearest);
     this->Accumulation->SetMagnificationFilter(vtkTextureObject::Nearest);
     this->SceneDepth->SetContext(window);

@@ -119,9 +119,12 @@ public:
    * Sizes the accumulation target (`channels` float channels: 1 for MIP/MinIP, 2 for the
    * integrating modes) and the scene depth copy to the viewport.
    */
-  /** depthFormat: vtkAccelVolumeReadDepthFormat()'s (-1: 32-bit float depth). */
-  bool PrepareTargets(
-    vtkOpenGLRenderWindow* window, int width, int height, int channels, int depthFormat);
+  /**
+   * depthFormat: vtkAccelVolumeReadDepthFormat()'s (-1: 32-bit float depth); halfFloat: 16-bit
+   * float channels instead of 32-bit.
+   */
+  bool PrepareTargets(vtkOpenGLRenderWindow* window, int width, int height, int channels,
+    int depthFormat, bool halfFloat);
   /** Sizes the full-viewport depth copy a reduced target (image sample distance > 1) needs. */
   bool PrepareFullDepth(vtkOpenGLRenderWindow* window, int width, int height, int depthFormat);
   /**
@@ -158,6 +161,7 @@ public:
   vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
   vtkNew<vtkTextureObject> Gradients;       // RGBA16: index-space gradient (rgb), value (a)
   float GradientScale = 1.0f;               // decoded gradient = (rgb * 2 - 1) * GradientScale
+  bool AccumulationHalfFloat = false;
   vtkNew<vtkTextureObject> Accumulation;
   vtkNew<vtkTextureObject> SceneDepth;
   vtkNew<vtkTextureObject> SceneDepthFull;             // viewport-sized, for a reduced target only
