@@ -98,6 +98,22 @@ vtkSmartPointer<vtkImageData> MakeNoiseBox()
   return image;
 }
 
+// Colours over the noise values, nearest sampling, opacity 0.1 at 1 rising to `maxOpacity`.
+void SetNoiseProperty(vtkVolumeProperty* property, double maxOpacity)
+{
+  vtkNew<vtkColorTransferFunction> colours;
+  colours->AddRGBPoint(1, 1.0, 0.1, 0.0);
+  colours->AddRGBPoint(128, 0.0, 1.0, 0.2);
+  colours->AddRGBPoint(255, 0.1, 0.2, 1.0);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.0);
+  opacity->AddPoint(1, 0.1);
+  opacity->AddPoint(255, maxOpacity);
+  property->SetColor(colours);
+  property->SetScalarOpacity(opacity);
+  property->SetInterpolationTypeToNearest();
+}
+
 // A slice's sample positions must depend only on the pixel and the slice depth, never on the
 // proxy polygon that covers the pixel. Nearest sampling of random voxels turns any move of a
 // sample across a texel boundary into a full colour change, so the images with and without
@@ -119,17 +135,7 @@ bool CheckSamplePositions(vtkImageData* image, bool perspective)
       pass == 0 ? vtkAccelVolumeSliceMapper::SKIP_NONE : vtkAccelVolumeSliceMapper::SKIP_OCTREE);
     vtkNew<vtkVolume> volume;
     volume->SetMapper(mapper);
-    vtkNew<vtkColorTransferFunction> colours;
-    colours->AddRGBPoint(1, 1.0, 0.1, 0.0);
-    colours->AddRGBPoint(128, 0.0, 1.0, 0.2);
-    colours->AddRGBPoint(255, 0.1, 0.2, 1.0);
-    vtkNew<vtkPiecewiseFunction> opacity;
-    opacity->AddPoint(0, 0.0);
-    opacity->AddPoint(1, 0.1);
-    opacity->AddPoint(255, 0.4);
-    volume->GetProperty()->SetColor(colours);
-    volume->GetProperty()->SetScalarOpacity(opacity);
-    volume->GetProperty()->SetInterpolationTypeToNearest();
+    SetNoiseProperty(volume->GetProperty(), 0.4);
     vtkNew<vtkRenderer> renderer;
     renderer->AddVolume(volume);
     vtkNew<vtkRenderWindow> window;
@@ -202,17 +208,7 @@ bool CheckGeneratedSlices(vtkImageData* image, bool perspective, Crop crop)
     }
     vtkNew<vtkVolume> volume;
     volume->SetMapper(mapper);
-    vtkNew<vtkColorTransferFunction> colours;
-    colours->AddRGBPoint(1, 1.0, 0.1, 0.0);
-    colours->AddRGBPoint(128, 0.0, 1.0, 0.2);
-    colours->AddRGBPoint(255, 0.1, 0.2, 1.0);
-    vtkNew<vtkPiecewiseFunction> opacity;
-    opacity->AddPoint(0, 0.0);
-    opacity->AddPoint(1, 0.1);
-    opacity->AddPoint(255, 0.6);
-    volume->GetProperty()->SetColor(colours);
-    volume->GetProperty()->SetScalarOpacity(opacity);
-    volume->GetProperty()->SetInterpolationTypeToNearest();
+    SetNoiseProperty(volume->GetProperty(), 0.6);
     vtkNew<vtkRenderer> renderer;
     renderer->AddVolume(volume);
     vtkNew<vtkRenderWindow> window;
@@ -240,8 +236,8 @@ bool CheckGeneratedSlices(vtkImageData* image, bool perspective, Crop crop)
     crop == Crop::None ? "" : (crop == Crop::SubVolume ? ", sub-volume crop" : ", fence crop");
   std::cout << "generated vs CPU slices, " << (perspective ? "perspective" : "parallel") << cropName
             << ": max |diff| " << d.maximum << ", pixels differing " << d.fractionAbove
-            << ", generated " << generated[0] << "/" << generated[1] << ", lit channels "
-            << covered << (same && paths && drawn ? "" : "  FAILED") << "\n";
+            << ", generated " << generated[0] << "/" << generated[1] << ", lit channels " << covered
+            << (same && paths && drawn ? "" : "  FAILED") << "\n";
   return same && paths && drawn;
 }
 
