@@ -262,11 +262,6 @@ std::string FileKey(const std::string& key)
   return std::regex_replace(key, std::regex("[^A-Za-z0-9_.-]"), "_");
 }
 
-std::string Quote(const std::string& text)
-{
-  return "'" + std::regex_replace(text, std::regex("'"), "'\\''") + "'";
-}
-
 #ifndef ACCELVOLUME_MPIEXEC
 #define ACCELVOLUME_MPIEXEC ""
 #define ACCELVOLUME_MPIEXEC_NUMPROC_FLAG "-n"
@@ -289,12 +284,12 @@ bool LaunchMpi(const Options& options, const std::string& dataset, int ranks,
   const std::string log = dir + "/" + dataset + "_" + std::to_string(ranks) + ".log";
   std::string command = std::string("timeout 3600 ") + ACCELVOLUME_MPIEXEC + " " +
     ACCELVOLUME_MPIEXEC_NUMPROC_FLAG + " " + std::to_string(ranks) + " " +
-    ACCELVOLUME_MPIEXEC_PREFLAGS + " " + Quote(exe) + " " + ACCELVOLUME_MPIEXEC_POSTFLAGS;
+    ACCELVOLUME_MPIEXEC_PREFLAGS + " " + ShellQuote(exe) + " " + ACCELVOLUME_MPIEXEC_POSTFLAGS;
   for (const std::string& argument : WorkerArguments(options, dataset, dir))
   {
-    command += " " + Quote(argument);
+    command += " " + ShellQuote(argument);
   }
-  command += " > " + Quote(log) + " 2>&1";
+  command += " > " + ShellQuote(log) + " 2>&1";
   const auto start = Clock::now();
   const int status = std::system(command.c_str());
   const std::string json = dir + "/" + dataset + "_" + std::to_string(ranks) + ".json";

@@ -1,4 +1,5 @@
 #include "CompositeCounts.h"
+#include "BenchmarkHarness.h"
 
 #include <vtkCamera.h>
 #include <vtkMatrix4x4.h>
@@ -150,32 +151,17 @@ std::string FindCli()
   return fs::exists(cli, ec) ? cli.string() : std::string();
 }
 
-namespace
-{
-
-std::string Quote(const std::string& text)
-{
-  std::string out = "'";
-  for (char c : text)
-  {
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return out + "'";
-}
-
-} // namespace
-
 double NoOpMsPerFrame(const std::string& cli, const std::vector<std::string>& args, int frames)
 {
   const fs::path stats =
     fs::temp_directory_path() / ("accelvolume-noop-" + std::to_string(::getpid()) + ".json");
   std::ostringstream command;
-  command << "GALLIUM_NOOP=1 ACCELVOLUME_GL=egl " << Quote(cli) << " render";
+  command << "GALLIUM_NOOP=1 ACCELVOLUME_GL=egl " << ShellQuote(cli) << " render";
   for (const std::string& arg : args)
   {
-    command << ' ' << Quote(arg);
+    command << ' ' << ShellQuote(arg);
   }
-  command << " --gl egl --frames " << frames << " --stats " << Quote(stats.string())
+  command << " --gl egl --frames " << frames << " --stats " << ShellQuote(stats.string())
           << " >/dev/null 2>&1";
   double ms = -1.0;
   if (std::system(command.str().c_str()) == 0)

@@ -34,6 +34,7 @@ set(_av_private_sources
   vtkAccelVolumeOctreeGPUBuilder
   vtkAccelVolumeRenderProgress
   vtkAccelVolumeScalarEncoding
+  vtkAccelVolumeSliceDraw
   vtkAccelVolumeSliceGeometry
   vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses

@@ -39,6 +39,11 @@ double MsSince(Clock::time_point start)
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+std::string ShellQuote(const std::string& text)
+{
+  return "'" + std::regex_replace(text, std::regex("'"), "'\\''") + "'";
+}
+
 double ProcessCpuMs()
 {
   rusage usage{};

@@ -43,6 +43,8 @@ double SecondsSince(Clock::time_point start);
 double MsSince(Clock::time_point start);
 // User + system CPU time of the whole process (every thread) in milliseconds.
 double ProcessCpuMs();
+// `text` as one word of a POSIX shell command line (for child processes run by std::system).
+std::string ShellQuote(const std::string& text);
 
 // --- repetition statistics ----------------------------------------------------------------------
 double Median(std::vector<double> values); // NaN when empty

@@ -412,7 +412,6 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
     self->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
   }
   this->Frame.SlabSamples = geometry.SlabSamples;
-  this->Frame.HalfFloatTarget = self->HalfFloatTarget != 0;
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,
@@ -511,6 +510,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.TerminationInterval = self->EarlyRayTerminationInterval;
   frame.TerminationThreshold = static_cast<float>(self->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
+  frame.HalfFloatTarget = self->HalfFloatTarget != 0;
   frame.TransferFunction2D =
     composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
   if (frame.TransferFunction2D)
