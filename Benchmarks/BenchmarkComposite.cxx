@@ -54,6 +54,7 @@ struct Config
   int Ess = 0;            // vtkAccelVolumeSliceMapper::SKIP_*: 0 none, 1 fragment, 2 octree, 3 both
   bool GpuSlices = true;  // proxy slices generated in the vertex stage (else CPU polygons)
   bool HalfFloat = false; // 16-bit float accumulation target
+  int SlabSamples = 1;    // slice depths composited per fragment (one blend per slab)
 };
 
 const std::vector<Config>& Configs()
@@ -66,6 +67,8 @@ const std::vector<Config>& Configs()
     { "ert_both", "ERT on, ESS both (default)", false, true, 3 },
     { "cpu_slices", "ERT on, ESS both, CPU slice polygons", false, true, 3, false },
     { "half_float", "ERT on, ESS both, RGBA16F target", false, true, 3, true, true },
+    { "slab4", "ERT on, ESS both, 4-sample composite slabs", false, true, 3, false, false, 4 },
+    { "slab8", "ERT on, ESS both, 8-sample composite slabs", false, true, 3, false, false, 8 },
     { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
   };
   return configs;
@@ -79,9 +82,10 @@ struct ConfigResult
   int TerminationPasses = 0;
   double TransparentLeafFraction = -1;
   int Slices = 0;
-  FrameCounts Counts; // one untimed frame at the fixed view
-  RaySamples RayWork; // VTK: pixels x samples per ray at the fixed view
-  double NoOpMs = -1; // CPU cost per frame under GALLIUM_NOOP=1 (child process), -1 = not run
+  FrameCounts Counts;   // one untimed frame at the fixed view
+  RaySamples RayWork;   // VTK: pixels x samples per ray at the fixed view
+  double NoOpMs = -1;   // CPU cost per frame under GALLIUM_NOOP=1 (child process), -1 = not run
+  ErrorStats VsDefault; // slabs: grey-level difference from the default's image (fixed view)
   double Fps() const { return this->FrameMs.empty() ? std::nan("") : 1000.0 / Median(FrameMs); }
   // Median over the interleaved rounds of (other's frame / this frame of the same round): the
   // speed-up over `other`, robust to load from other processes on a shared machine.
@@ -163,11 +167,18 @@ Json CaseJson(const CaseResult& c)
       // One fragment = one volume sample; each one that passes is blended into the RGBA32F
       // accumulation target (16 bytes read, 16 written).
       config["fragments_shaded"] = r.Counts.FragmentsShaded;
-      config["samples_fetched"] = r.Counts.FragmentsShaded;
+      // A slab fragment fetches up to SlabSamples samples (fewer at the region's edges).
+      config["samples_fetched"] =
+        r.Counts.FragmentsShaded < 0 ? -1 : r.Counts.FragmentsShaded * r.Cfg.SlabSamples;
       config["fragments_blended"] = r.Counts.SamplesPassed;
       const long long texelBytes = r.Cfg.HalfFloat ? 8 : 16;
       config["bytes_blended"] =
         r.Counts.SamplesPassed < 0 ? -1 : 2 * texelBytes * r.Counts.SamplesPassed;
+      if (r.Cfg.SlabSamples > 1)
+      {
+        config["rms_vs_default"] = Round(r.VsDefault.Rms(), 3);
+        config["max_vs_default"] = Round(r.VsDefault.Max, 1);
+      }
     }
     else
     {
@@ -245,6 +256,7 @@ public:
       this->Slice->SetEmptySpaceSkipping(cfg.Ess);
       this->Slice->SetGPUSliceGeneration(cfg.GpuSlices);
       this->Slice->SetHalfFloatTarget(cfg.HalfFloat);
+      this->Slice->SetSlabSamples(cfg.SlabSamples);
     }
   }
 
@@ -391,7 +403,7 @@ void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
       : std::vector<std::string>{ "--mapper", "slice", "--ert", r.Cfg.Ert ? "on" : "off", "--ess",
           std::vector<std::string>{ "none", "fragment", "octree", "both" }[r.Cfg.Ess],
           "--gpu-slices", r.Cfg.GpuSlices ? "on" : "off", "--half-float",
-          r.Cfg.HalfFloat ? "on" : "off" };
+          r.Cfg.HalfFloat ? "on" : "off", "--slab-samples", std::to_string(r.Cfg.SlabSamples) };
     args.insert(args.end(), mapper.begin(), mapper.end());
     r.NoOpMs = NoOpMsPerFrame(cli, args, this->NoOpFrames);
   }
@@ -416,11 +428,17 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   // quality-check images, both at the fixed view.
   scene.SetView(this->View[0], this->View[1]);
   std::vector<std::uint8_t> baseImage, bothImage, vtkImage, halfImage;
+  std::vector<std::vector<std::uint8_t>> slabImages; // in Configs() order
   for (ConfigResult& r : c.Results)
   {
     scene.Apply(r.Cfg);
     scene.RenderAndWait(size);
-    if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk || r.Cfg.HalfFloat)
+    if (r.Cfg.SlabSamples > 1)
+    {
+      window->Render();
+      slabImages.push_back(Capture(window, size, size));
+    }
+    else if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk || r.Cfg.HalfFloat)
     {
       window->Render(); // a second frame: the first may include one-time work
       auto& target = r.Cfg.Id == "base" ? baseImage
@@ -437,6 +455,14 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   c.ErtBothVsBase = CompareVisible(baseImage, bothImage, size, size);
   c.OursVsVtk = CompareVisible(vtkImage, bothImage, size, size);
   c.HalfVsFull = CompareVisible(bothImage, halfImage, size, size);
+  size_t slab = 0;
+  for (ConfigResult& r : c.Results)
+  {
+    if (r.Cfg.SlabSamples > 1)
+    {
+      r.VsDefault = CompareVisible(bothImage, slabImages[slab++], size, size);
+    }
+  }
   if (!this->Images.empty())
   {
     std::error_code ec;

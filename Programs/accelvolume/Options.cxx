@@ -297,8 +297,9 @@ void AddAccelerationFlags(CLI::App& command, Options& options)
   AddOnOff(command, "--boundary-rerender", "re-render the cut faces (slice mapper; default on)",
     [&](bool on) { options.boundaryRerender = on; });
   AddBounded<int>(command, "--slab-samples", "N",
-    "MIP/MinIP slice depths sampled per proxy fragment (slice\n"
-    "mapper; 1 = classic slicing, the default)",
+    "slice depths sampled per proxy fragment, one blend per slab\n"
+    "(slice mapper: MIP, MinIP, composite; 1 = classic slicing,\n"
+    "the default)",
     1, 64, "", [&](int samples) { options.slabSamples = samples; });
   AddNumber(command, "--gpu-budget", "MIB",
     "GPU memory the volume's bricks may hold (slice mapper;\n"

@@ -343,15 +343,19 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
 {
   const bool extremum =
     self->BlendMode == MAXIMUM_INTENSITY_BLEND || self->BlendMode == MINIMUM_INTENSITY_BLEND;
-  // A binary mask is tested once per fragment: plain slices.
-  // Multi-component extremes keep several values per sample: plain slices too.
-  const int slabSamples =
-    extremum && !self->MaskInput && !this->UsedGhostMask && this->Frame.Components == 1
-    ? self->SlabSamples
-    : 1;
   const bool composite = vtkAccelVolumeCompositeLike(self->BlendMode);
   const bool transferFunction2D = self->BlendMode == COMPOSITE_BLEND &&
     property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
+  // Composite slabs: plain samples of one cropping region (depth passes, iso-surfaces, slice
+  // planes and labels sample per fragment; a depth image wants each sample's own depth).
+  const bool compositeSlabs = self->BlendMode == COMPOSITE_BLEND && view.Regions.size() == 1 &&
+    !self->UsesDepthPass() && !self->UsesLabelMap() && !self->RenderToImage;
+  // A binary mask is tested once per fragment: plain slices.
+  // Multi-component samples keep several values per sample: plain slices too.
+  const int slabSamples = (extremum || compositeSlabs) && !self->MaskInput &&
+      !this->UsedGhostMask && this->Frame.Components == 1
+    ? self->SlabSamples
+    : 1;
   // The octree is classified with the 1D scalar opacity, which says nothing about a 2D table.
   // ... nor does it know a label map's colours (a binary mask only removes samples).
   // ... nor an iso-surface's colours, which come from the iso-values rather than the voxels.

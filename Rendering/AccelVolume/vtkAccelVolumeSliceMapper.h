@@ -132,13 +132,17 @@ public:
 
   ///@{
   /**
-   * MIP / MinIP only: slice depths each proxy-slice fragment samples along its ray (default 1,
-   * range 1..64). 1 is classic slicing, one polygon per sample plane. Larger values draw one
-   * proxy polygon per group of planes, covering the group's projection, and take the same
-   * samples in a loop, which cuts rasterisation and blending work at the price of a ray-box
-   * test per fragment; the samples, and so the image, stay those of plain slicing. On software GL
-   * the per-fragment test costs more than it saves, hence the default; GPUs with costly
-   * blending may gain (the benchmark report has the figures).
+   * MIP, MinIP and composite: slice depths each proxy-slice fragment samples along its ray
+   * (default 1, range 1..64). 1 is classic slicing, one polygon per sample plane. Larger values
+   * draw one proxy polygon per group of planes, covering the group's projection, and take the
+   * same samples in a loop (composite: composited front to back in registers, one blend per
+   * slab; early termination every EarlyRayTerminationInterval planes, in whole slabs), which
+   * cuts rasterisation and blending work at the price of a ray-box test per fragment; the
+   * samples stay those of plain slicing, so the image changes only by rounding. Composite slabs
+   * need one cropping region and single-component scalars without a mask, depth pass or depth
+   * image (plain slices otherwise); they are drawn from CPU polygons, not generated on the GPU
+   * (SetGPUSliceGeneration). Bricked volumes take plain slices. The benchmark report has the
+   * figures per renderer.
    */
   vtkSetClampMacro(SlabSamples, int, 1, 64);
   vtkGetMacro(SlabSamples, int);

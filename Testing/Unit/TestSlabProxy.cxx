@@ -369,4 +369,63 @@ TEST(SlabProxy, StackWithEyeCloseToOrInsideTheBox)
   CheckStack(51, 0.3, 4);
 }
 
+// Culled slabs (non-empty boxes given): every sample of a slice through a non-empty box inside
+// the region is still drawn by its slab, and no culled slab exceeds the unculled one.
+TEST(SlabProxy, CulledStackCoversNonEmptySamples)
+{
+  std::mt19937 random(61);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const Box box = RandomBox(random);
+    const std::vector<HalfSpace> clip = RandomClip(random, box);
+    const ViewRays rays = RandomRays(random, box, trial % 2 == 0, Uniform(random, 8, 40));
+    const double spacing = Uniform(random, 0.05, 0.5);
+    const double phase = Uniform(random, -3, 3);
+    const int perSlab = std::uniform_int_distribution<int>(2, 6)(random);
+    std::vector<Box> nonEmpty;
+    const int count = std::uniform_int_distribution<int>(0, 4)(random);
+    for (int b = 0; b < count; ++b)
+    {
+      const Vec3 a = RandomPoint(random, box), c = RandomPoint(random, box);
+      nonEmpty.push_back(Box{ { std::min(a.x, c.x), std::min(a.y, c.y), std::min(a.z, c.z) },
+        { std::max(a.x, c.x), std::max(a.y, c.y), std::max(a.z, c.z) } });
+    }
+    const SlabStack full = ComputeSlabProxyPolygons(box, clip, rays, spacing, phase, perSlab);
+    const SlabStack culled =
+      ComputeSlabProxyPolygons(box, clip, rays, spacing, phase, perSlab, &nonEmpty);
+    ASSERT_LE(culled.polygons.size(), full.polygons.size());
+    for (std::size_t i = 0; i < culled.polygons.size(); ++i)
+    {
+      const auto found = std::find(full.fronts.begin(), full.fronts.end(), culled.fronts[i]);
+      ASSERT_NE(found, full.fronts.end()) << "trial " << trial;
+      EXPECT_LE(PolygonArea(culled.polygons[i]),
+        PolygonArea(full.polygons[found - full.fronts.begin()]) * (1 + 1e-9) + 1e-12);
+    }
+    for (const Box& inner : nonEmpty)
+    {
+      const SliceStack slices = ComputeViewAlignedSlices(
+        inner, clip, rays.depthGradient, rays.depthOffset, spacing, phase, SliceOrder::FrontToBack);
+      for (std::size_t s = 0; s < slices.polygons.size(); ++s)
+      {
+        const long long m = std::llround((slices.depths[s] - phase) / spacing);
+        const long long k = m >= 0 ? m / perSlab : -((-m + perSlab - 1) / perSlab);
+        const double front = phase + static_cast<double>(k * perSlab) * spacing;
+        if (rays.perspective && front <= Depth(rays, rays.eye))
+        {
+          continue; // a raised front: covered by StackWithEyeCloseToOrInsideTheBox
+        }
+        const auto found = std::find(culled.fronts.begin(), culled.fronts.end(), front);
+        ASSERT_NE(found, culled.fronts.end()) << "trial " << trial << " sample " << m;
+        const Polygon& polygon = culled.polygons[found - culled.fronts.begin()];
+        for (const Vec3& p : slices.polygons[s])
+        {
+          EXPECT_LE(DistanceOutside(polygon, rays.depthGradient, Project(rays, p, front)),
+            1e-7 * (1 + Length(p)))
+            << "trial " << trial << " sample " << m;
+        }
+      }
+    }
+  }
+}
+
 } // namespace

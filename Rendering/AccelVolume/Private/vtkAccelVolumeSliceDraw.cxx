@@ -197,23 +197,36 @@ void DrawBrickCells(vtkAccelVolumeSliceResources& resources, const vtkAccelVolum
   }
 }
 
+// Proxy slices between termination passes: TerminationInterval sample planes, in whole slabs.
+int TerminationBatch(const vtkAccelVolumeSliceFrame& frame)
+{
+  return std::max(1, frame.TerminationInterval / std::max(1, frame.SlabSamples));
+}
+
 // Composite with early ray termination: a brick's slices in batches, with a mark pass after
-// every TerminationInterval slices of the frame (counted across bricks) but the last.
+// every TerminationBatch slices (or slabs) of the frame (counted across bricks) but the last.
 bool DrawCompositeBrick(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
   const vtkAccelVolumeSliceFrame& frame, vtkShaderProgram* program,
   const vtkAccelVolumeSliceFrame::BrickDraw& brick, int& slicesSinceMark, int& slicesLeft)
 {
   const int sliceCount = static_cast<int>(brick.SliceStarts.size()) - 1;
+  const int batch = TerminationBatch(frame);
+  if (!brick.Cells.empty())
+  {
+    // A composite brick is one cell; slabs bound their samples by its box.
+    program->SetUniform3f("regionLower", brick.Cells.front().Lower.data());
+    program->SetUniform3f("regionUpper", brick.Cells.front().Upper.data());
+  }
   int first = 0;
   while (first < sliceCount)
   {
-    const int last = std::min(sliceCount, first + frame.TerminationInterval - slicesSinceMark);
+    const int last = std::min(sliceCount, first + batch - slicesSinceMark);
     DrawSlices(resources, frame, program, brick.SliceStarts[first],
       brick.SliceStarts[last] - brick.SliceStarts[first]);
     slicesSinceMark += last - first;
     slicesLeft -= last - first;
     first = last;
-    if (slicesSinceMark == frame.TerminationInterval && slicesLeft > 0)
+    if (slicesSinceMark == batch && slicesLeft > 0)
     {
       ReleaseSliceArray(resources, frame);
       if (!RunTerminationPass(window, resources, frame))

@@ -103,12 +103,48 @@ bool TouchesAny(const accelvolume::Box& box, const std::vector<accelvolume::Box>
     [&box](const accelvolume::Box& other) { return !Intersect(box, other).IsEmpty(); });
 }
 
+// Composite slabs of one region, in compositing order: each fragment composites SlabSamples
+// slice depths along its ray, so one blend stands for that many slices. Octree culling cuts
+// each slab to the non-empty boxes' bounds over its depths.
+void BuildCompositeSlabs(const vtkAccelVolumeSliceGeometryInput& input,
+  const accelvolume::Box& region, Frame::BrickDraw& draw, std::vector<float>& vertices,
+  vtkAccelVolumeSliceGeometryStats& stats)
+{
+  accelvolume::SlabStack slabs = accelvolume::ComputeSlabProxyPolygons(
+    region, *input.Clip, input.Rays, input.Spacing, input.Phase, input.SlabSamples, input.NonEmpty);
+  const int count = static_cast<int>(slabs.polygons.size());
+  Frame::Cell cell;
+  cell.Lower = ToFloats(region.lower);
+  cell.Upper = ToFloats(region.upper);
+  cell.SliceFirst = VertexCount(vertices);
+  for (int n = 0; n < count; ++n)
+  {
+    const size_t slab = static_cast<size_t>(input.FrontToBack ? count - 1 - n : n);
+    draw.SliceStarts.push_back(VertexCount(vertices));
+    AppendProxyPolygon(slabs.polygons[slab], slabs.depths[slab] - input.ReferenceDepth, vertices);
+  }
+  draw.SliceStarts.push_back(VertexCount(vertices));
+  cell.SliceCount = VertexCount(vertices) - cell.SliceFirst;
+  cell.FaceFirst = VertexCount(vertices);
+  stats.Slices += count * input.SlabSamples;
+  stats.ProxyPolygons += count;
+  if (cell.SliceCount > 0)
+  {
+    draw.Cells.push_back(cell);
+  }
+}
+
 // Composite: one cell per brick, its slices depth-major.
 void BuildCompositeBrick(const vtkAccelVolumeSliceGeometryInput& input,
   const std::vector<accelvolume::Box>& regions, Frame::BrickDraw& draw,
   std::vector<float>& vertices, vtkAccelVolumeSliceGeometryStats& stats, double& fullArea,
   double& keptArea)
 {
+  if (input.SlabSamples > 1 && regions.size() == 1)
+  {
+    BuildCompositeSlabs(input, regions.front(), draw, vertices, stats);
+    return;
+  }
   // Octree culling, geometry part: slices are clipped to the non-empty octree boxes' bounds at
   // their depth; what is cut lies in transparent leaves (image unchanged).
   const accelvolume::CompositeSlices composited =
@@ -244,7 +280,7 @@ void BuildGeneratedSlices(const vtkAccelVolumeSliceGeometryInput& input, Frame::
 bool CanGenerateSlices(const vtkAccelVolumeSliceGeometryInput& input)
 {
   return input.GenerateSlices && input.Composite && !input.SlicePlane && input.Layout->Single() &&
-    input.Regions->size() == 1 && input.Clip->empty();
+    input.Regions->size() == 1 && input.Clip->empty() && input.SlabSamples <= 1;
 }
 
 // SLICE_BLEND: the plane's polygons as the brick's cut faces (no slices).

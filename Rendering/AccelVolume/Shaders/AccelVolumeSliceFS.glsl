@@ -2,7 +2,7 @@
 // Proxy slice / boundary face fragment stage: samples the volume once and writes the
 // blend mode's accumulation value into an RG32F target (R: value, G: weight or coverage).
 // A prelude defines exactly one of ACCELVOLUME_BLEND_{MAXIMUM,MINIMUM,ADDITIVE,AVERAGE},
-// ACCELVOLUME_SLAB_SAMPLES (slice depths per fragment, MIP/MinIP), ACCELVOLUME_BOUNDARY_FACE
+// ACCELVOLUME_SLAB_SAMPLES (slice depths per fragment: MIP, MinIP, composite), ACCELVOLUME_BOUNDARY_FACE
 // (0: proxy slices, 1: cut faces) and ACCELVOLUME_PROJECTIVE_SLICES (1: the projection's w
 // depends on eye x or y, so slice points need a division). They are compile-time constants
 // because llvmpipe pays for every branch and loop it cannot resolve while compiling.
@@ -285,6 +285,83 @@ bool maskHides(vec3 point)
 }
 #endif
 
+#if defined(ACCELVOLUME_BLEND_COMPOSITE) && ACCELVOLUME_COMPONENTS == 1
+// One composite sample of single-component scalars at an index point, premultiplied and its
+// opacity corrected for `step`; false when it is skipped (a transparent leaf or sample).
+bool compositeSample(vec3 samplePosition, vec3 rayDirection, float step, out vec4 premultiplied)
+{
+  premultiplied = vec4(0.0);
+#if ACCELVOLUME_SKIP_OCTREE
+  // A transparent leaf (every voxel its samples read maps to opacity 0) adds nothing:
+  // one nearest fetch of the leaf grid replaces the volume fetch and the shading.
+  vec3 leaf = clamp(floor(samplePosition / leafSize), vec3(0.0), leafGridMaximum);
+  if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
+  {
+    return false;
+  }
+#endif
+#if ACCELVOLUME_TF2D
+  float scalar2D = normalizedScalarAt(samplePosition);
+  vec4 classified = vec4(0.0);
+#else
+  vec4 classified = classify(normalizedScalarAt(samplePosition));
+#endif
+#if ACCELVOLUME_MASK == 2
+  // Label map: a labelled voxel takes its label's colour and opacity, blended with the
+  // property's by maskBlendFactor (vtkGPUVolumeRayCastMapper's rule).
+  float label = floor(maskAt(indexPosition) * 255.0 + 0.5);
+  if (label > 0.0 && maskBlendFactor > 0.0)
+  {
+    float u = (clamp(normalizedScalarAt(samplePosition), 0.0, 1.0) * (tableSize - 1.0) + 0.5) /
+      tableSize;
+    vec4 labelled = texture(labelTable, vec2(u, (label + 0.5) / 256.0));
+    classified = mix(classified, labelled, maskBlendFactor);
+  }
+#endif
+#if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
+  // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
+  if (classified.a <= 0.0)
+  {
+    return false;
+  }
+#endif
+#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
+#if ACCELVOLUME_GRADIENT_TEXTURE
+  vec3 indexGradient =
+    (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
+#else
+  vec3 indexGradient = centralDifferences(center);
+#endif
+  vec3 eyeGradient = normalMatrix * indexGradient;
+#endif
+#if ACCELVOLUME_TF2D
+  // Value x gradient-magnitude classification (the paper's 2D transfer function).
+  float magnitude2D = length(indexGradient * gradientAxisScale) * scalarRangeWidth / gradient2DMaximum;
+  classified =
+    texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
+#if ACCELVOLUME_SKIP_TRANSPARENT
+  if (classified.a <= 0.0)
+  {
+    return false;
+  }
+#endif
+#endif
+#if ACCELVOLUME_GRADIENT_OPACITY
+  // Gradient magnitude as VTK's GPU mapper computes it (data units per mean voxel step).
+  float magnitude = length(indexGradient * gradientAxisScale) * scalarRangeWidth;
+  float g = (clamp(magnitude / gradientTableMaximum, 0.0, 1.0) * 1023.0 + 0.5) / 1024.0;
+  classified.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
+#endif
+#if ACCELVOLUME_SHADE
+  classified.rgb = shade(classified.rgb, eyeGradient, rayDirection);
+#endif
+  float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);
+  premultiplied = vec4(classified.rgb * alpha, alpha);
+  return true;
+}
+#endif
+
 void main()
 {
 #if ACCELVOLUME_BOUNDARY_FACE
@@ -489,75 +566,44 @@ void main()
   }
   gl_FragData[0] = premultiplied;
   ACCELVOLUME_WRITE_DEPTH(true);
-#else
-#if ACCELVOLUME_SKIP_OCTREE
-  // A transparent leaf (every voxel its samples read maps to opacity 0) adds nothing:
-  // one nearest fetch of the leaf grid replaces the volume fetch and the shading.
-  vec3 leaf = clamp(floor(samplePosition / leafSize), vec3(0.0), leafGridMaximum);
-  if (texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5)
+#elif ACCELVOLUME_SLAB_SAMPLES > 1
+  // Slab: this fragment composites the next slabSamples slice depths along its ray, front to
+  // back in registers, and blends once for them all. Samples outside the region or behind
+  // geometry are skipped, which keeps the sample set of plain slicing.
+  vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);
+  float here = dot(eyePosition - rayOrigin, rayDirection);
+  vec2 interval = regionInterval(rayOrigin, rayDirection);
+  float enter = interval.x - 1.0e-3 * step;
+  float exit = min(interval.y, sceneDistance(rayOrigin, rayDirection)) + 1.0e-3 * step;
+  vec3 indexStep = (mat3(eyeToIndex) * rayDirection) * step;
+  vec3 slabFront = eyePosition;
+  vec4 accumulated = vec4(0.0);
+  for (int j = 0; j < ACCELVOLUME_SLAB_SAMPLES; ++j)
+  {
+    float t = here + float(j) * step;
+    // Positional lights read the sample's eye point.
+    eyePosition = slabFront + rayDirection * (float(j) * step);
+    ACCELVOLUME_PRECISE vec3 position = samplePosition + float(j) * indexStep;
+    vec4 premultiplied;
+    if (t >= enter && t <= exit && compositeSample(position, rayDirection, step, premultiplied))
+    {
+      accumulated += (1.0 - accumulated.a) * premultiplied;
+    }
+  }
+  if (accumulated.a <= 0.0)
   {
     discard;
   }
-#endif
-#if ACCELVOLUME_TF2D
-  float scalar2D = normalizedScalarAt(samplePosition);
-  vec4 classified = vec4(0.0);
+  gl_FragData[0] = accumulated;
+  ACCELVOLUME_WRITE_DEPTH(true);
 #else
-  vec4 classified = classify(normalizedScalarAt(samplePosition));
-#endif
-#if ACCELVOLUME_MASK == 2
-  // Label map: a labelled voxel takes its label's colour and opacity, blended with the
-  // property's by maskBlendFactor (vtkGPUVolumeRayCastMapper's rule).
-  float label = floor(maskAt(indexPosition) * 255.0 + 0.5);
-  if (label > 0.0 && maskBlendFactor > 0.0)
-  {
-    float u = (clamp(normalizedScalarAt(samplePosition), 0.0, 1.0) * (tableSize - 1.0) + 0.5) /
-      tableSize;
-    vec4 labelled = texture(labelTable, vec2(u, (label + 0.5) / 256.0));
-    classified = mix(classified, labelled, maskBlendFactor);
-  }
-#endif
-#if ACCELVOLUME_SKIP_TRANSPARENT && !ACCELVOLUME_TF2D
-  // Per-fragment skipping: a transparent sample needs no gradient and no lighting.
-  if (classified.a <= 0.0)
+  vec4 premultiplied;
+  if (!compositeSample(samplePosition, rayDirection, step, premultiplied))
   {
     discard;
   }
-#endif
-#if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
-#if ACCELVOLUME_GRADIENT_TEXTURE
-  vec3 indexGradient =
-    (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
-#else
-  vec3 indexGradient = centralDifferences(center);
-#endif
-  vec3 eyeGradient = normalMatrix * indexGradient;
-#endif
-#if ACCELVOLUME_TF2D
-  // Value x gradient-magnitude classification (the paper's 2D transfer function).
-  float magnitude2D = length(indexGradient * gradientAxisScale) * scalarRangeWidth / gradient2DMaximum;
-  classified =
-    texture(transferTable2D, vec2(clamp(scalar2D, 0.0, 1.0), clamp(magnitude2D, 0.0, 1.0)));
-#if ACCELVOLUME_SKIP_TRANSPARENT
-  if (classified.a <= 0.0)
-  {
-    discard;
-  }
-#endif
-#endif
-#if ACCELVOLUME_GRADIENT_OPACITY
-  // Gradient magnitude as VTK's GPU mapper computes it (data units per mean voxel step).
-  float magnitude = length(indexGradient * gradientAxisScale) * scalarRangeWidth;
-  float g = (clamp(magnitude / gradientTableMaximum, 0.0, 1.0) * 1023.0 + 0.5) / 1024.0;
-  classified.a *= texture(gradientOpacityTable, vec2(g, 0.5)).r;
-#endif
-#if ACCELVOLUME_SHADE
-  classified.rgb = shade(classified.rgb, eyeGradient, rayDirection);
-#endif
-  float alpha = 1.0 - pow(max(1.0 - classified.a, 0.0), step / opacityUnitDistance);
-  gl_FragData[0] = vec4(classified.rgb * alpha, alpha);
-  ACCELVOLUME_WRITE_DEPTH(alpha > 0.0);
+  gl_FragData[0] = premultiplied;
+  ACCELVOLUME_WRITE_DEPTH(premultiplied.a > 0.0);
 #endif
 #else
   vec3 rayOrigin = parallelProjection != 0 ? vec3(eyePosition.xy, 0.0) : vec3(0.0);

@@ -1,9 +1,12 @@
 // SlabProxy: projects the region between two depth planes onto the front one along the view rays.
 #include "slicing/SlabProxy.h"
 
+#include "slicing/CompositeSlices.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace accelvolume
 {
@@ -207,6 +210,33 @@ Polygon SlabPolygon(const std::vector<Vec3>& regionVertices, const Box& region,
   return result;
 }
 
+// The bounding box of the table's bounds at samples first ... first + count - 1 (empty if none).
+Box SlabBounds(const SliceBoundsTable& table, long long first, long long count)
+{
+  const double infinity = std::numeric_limits<double>::infinity();
+  Box box{ { infinity, infinity, infinity }, { -infinity, -infinity, -infinity } };
+  for (long long k = first; k < first + count; ++k)
+  {
+    const Box at = table.At(k);
+    if (!at.IsEmpty())
+    {
+      box.lower = { std::min(box.lower.x, at.lower.x), std::min(box.lower.y, at.lower.y),
+        std::min(box.lower.z, at.lower.z) };
+      box.upper = { std::max(box.upper.x, at.upper.x), std::max(box.upper.y, at.upper.y),
+        std::max(box.upper.z, at.upper.z) };
+    }
+  }
+  return box;
+}
+
+Box Intersect(const Box& a, const Box& b)
+{
+  return Box{ { std::max(a.lower.x, b.lower.x), std::max(a.lower.y, b.lower.y),
+                std::max(a.lower.z, b.lower.z) },
+    { std::min(a.upper.x, b.upper.x), std::min(a.upper.y, b.upper.y),
+      std::min(a.upper.z, b.upper.z) } };
+}
+
 long long FloorDivide(long long a, long long b)
 {
   const long long quotient = a / b;
@@ -225,7 +255,8 @@ Polygon ComputeSlabProxyPolygon(const Box& region, const std::vector<HalfSpace>&
 }
 
 SlabStack ComputeSlabProxyPolygons(const Box& region, const std::vector<HalfSpace>& clip,
-  const ViewRays& rays, double spacing, double phase, int samplesPerSlab)
+  const ViewRays& rays, double spacing, double phase, int samplesPerSlab,
+  const std::vector<Box>* nonEmpty)
 {
   SlabStack stack;
   if (!(spacing > 0) || samplesPerSlab < 1 || !(Length(rays.depthGradient) > 0) ||
@@ -255,11 +286,29 @@ SlabStack ComputeSlabProxyPolygons(const Box& region, const std::vector<HalfSpac
     return stack;
   }
   const long long n = samplesPerSlab;
+  std::unique_ptr<SliceBoundsTable> bounds;
+  if (nonEmpty)
+  {
+    bounds = std::make_unique<SliceBoundsTable>(
+      *nonEmpty, rays.depthGradient, rays.depthOffset, spacing, phase);
+  }
   for (long long k = FloorDivide(last, n); k >= FloorDivide(first, n); --k) // back to front
   {
     const double front = phase + static_cast<double>(k * n) * spacing;
     const double back = phase + static_cast<double>(k * n + n - 1) * spacing;
-    Polygon polygon = SlabPolygon(vertices, region, clip, rays, front, back);
+    Polygon polygon;
+    if (bounds)
+    {
+      const Box culled = Intersect(region, SlabBounds(*bounds, k * n, n));
+      if (!culled.IsEmpty())
+      {
+        polygon = SlabPolygon(RegionVertices(culled, clip), culled, clip, rays, front, back);
+      }
+    }
+    else
+    {
+      polygon = SlabPolygon(vertices, region, clip, rays, front, back);
+    }
     if (!polygon.empty())
     {
       stack.polygons.push_back(std::move(polygon));

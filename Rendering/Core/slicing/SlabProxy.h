@@ -55,8 +55,12 @@ struct SlabStack
 // ComputeViewAlignedSlices would slice is covered), except those whose polygon is empty; ordered
 // back to front. Spacing <= 0, samplesPerSlab < 1, a zero gradient or a region without volume give
 // no slabs.
+// With nonEmpty, each slab's region is first cut to the bounding box of the boxes holding one of
+// its sample depths (SliceBoundsTable, so flat boxes count as half a voxel thick): what a slab
+// loses lies outside every non-empty box, and slabs crossing none are left out.
 SlabStack ComputeSlabProxyPolygons(const Box& region, const std::vector<HalfSpace>& clip,
-  const ViewRays& rays, double spacing, double phase, int samplesPerSlab);
+  const ViewRays& rays, double spacing, double phase, int samplesPerSlab,
+  const std::vector<Box>* nonEmpty = nullptr);
 
 } // namespace accelvolume
 
