@@ -30,7 +30,8 @@ programs=(accelvolume accelvolume_benchmark_composite accelvolume_benchmark_crop
 # GPU image tests: the slice mapper against its CPU reference and VTK's GPU mapper.
 image_tests=(TestAccelVolumeSliceMapperReference TestAccelVolumeVsGPURayCast
   TestAccelVolumeVsGPURayCastFeatures TestAccelVolumeEarlyRayTermination
-  TestAccelVolumeEmptySpaceSkipping TestAccelVolumeSlabSamples TestAccelVolumeBricking
+  TestAccelVolumeEmptySpaceSkipping TestAccelVolumeSlabSamples TestAccelVolumeCompositeSlabs
+  TestAccelVolumeBricking
   TestAccelVolumeCompositeReference TestAccelVolumeMIP TestAccelVolumeMinIP)
 
 prepare() {
