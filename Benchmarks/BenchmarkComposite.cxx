@@ -55,23 +55,45 @@ struct Config
   bool GpuSlices = true;  // proxy slices generated in the vertex stage (else CPU polygons)
   bool HalfFloat = false; // 16-bit float accumulation target
   int SlabSamples = 1;    // slice depths composited per fragment (one blend per slab)
+  int Compositing = 0;    // vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_* (0: the default)
+  bool CentralDifferences = false; // gradients on the fly instead of the precomputed texture
 };
 
-const std::vector<Config>& Configs()
+constexpr int Raster = vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER;
+
+// The columns of one blend mode: composite has Table V-3's accelerations (with the default
+// compositing: compute slices where they apply) and the rasterised variants; MIP and MinIP
+// the default against the rasterised slices and slabs.
+const std::vector<Config>& Configs(const std::string& blend)
 {
-  static const std::vector<Config> configs = {
+  static const std::vector<Config> composite = {
     { "base", "ERT off, ESS none", false, false, 0 },
     { "ert", "ERT on, ESS none", false, true, 0 },
     { "ess_fragment", "ERT off, ESS fragment", false, false, 1 },
     { "ess_octree", "ERT off, ESS octree", false, false, 2 },
     { "ert_both", "ERT on, ESS both (default)", false, true, 3 },
-    { "cpu_slices", "ERT on, ESS both, CPU slice polygons", false, true, 3, false },
-    { "half_float", "ERT on, ESS both, RGBA16F target", false, true, 3, true, true },
-    { "slab4", "ERT on, ESS both, 4-sample composite slabs", false, true, 3, false, false, 4 },
-    { "slab8", "ERT on, ESS both, 8-sample composite slabs", false, true, 3, false, false, 8 },
+    { "raster_base", "raster slices, ERT off, ESS none", false, false, 0, true, false, 1, Raster },
+    { "raster", "raster slices, ERT on, ESS both", false, true, 3, true, false, 1, Raster },
+    { "cpu_slices", "raster, ERT on, ESS both, CPU slice polygons", false, true, 3, false, false,
+      1, Raster },
+    { "half_float", "raster, ERT on, ESS both, RGBA16F target", false, true, 3, true, true, 1,
+      Raster },
+    { "slab4", "raster, ERT on, ESS both, 4-sample composite slabs", false, true, 3, false,
+      false, 4, Raster },
+    { "slab8", "raster, ERT on, ESS both, 8-sample composite slabs", false, true, 3, false,
+      false, 8, Raster },
+    { "central", "ERT on, ESS both, gradients by central differences", false, true, 3, true,
+      false, 1, 0, true },
     { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
   };
-  return configs;
+  static const std::vector<Config> extreme = {
+    { "ert_both", "default", false, true, 3 },
+    { "raster", "raster slices", false, true, 3, true, false, 1, Raster },
+    { "slab4", "raster, 4-sample slabs", false, true, 3, true, false, 4, Raster },
+    { "slab8", "raster, 8-sample slabs", false, true, 3, true, false, 8, Raster },
+    { "vtk", "vtkGPUVolumeRayCastMapper", true, false, 0 },
+  };
+  return blend == "composite" ? composite : extreme;
 }
 
 struct ConfigResult
@@ -80,9 +102,11 @@ struct ConfigResult
   std::vector<double> FrameMs;  // Render() + 1x1 read-back
   std::vector<double> MapperMs; // slice mapper's GetLastRenderTime (it waits for the GPU)
   int TerminationPasses = 0;
+  bool ComputeSlices = false; // the frames were composited by the compute pass
   double TransparentLeafFraction = -1;
   int Slices = 0;
   FrameCounts Counts;   // one untimed frame at the fixed view
+  long long ComputeSamples = -1; // compute slices: samples the counted frame took
   RaySamples RayWork;   // VTK: pixels x samples per ray at the fixed view
   double NoOpMs = -1;   // CPU cost per frame under GALLIUM_NOOP=1 (child process), -1 = not run
   ErrorStats VsDefault; // slabs: grey-level difference from the default's image (fixed view)
@@ -109,7 +133,7 @@ struct CaseResult
   double Seconds = 0;
   std::vector<ConfigResult> Results; // in Configs() order
   // Grey-level (0..255) differences at the fixed view over pixels non-black in either image.
-  ErrorStats ErtBothVsBase, OursVsVtk, HalfVsFull;
+  ErrorStats ErtBothVsBase, OursVsVtk, HalfVsFull, OursVsRaster;
   const ConfigResult& Find(const std::string& id) const
   {
     for (const ConfigResult& r : this->Results)
@@ -147,7 +171,9 @@ Json CaseJson(const CaseResult& c)
     { "rms_ours_vs_vtk", Round(c.OursVsVtk.Rms(), 3) },
     { "max_ours_vs_vtk", Round(c.OursVsVtk.Max, 1) },
     { "rms_half_vs_full", Round(c.HalfVsFull.Rms(), 3) },
-    { "max_half_vs_full", Round(c.HalfVsFull.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
+    { "max_half_vs_full", Round(c.HalfVsFull.Max, 1) },
+    { "rms_ours_vs_raster", Round(c.OursVsRaster.Rms(), 3) },
+    { "max_ours_vs_raster", Round(c.OursVsRaster.Max, 1) }, { "compared_pixels", c.OursVsVtk.Pixels },
     { "configs", Json::array() } };
   const double oursNoOp = c.Find("ert_both").NoOpMs;
   const double vtkNoOp = c.Find("vtk").NoOpMs;
@@ -164,6 +190,7 @@ Json CaseJson(const CaseResult& c)
       config["slices"] = r.Slices;
       config["termination_passes"] = r.TerminationPasses;
       config["transparent_leaf_fraction"] = Round(r.TransparentLeafFraction, 4);
+      config["compositing"] = r.ComputeSlices ? "compute" : "raster";
       // One fragment = one volume sample; each one that passes is blended into the RGBA32F
       // accumulation target (16 bytes read, 16 written).
       config["fragments_shaded"] = r.Counts.FragmentsShaded;
@@ -174,6 +201,12 @@ Json CaseJson(const CaseResult& c)
       const long long texelBytes = r.Cfg.HalfFloat ? 8 : 16;
       config["bytes_blended"] =
         r.Counts.SamplesPassed < 0 ? -1 : 2 * texelBytes * r.Counts.SamplesPassed;
+      if (r.ComputeSlices)
+      {
+        // No fragments and no blending: the counted samples, one store per pixel.
+        config["samples_fetched"] = r.ComputeSamples;
+        config["bytes_blended"] = 0;
+      }
       if (r.Cfg.SlabSamples > 1)
       {
         config["rms_vs_default"] = Round(r.VsDefault.Rms(), 3);
@@ -200,17 +233,18 @@ Json CaseJson(const CaseResult& c)
 class Scene
 {
 public:
-  Scene(vtkImageData* image, const DatasetInfo& info, vtkAccelVolumeHeadlessRenderWindow* window)
+  Scene(vtkImageData* image, const DatasetInfo& info, vtkAccelVolumeHeadlessRenderWindow* window,
+    int blendMode)
     : Window(window)
   {
     this->Slice->SetInputData(image);
-    this->Slice->SetBlendModeToComposite();
+    this->Slice->SetBlendMode(blendMode);
     this->Slice->SetAutoAdjustSampleDistances(0);
     this->Slice->SetSampleDistance(info.MinSpacing);
     this->SliceVolume->SetMapper(this->Slice);
     this->SliceVolume->SetProperty(this->Property);
     this->Gpu->SetInputData(image);
-    this->Gpu->SetBlendModeToComposite();
+    this->Gpu->SetBlendMode(blendMode);
     this->Gpu->SetAutoAdjustSampleDistances(0);
     this->Gpu->SetSampleDistance(static_cast<float>(info.MinSpacing));
     this->Gpu->SetImageSampleDistance(1.0f);
@@ -257,6 +291,8 @@ public:
       this->Slice->SetGPUSliceGeneration(cfg.GpuSlices);
       this->Slice->SetHalfFloatTarget(cfg.HalfFloat);
       this->Slice->SetSlabSamples(cfg.SlabSamples);
+      this->Slice->SetSliceCompositing(cfg.Compositing);
+      this->Slice->SetPrecomputeGradients(!cfg.CentralDifferences);
     }
   }
 
@@ -264,7 +300,10 @@ public:
   void CountWork(ConfigResult& r, int size, double sampleDistance)
   {
     this->Apply(r.Cfg);
+    this->Slice->SetCountSamples(true);
     r.Counts = CountFrame(this->Window);
+    this->Slice->SetCountSamples(false);
+    r.ComputeSamples = r.Cfg.Vtk ? -1 : this->Slice->GetLastNumberOfSamples();
     if (r.Cfg.Vtk)
     {
       r.RayWork = CountRaySamples(this->Renderer, this->Bounds, size, sampleDistance);
@@ -291,6 +330,8 @@ public:
       r.TerminationPasses = this->Slice->GetLastNumberOfTerminationPasses();
       r.TransparentLeafFraction = this->Slice->GetLastTransparentLeafFraction();
       r.Slices = this->Slice->GetLastNumberOfSlices();
+      r.ComputeSlices = this->Slice->GetLastSliceCompositing() ==
+        vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_COMPUTE;
     }
   }
 
@@ -323,8 +364,11 @@ public:
   {
     AddList(app, "--datasets", this->Datasets,
       "dataset names: NAME_<X>x<Y>x<Z>_<type>.raw[.gz] in the data folder");
-    AddList(app, "--tfs", this->Tfs, "transfer-function presets of `accelvolume render --tf`");
+    AddList(app, "--tfs", this->Tfs,
+      "transfer-function presets of `accelvolume render --tf` (tf1, tf2), or ramp (its default)");
     AddList(app, "--sizes", this->Sizes, "square image sizes (16..4096)");
+    app.add_option("--blend", this->Blend, "composite (Table V-3's columns), mip or minip")
+      ->check(CLI::IsMember({ "composite", "mip", "minip" }));
     app.add_option("--frames", this->Frames, "timed frames per configuration")
       ->check(CLI::PositiveNumber);
     app
@@ -348,7 +392,20 @@ public:
 
   void Resolve(const CLI::App&, const MachineInfo&) override
   {
-    CheckTransferFunctions(this->Tfs, "--tfs");
+    // "ramp": the CLI's default grey ramp (opaque from the window's bottom for MinIP).
+    std::vector<std::string> presets;
+    for (const std::string& tf : this->Tfs)
+    {
+      if (tf != "ramp")
+      {
+        presets.push_back(tf);
+      }
+    }
+    if (presets.size() != this->Tfs.size() && presets.empty())
+    {
+      presets.push_back("tf1"); // only ramps: nothing more to check
+    }
+    CheckTransferFunctions(presets, "--tfs");
     bool sizes = !this->Sizes.empty();
     for (int size : this->Sizes)
     {
@@ -366,6 +423,7 @@ private:
   std::vector<std::string> Datasets = { "engine", "cthead", "bonsai_hazeremoved" };
   std::vector<std::string> Tfs = { "tf1", "tf2" };
   std::vector<int> Sizes = { 256, 512 };
+  std::string Blend = "composite";
   int Frames = 5;
   // Timed frames at sizes above 256: a shaded 512^2 frame takes 0.5-1 s on llvmpipe.
   int LargeFrames = 3;
@@ -376,6 +434,14 @@ private:
   int FramesFor(int size) const
   {
     return size > 256 && this->LargeFrames > 0 ? this->LargeFrames : this->Frames;
+  }
+  // The CLI's --blend value of this run's blend mode.
+  const char* BlendFlag() const { return this->Blend == "composite" ? "composite" : this->Blend.c_str(); }
+  int BlendMode() const
+  {
+    return this->Blend == "mip" ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND
+      : this->Blend == "minip"  ? vtkVolumeMapper::MINIMUM_INTENSITY_BLEND
+                                : vtkVolumeMapper::COMPOSITE_BLEND;
   }
   CaseResult RunCase(Scene& scene, vtkAccelVolumeHeadlessRenderWindow* window,
     const DatasetInfo& info, const std::string& tf, int size) const;
@@ -394,8 +460,8 @@ void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
   for (ConfigResult& r : c.Results)
   {
     std::vector<std::string> args = { "--input", info.File, "--spacing", number(info.Spacing[0]),
-      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", "composite", "--tf", c.Tf,
-      "--shade", "on", "--sample-distance", number(info.MinSpacing), "--size",
+      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", this->BlendFlag(), "--shade",
+      "on", "--sample-distance", number(info.MinSpacing), "--size",
       std::to_string(c.Size), std::to_string(c.Size), "--azimuth", number(this->View[0]),
       "--elevation", number(this->View[1]) };
     const std::vector<std::string> mapper = r.Cfg.Vtk
@@ -403,8 +469,15 @@ void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
       : std::vector<std::string>{ "--mapper", "slice", "--ert", r.Cfg.Ert ? "on" : "off", "--ess",
           std::vector<std::string>{ "none", "fragment", "octree", "both" }[r.Cfg.Ess],
           "--gpu-slices", r.Cfg.GpuSlices ? "on" : "off", "--half-float",
-          r.Cfg.HalfFloat ? "on" : "off", "--slab-samples", std::to_string(r.Cfg.SlabSamples) };
+          r.Cfg.HalfFloat ? "on" : "off", "--slab-samples", std::to_string(r.Cfg.SlabSamples),
+          "--compositing", r.Cfg.Compositing == Raster ? "raster" : "auto", "--gradients",
+          r.Cfg.CentralDifferences ? "on-the-fly" : "texture" };
     args.insert(args.end(), mapper.begin(), mapper.end());
+    if (c.Tf != "ramp")
+    {
+      args.push_back("--tf");
+      args.push_back(c.Tf);
+    }
     r.NoOpMs = NoOpMsPerFrame(cli, args, this->NoOpFrames);
   }
 }
@@ -419,7 +492,7 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   c.Tf = tf;
   c.Size = size;
   c.Frames = this->FramesFor(size);
-  for (const Config& cfg : Configs())
+  for (const Config& cfg : Configs(this->Blend))
   {
     c.Results.emplace_back();
     c.Results.back().Cfg = cfg;
@@ -427,7 +500,7 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   // Warm-up (texture upload, octree build / classification, shader compilation) and the
   // quality-check images, both at the fixed view.
   scene.SetView(this->View[0], this->View[1]);
-  std::vector<std::uint8_t> baseImage, bothImage, vtkImage, halfImage;
+  std::vector<std::uint8_t> baseImage, bothImage, vtkImage, halfImage, rasterImage;
   std::vector<std::vector<std::uint8_t>> slabImages; // in Configs() order
   for (ConfigResult& r : c.Results)
   {
@@ -438,10 +511,12 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
       window->Render();
       slabImages.push_back(Capture(window, size, size));
     }
-    else if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk || r.Cfg.HalfFloat)
+    else if (r.Cfg.Id == "base" || r.Cfg.Id == "ert_both" || r.Cfg.Vtk || r.Cfg.HalfFloat ||
+      r.Cfg.Id == "raster")
     {
       window->Render(); // a second frame: the first may include one-time work
       auto& target = r.Cfg.Id == "base" ? baseImage
+        : r.Cfg.Id == "raster"          ? rasterImage
         : r.Cfg.Vtk                     ? vtkImage
         : r.Cfg.HalfFloat               ? halfImage
                                         : bothImage;
@@ -452,15 +527,22 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
   {
     scene.CountWork(r, size, info.MinSpacing);
   }
-  c.ErtBothVsBase = CompareVisible(baseImage, bothImage, size, size);
-  c.OursVsVtk = CompareVisible(vtkImage, bothImage, size, size);
-  c.HalfVsFull = CompareVisible(bothImage, halfImage, size, size);
+  const auto compare = [size](const std::vector<std::uint8_t>& reference,
+                         const std::vector<std::uint8_t>& image)
+  {
+    return reference.empty() || image.empty() ? ErrorStats()
+                                              : CompareVisible(reference, image, size, size);
+  };
+  c.ErtBothVsBase = compare(baseImage, bothImage);
+  c.OursVsVtk = compare(vtkImage, bothImage);
+  c.HalfVsFull = compare(rasterImage, halfImage);
+  c.OursVsRaster = compare(rasterImage, bothImage);
   size_t slab = 0;
   for (ConfigResult& r : c.Results)
   {
     if (r.Cfg.SlabSamples > 1)
     {
-      r.VsDefault = CompareVisible(bothImage, slabImages[slab++], size, size);
+      r.VsDefault = compare(bothImage, slabImages[slab++]);
     }
   }
   if (!this->Images.empty())
@@ -488,7 +570,7 @@ CaseResult CompositeBenchmark::RunCase(Scene& scene, vtkAccelVolumeHeadlessRende
 
 int CompositeBenchmark::Run(Harness& harness, Json& result)
 {
-  result = { { "benchmark", "composite (Lee 2005 Table V-3)" },
+  result = { { "benchmark", "composite (Lee 2005 Table V-3)" }, { "blend", this->Blend },
     { "gl_backend", harness.Machine.GLBackend }, { "gl_renderer", harness.Machine.GLRenderer },
     { "frames", this->Frames }, { "large_frames", this->LargeFrames },
     { "view",
@@ -507,17 +589,19 @@ int CompositeBenchmark::Run(Harness& harness, Json& result)
       ok = false;
       continue;
     }
-    Scene scene(image, info, harness.Window());
+    Scene scene(image, info, harness.Window(), this->BlendMode());
     // The CLI's settings for `render --blend composite --tf tfN --shade on` (window = data range).
     accelvolume::cli::Options cli;
-    cli.blend = accelvolume::cli::BlendKind::Composite;
+    cli.blend = this->Blend == "mip" ? accelvolume::cli::BlendKind::MIP
+      : this->Blend == "minip"       ? accelvolume::cli::BlendKind::MinIP
+                                     : accelvolume::cli::BlendKind::Composite;
     cli.haveShade = true;
     cli.shade = true;
     const double tfWindow[2] = { info.Range[0],
       info.Range[1] > info.Range[0] ? info.Range[1] : info.Range[0] + 1 };
     for (const std::string& tf : this->Tfs)
     {
-      cli.transferFunction = tf;
+      cli.transferFunction = tf == "ramp" ? "" : tf;
       accelvolume::cli::ApplyTransferFunction(
         accelvolume::cli::LoadTransferFunction(cli), cli, tfWindow, scene.Property);
       for (int size : this->Sizes)

@@ -34,6 +34,7 @@ set(_av_private_sources
   vtkAccelVolumeOctreeGPUBuilder
   vtkAccelVolumeRenderProgress
   vtkAccelVolumeScalarEncoding
+  vtkAccelVolumeSliceCompute
   vtkAccelVolumeSliceDraw
   vtkAccelVolumeSliceGeometry
   vtkAccelVolumeSliceMask
@@ -45,6 +46,8 @@ set(_av_shaders
   AccelVolumeSliceVS
   AccelVolumeSliceFS
   AccelVolumeSliceComponentsFS
+  AccelVolumeSliceSampling
+  AccelVolumeSliceCS
   AccelVolumeResolveVS
   AccelVolumeResolveFS
   AccelVolumeImageFS

@@ -8,10 +8,12 @@
 #                                           brings, OSMesa as a stub) and
 #                                           data/ (the matrix's volumes); prints its size
 #   scripts/bench-device.sh run [--quick]   there (or here, as a dry run on Mesa): the composite
-#                                           matrix (ours vs vtkGPUVolumeRayCastMapper; engine,
-#                                           cthead, bonsai, aneurism; tf1 / tf2; 256-1024^2), the
-#                                           cropped-MIP benchmark and the GPU image tests; JSON
-#                                           and a log under $OUT (or $ACCELVOLUME_DEVICE_OUT)
+#                                           matrix and the MIP / MinIP ones (ours vs
+#                                           vtkGPUVolumeRayCastMapper; engine, cthead, bonsai,
+#                                           aneurism; tf1 / tf2 (MinIP: ramp); 256-1024^2), the
+#                                           cropped-MIP and octree benchmarks and the GPU image
+#                                           tests; JSON, two probe PNGs and a log under $OUT (or
+#                                           $ACCELVOLUME_DEVICE_OUT)
 #
 # The device call (GL loader packages as /work/.library/device/README.md says, in .gl/):
 #   run(command="for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; bash scripts/bench-device.sh run",
@@ -24,13 +26,15 @@ bundle="$root/.device"
 build="${ACCELVOLUME_BUILD_DIR:-$root/build}"
 data_src="${ACCELVOLUME_DATA_DIR:-$root/../shared/data}"
 datasets="engine,cthead,bonsai_hazeremoved,aneurism"
+octree_sets="engine,aneurism,cta_avm,vessels"
 bundled_data="$datasets,cta_avm"
 programs=(accelvolume accelvolume_benchmark_composite accelvolume_benchmark_cropping
-  vtkRenderingAccelVolumeCxxTests)
+  accelvolume_benchmark_octree vtkRenderingAccelVolumeCxxTests)
 # GPU image tests: the slice mapper against its CPU reference and VTK's GPU mapper.
 image_tests=(TestAccelVolumeSliceMapperReference TestAccelVolumeVsGPURayCast
   TestAccelVolumeVsGPURayCastFeatures TestAccelVolumeEarlyRayTermination
   TestAccelVolumeEmptySpaceSkipping TestAccelVolumeSlabSamples TestAccelVolumeCompositeSlabs
+  TestAccelVolumeComputeSlices
   TestAccelVolumeBricking
   TestAccelVolumeCompositeReference TestAccelVolumeMIP TestAccelVolumeMinIP)
 
@@ -98,35 +102,83 @@ run() {
   export ACCELVOLUME_DATA_DIR="$bundle/data" ACCELVOLUME_GL=egl
   local egl_vendor=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
   [ -f "$egl_vendor" ] && export __EGL_VENDOR_LIBRARY_FILENAMES="$egl_vendor"
-  local bin="$bundle/bin" log="$out/log.txt" failed=0
+  local bin="$bundle/bin" log="$out/log.txt" failed=0 t0=$SECONDS
   : >"$log"
+  stage() { echo "== $1 ($((SECONDS - t0)) s)" >>"$log"; }
   {
     echo "== machine"; nvidia-smi -L 2>/dev/null || echo "no nvidia-smi"; nproc; date -u
-    echo "== probe"
-    "$bin/accelvolume" render --mapper slice --size 256 256 --frames 1 \
-      --stats "$out/probe.json" --out "$out/probe.png" && cat "$out/probe.json"
-  } >>"$log" 2>&1 || { echo "bench-device: the probe failed (see $log)" >&2; failed=1; }
+    local missing
+    missing=$(ldd "$bin/accelvolume" | grep "not found" || true)
+    [ -n "$missing" ] && echo "missing libraries: $missing"
+  } >>"$log" 2>&1
+  # The probe: one frame each way, compute and rasterised slices, their images and stats.
+  stage probe
+  local engine="$bundle/data/engine_256x256x128_uint8.raw.gz" c
+  for c in compute raster; do
+    "$bin/accelvolume" render --input "$engine" --blend composite --tf tf1 --shade on \
+      --size 512 512 --azimuth 30 --elevation 20 --compositing "$c" --frames 5 \
+      --stats "$out/probe_$c.json" --out "$out/probe_$c.png" >>"$log" 2>&1 ||
+      { echo "bench-device: the $c probe failed (see $log)" >&2; failed=1; }
+    cat "$out/probe_$c.json" >>"$log" 2>/dev/null; rm -f "$out/probe_$c.json"
+  done
   local sizes=256,512,1024 frames=10 sets="$datasets" tfs=tf1,tf2 crop_sets=cthead,cta_avm
   if [ "$quick" = 1 ]; then sizes=256; frames=2; sets=engine; tfs=tf1; crop_sets=cthead; fi
   # No no-op column on the GPU: GALLIUM_NOOP is Mesa's, the NVIDIA driver would draw for real.
-  echo "== composite" >>"$log"
-  timeout 200 "$bin/accelvolume_benchmark_composite" --gl egl --data "$bundle/data" \
-    --datasets "$sets" --tfs "$tfs" --sizes "$sizes" --frames "$frames" --large-frames "$frames" \
-    --noop-frames 0 --json "$out/composite.json" >>"$log" 2>&1 || { echo "composite failed" >>"$log"; failed=1; }
-  echo "== cropping" >>"$log"
+  local blend
+  for blend in composite mip minip; do
+    stage "$blend"
+    local blend_tfs="$tfs"
+    [ "$blend" = minip ] && blend_tfs=ramp
+    timeout 150 "$bin/accelvolume_benchmark_composite" --gl egl --data "$bundle/data" \
+      --blend "$blend" --datasets "$sets" --tfs "$blend_tfs" --sizes "$sizes" --frames "$frames" \
+      --large-frames "$frames" --noop-frames 0 --json "$out/$blend.json" >>"$log" 2>&1 ||
+      { echo "$blend failed" >>"$log"; failed=1; }
+  done
+  # The smart mapper's choice: our three mappers on the same parallel views (all threads).
+  stage mappers
+  local ds tf m file threads
+  threads=$(nproc)
+  for ds in engine cthead bonsai_hazeremoved; do
+    [ "$quick" = 1 ] && [ "$ds" != engine ] && continue
+    file=$(ls "$bundle/data/${ds}"_[0-9]*x[0-9]*x[0-9]*_*.raw* | head -n 1)
+    for tf in tf1 tf2; do
+      for m in slice raycast shearwarp; do
+        local extra=(--threads "$threads")
+        [ "$m" = slice ] && extra=()
+        if timeout 60 "$bin/accelvolume" render --mapper "$m" --input "$file" --blend composite \
+          --tf "$tf" --shade on --size 512 512 --parallel --frames "$frames" "${extra[@]}" \
+          --stats "$out/mapper.json" --out "$out/mapper.png" >/dev/null 2>>"$log"; then
+          echo "MAPPER $ds $tf $m $(tr -d '\n ' <"$out/mapper.json" |
+            sed -n 's/.*"ms_per_frame":{"median":\([0-9.]*\).*/\1/p')" >>"$log"
+        else
+          echo "MAPPER $ds $tf $m failed" >>"$log"
+        fi
+      done
+    done
+  done
+  rm -f "$out/mapper.json" "$out/mapper.png"
+  stage cropping
   timeout 60 "$bin/accelvolume_benchmark_cropping" --gl egl --data "$bundle/data" \
     --datasets "$crop_sets" --frames "$frames" --json "$out/cropping.json" >>"$log" 2>&1 ||
     { echo "cropping failed" >>"$log"; failed=1; }
-  echo "== image tests" >>"$log"
+  if [ "$quick" = 0 ]; then
+    stage octree
+    timeout 60 "$bin/accelvolume_benchmark_octree" --gl egl --data "$bundle/data" \
+      --datasets "$octree_sets" --json "$out/octree.json" >>"$log" 2>&1 ||
+      { echo "octree failed" >>"$log"; failed=1; }
+  fi
+  stage "image tests"
   local t
   for t in "${image_tests[@]}"; do
-    [ "$quick" = 1 ] && [ "$t" != TestAccelVolumeVsGPURayCast ] && continue
+    [ "$quick" = 1 ] && [ "$t" != TestAccelVolumeComputeSlices ] && continue
     if timeout 60 "$bin/vtkRenderingAccelVolumeCxxTests" "$t" -T "$out" >>"$log" 2>&1; then
-      echo "PASS $t" | tee -a "$out/tests.txt"
+      echo "PASS $t" | tee -a "$log"
     else
-      echo "FAIL $t" | tee -a "$out/tests.txt"; failed=1
+      echo "FAIL $t" | tee -a "$log"; failed=1
     fi
   done
+  rm -f "$out"/*.png.diff* "$out"/Test*.png 2>/dev/null || true
+  stage done
   tail -n 40 "$log"
   return "$failed"
 }
@@ -134,5 +186,5 @@ run() {
 case "${1:-}" in
   prepare) prepare ;;
   run) shift; run "$@" ;;
-  *) sed -n '2,19p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,21p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

@@ -39,6 +39,7 @@ void ConfigureSlice(
   slice->SetJittering(options.jitter);
   slice->SetGPUSliceGeneration(options.gpuSlices);
   slice->SetHalfFloatTarget(options.halfFloatTarget);
+  slice->SetSliceCompositing(options.sliceCompositing);
   if (options.slabSamples > 0)
   {
     slice->SetSlabSamples(options.slabSamples);
@@ -207,6 +208,8 @@ void ReadSliceResult(vtkAccelVolumeSliceMapper* mapper, RenderResult& result)
   result.terminationPasses = mapper->GetLastNumberOfTerminationPasses();
   result.slicesGenerated = mapper->GetLastSlicesGenerated();
   result.halfFloatTarget = mapper->GetHalfFloatTarget() != 0;
+  result.computeSlices =
+    mapper->GetLastSliceCompositing() == vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_COMPUTE;
   result.transparentLeafFraction = mapper->GetLastTransparentLeafFraction();
   result.proxyAreaFraction = mapper->GetLastProxyAreaFraction();
 }

@@ -344,6 +344,12 @@ void AddAccelerationFlags(CLI::App& command, Options& options)
     "accumulate in a 16-bit float target (slice mapper;\n"
     "default off = 32-bit float)",
     [&](bool on) { options.halfFloatTarget = on; });
+  AddChoice<int>(command, "--compositing", "auto|raster|compute",
+    "how the slice mapper composites its slices: rasterised proxy\n"
+    "slices blended into the target, or one compute pass per frame\n"
+    "(default auto: compute where the frame and the context allow)",
+    { { "auto", 0 }, { "raster", 1 }, { "compute", 2 } },
+    [&](int mode) { options.sliceCompositing = mode; });
   AddChoice<bool>(command, "--gradients", "texture|on-the-fly",
     "shading gradients precomputed or by central differences\n"
     "(slice mapper; default texture)",

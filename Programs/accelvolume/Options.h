@@ -110,6 +110,7 @@ struct Options
   bool jitter = false;
   bool gpuSlices = true; // --gpu-slices: composite proxy slices generated in the vertex stage
   bool halfFloatTarget = false; // --half-float: 16-bit float accumulation target
+  int sliceCompositing = 0;     // --compositing: vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_*
   bool haveSampleDistance = false;
   double sampleDistance = 0;
   int slices = 0; // 0 = not given

@@ -133,6 +133,7 @@ struct RenderResult
   int terminationPasses = -1;
   bool slicesGenerated = false; // slice mapper: the last frame's slices built on the GPU
   bool halfFloatTarget = false; // slice mapper: 16-bit float accumulation
+  bool computeSlices = false;   // slice mapper: the last frame composited by the compute pass
   double transparentLeafFraction = -1;
   double proxyAreaFraction = 1;
   double cropPlanes[6] = { 0, 0, 0, 0, 0, 0 }; // world coordinates, when cropping

@@ -155,6 +155,7 @@ JsonDocument SliceObject(const RenderResult& result)
   o["termination_passes"] = result.terminationPasses;
   o["gpu_slices"] = result.slicesGenerated;
   o["half_float_target"] = result.halfFloatTarget;
+  o["compositing"] = result.computeSlices ? "compute" : "raster";
   o["bricks"] = s.bricks;
   o["bricks_drawn"] = s.bricksDrawn;
   o["brick_uploads"] = s.brickUploads;

@@ -384,6 +384,12 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
   geometry.Layout = &layout;
   geometry.GenerateSlices = self->GPUSliceGeneration != 0;
+  geometry.ComputeSlices = this->UseComputeSlices(self, window, view);
+  // Relative depth of the slice plane nearest the reference depth (the compute slices count
+  // planes from it; slice depths are Phase + k * Spacing).
+  const double nearest = std::round((view.ReferenceDepth - SlicePhase) / view.Spacing);
+  this->Frame.SliceBase =
+    static_cast<float>(SlicePhase + nearest * view.Spacing - view.ReferenceDepth);
   std::vector<accelvolume::Polygon> slicePlane;
   if (self->BlendMode == SLICE_BLEND)
   {
@@ -398,8 +404,10 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   vtkAccelVolumeBuildSliceGeometry(
     geometry, this->Frame, this->Vertices, this->SliceRecords, geometryStats);
   self->LastSlicesGenerated = this->Frame.GeneratedSlices;
+  self->LastSliceCompositing =
+    this->Frame.ComputeSlices ? SLICE_COMPOSITING_COMPUTE : SLICE_COMPOSITING_RASTER;
   this->AreaFractionPending = false;
-  if (composite && this->Frame.GeneratedSlices)
+  if (composite && (this->Frame.GeneratedSlices || this->Frame.ComputeSlices))
   {
     // Kept for GetLastProxyAreaFraction: the polygons are not clipped here to know it.
     this->AreaFractionPending = true;
@@ -416,6 +424,31 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
     self->LastProxyAreaFraction = geometryStats.KeptAreaFraction;
   }
   this->Frame.SlabSamples = geometry.SlabSamples;
+}
+
+bool vtkAccelVolumeSliceMapper::vtkInternals::UseComputeSlices(vtkAccelVolumeSliceMapper* self,
+  vtkOpenGLRenderWindow* window, const vtkAccelVolumeSliceView& view)
+{
+  const int blend = self->BlendMode;
+  // Masks that hide samples or recolour them (a label map with blend factor 0 changes nothing).
+  const bool masked = this->UsedGhostMask ||
+    (self->MaskInput && (self->MaskType == BinaryMaskType || self->UsesLabelMap()));
+  if (self->SliceCompositing == SLICE_COMPOSITING_RASTER ||
+    !(blend == COMPOSITE_BLEND || blend == MAXIMUM_INTENSITY_BLEND ||
+      blend == MINIMUM_INTENSITY_BLEND) ||
+    this->Frame.Components != 1 || masked || self->RenderToImage ||
+    self->UsesDepthPass() || view.Regions.size() != 1 ||
+    !this->Resources.GetBrickLayout().Single())
+  {
+    return false;
+  }
+  if (this->ComputeWindow != window)
+  {
+    std::string why;
+    this->ComputeSupported = vtkAccelVolumeSliceCompute::IsSupported(window, why);
+    this->ComputeWindow = window;
+  }
+  return this->ComputeSupported;
 }
 
 bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMapper* self,
@@ -515,6 +548,8 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   frame.TerminationThreshold = static_cast<float>(self->EarlyRayTerminationThreshold);
   frame.TerminationPasses = 0;
   frame.HalfFloatTarget = self->HalfFloatTarget != 0;
+  frame.CountSamples = self->CountSamples && frame.ComputeSlices;
+  frame.Samples = -1;
   frame.TransferFunction2D =
     composite && property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D;
   if (frame.TransferFunction2D)
@@ -540,6 +575,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   for (int c = 0; c < 3; ++c)
   {
     frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, this->LeafGrid[c] - 1));
+    frame.BlockGridMaximum[c] = static_cast<float>(std::max(0, this->BlockGrid[c] - 1));
   }
   this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
   this->FillProjectionScales(self, property, range);
@@ -566,6 +602,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::DrawPasses(
   this->Resources.BeginFrameTimer(); // the passes' GPU time (ended in Render)
   const bool rendered = vtkAccelVolumeRenderSlicePasses(window, this->Resources, frame, passError);
   self->LastNumberOfTerminationPasses = frame.TerminationPasses;
+  self->LastNumberOfSamples = static_cast<vtkIdType>(frame.Samples);
   self->LastNumberOfBricks = static_cast<int>(this->Resources.GetBrickLayout().bricks.size());
   self->LastNumberOfBricksDrawn = static_cast<int>(frame.Bricks.size());
   self->LastNumberOfBrickUploads = this->Resources.Bricks.GetFrameUploads();

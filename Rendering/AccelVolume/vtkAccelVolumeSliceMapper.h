@@ -420,6 +420,50 @@ public:
   vtkGetMacro(LastSlicesGenerated, bool);
   ///@}
 
+  enum SliceCompositingModes
+  {
+    SLICE_COMPOSITING_AUTO = 0,   ///< compute where the frame allows it and the context has it
+    SLICE_COMPOSITING_RASTER = 1, ///< proxy slices rasterised and blended into the target
+    SLICE_COMPOSITING_COMPUTE = 2 ///< compute slices where the frame allows it
+  };
+
+  ///@{
+  /**
+   * How the slices' samples are composited (default SLICE_COMPOSITING_AUTO). RASTER draws the
+   * proxy slices (or slabs) and blends each into the float target. COMPUTE takes the same
+   * samples (the same slice planes and sample points, the same classification and shading) in
+   * one compute pass, one invocation per pixel compositing front to back in registers: no
+   * rasterisation and no framebuffer blending (on compute-class GPUs such as NVIDIA's H100 and
+   * H200 only a few units rasterise and blend, while compute shaders use the whole chip), each
+   * ray stopping at EarlyRayTerminationThreshold and leaping over transparent octree leaves.
+   * Compute slices need OpenGL 4.3 and serve composite (without iso-surfaces, slice planes or
+   * the depth pass), MIP and MinIP of single-component scalars in one brick, without a mask or
+   * ghost array, with at most one cropping region and no RenderToImage; other frames are
+   * rasterised. The image equals the rasterised one up to rounding (composite without
+   * termination), or within the termination bound (the rays stop exactly at the threshold
+   * instead of at the next mark pass). AUTO takes compute slices where they apply.
+   * GetLastSliceCompositing says which ran.
+   */
+  vtkSetClampMacro(SliceCompositing, int, SLICE_COMPOSITING_AUTO, SLICE_COMPOSITING_COMPUTE);
+  vtkGetMacro(SliceCompositing, int);
+  void SetSliceCompositingToAuto() { this->SetSliceCompositing(SLICE_COMPOSITING_AUTO); }
+  void SetSliceCompositingToRaster() { this->SetSliceCompositing(SLICE_COMPOSITING_RASTER); }
+  void SetSliceCompositingToCompute() { this->SetSliceCompositing(SLICE_COMPOSITING_COMPUTE); }
+  /** SLICE_COMPOSITING_RASTER or _COMPUTE: how the last frame was composited. */
+  vtkGetMacro(LastSliceCompositing, int);
+  ///@}
+
+  ///@{
+  /**
+   * Count the volume samples each frame takes (compute slices only; default off). Counting
+   * reads a counter back, which waits for the GPU: for benchmarks, not for interaction.
+   * GetLastNumberOfSamples: the last frame's count, -1 when not counted.
+   */
+  vtkSetMacro(CountSamples, bool);
+  vtkGetMacro(CountSamples, bool);
+  vtkGetMacro(LastNumberOfSamples, vtkIdType);
+  ///@}
+
   ///@{
   /**
    * GPU memory the volume's bricks may hold at once, in bytes (default 0: no budget, as much as
@@ -523,6 +567,10 @@ protected:
   vtkTypeBool HalfFloatTarget = 0;
   double LastGPUTime = -1.0;
   bool LastSlicesGenerated = false;
+  int SliceCompositing = SLICE_COMPOSITING_AUTO;
+  int LastSliceCompositing = SLICE_COMPOSITING_RASTER;
+  bool CountSamples = false;
+  vtkIdType LastNumberOfSamples = -1;
   double AdditiveUnitDistance = 0.0;
   double InteractiveSlowdownLimit = 4.0;
 

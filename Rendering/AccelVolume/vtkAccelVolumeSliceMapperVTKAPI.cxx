@@ -140,6 +140,12 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfSlices: " << this->MaximumNumberOfSlices << "\n";
   os << indent << "BoundaryRerendering: " << this->BoundaryRerendering << "\n";
   os << indent << "SlabSamples: " << this->SlabSamples << "\n";
+  os << indent << "GPUSliceGeneration: " << this->GPUSliceGeneration << "\n";
+  os << indent << "HalfFloatTarget: " << this->HalfFloatTarget << "\n";
+  os << indent << "SliceCompositing: " << this->SliceCompositing << "\n";
+  os << indent << "LastSliceCompositing: " << this->LastSliceCompositing << "\n";
+  os << indent << "CountSamples: " << this->CountSamples << "\n";
+  os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "EmptySpaceSkipping: " << this->EmptySpaceSkipping << "\n";
   os << indent << "FrontToBack: " << this->FrontToBack << "\n";
   os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";

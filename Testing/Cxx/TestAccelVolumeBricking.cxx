@@ -58,6 +58,8 @@ Result Render(vtkImageData* image, const Scene& scene, const Configure& configur
   mapper->SetBlendMode(scene.blend);
   mapper->SetFrontToBack(scene.frontToBack);
   mapper->PrecomputeGradientsOff(); // bricks take central differences: compare like with like
+  // Bricks are rasterised: so is the unbricked reference (compute slices stop rays elsewhere).
+  mapper->SetSliceCompositing(vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER);
   double range[2];
   image->GetPointData()->GetScalars()->GetRange(range);
   if (scene.crop)

@@ -38,6 +38,8 @@ Result Render(const Scene& scene, int slabSamples)
   constexpr int Size = 150;
   auto image = MakePhantom("vessels", 52, 46, 40, 1.0, 1.1, 1.3);
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
+  // A rasterisation feature: compute slices would take the same samples without it.
+  mapper->SetSliceCompositing(vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER);
   mapper->SetInputData(image);
   mapper->SetBlendModeToComposite();
   mapper->SetSlabSamples(slabSamples);

@@ -1,8 +1,9 @@
 // Empty-space skipping is exact, and so is back-to-front compositing: composite images with
 // skipping per fragment, by octree leaves, or both, equal the unskipped image (same samples;
 // skipped ones have opacity 0), on a procedural volume and on the engine CT, shaded, with early
-// termination off. A third case demands that a slice's sample positions depend only on the pixel
-// and the slice depth, never on the proxy polygon that covers the pixel (see CheckSamplePositions).
+// termination off, for rasterised and compute slices. A third case demands that a slice's sample
+// positions depend only on the pixel and the slice depth, never on the proxy polygon that covers
+// the pixel, nor on whether a compute pass takes them (see CheckSamplePositions).
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeSliceMapper.h"
 
@@ -12,11 +13,14 @@
 
 namespace
 {
+using Mapper = vtkAccelVolumeSliceMapper;
+
 std::vector<float> Render(vtkImageData* image, int skipping, double low, double high,
-  double* leafFraction, bool frontToBack = true)
+  double* leafFraction, int compositing, bool frontToBack = true)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
   mapper->SetInputData(image);
+  mapper->SetSliceCompositing(compositing);
   mapper->SetBlendModeToComposite();
   mapper->SetFrontToBack(frontToBack);
   mapper->SetEarlyRayTermination(false);
@@ -34,16 +38,16 @@ std::vector<float> Render(vtkImageData* image, int skipping, double low, double 
   return accelvolume_test::ReadPixels(window);
 }
 
-bool Check(const char* name, vtkImageData* image, double low, double high)
+bool Check(const char* name, vtkImageData* image, double low, double high, int compositing)
 {
   double fraction = 0;
   const std::vector<float> none =
-    Render(image, vtkAccelVolumeSliceMapper::SKIP_NONE, low, high, &fraction);
+    Render(image, vtkAccelVolumeSliceMapper::SKIP_NONE, low, high, &fraction, compositing);
   bool ok = true;
   for (int mode : { vtkAccelVolumeSliceMapper::SKIP_FRAGMENT,
          vtkAccelVolumeSliceMapper::SKIP_OCTREE, vtkAccelVolumeSliceMapper::SKIP_BOTH })
   {
-    const std::vector<float> skipped = Render(image, mode, low, high, &fraction);
+    const std::vector<float> skipped = Render(image, mode, low, high, &fraction, compositing);
     const accelvolume_test::ImageDifference d =
       accelvolume_test::CompareImages(skipped, none, 1.0 / 255.0);
     // Identical samples: only float rounding of the blend may differ.
@@ -54,7 +58,8 @@ bool Check(const char* name, vtkImageData* image, double low, double high)
     // Back to front ("over") composites the same samples in the other order.
     if (mode == vtkAccelVolumeSliceMapper::SKIP_BOTH)
     {
-      const std::vector<float> backToFront = Render(image, mode, low, high, &fraction, false);
+      const std::vector<float> backToFront =
+        Render(image, mode, low, high, &fraction, compositing, false);
       const accelvolume_test::ImageDifference order =
         accelvolume_test::CompareImages(backToFront, skipped, 1.0 / 255.0);
       std::cout << name << ", back to front vs front to back: max |diff| " << order.maximum << "\n";
@@ -121,14 +126,18 @@ void SetNoiseProperty(vtkVolumeProperty* property, double maxOpacity)
 // from the polygon's vertices fail here on llvmpipe (tens of pixels), and so do positions whose
 // arithmetic the compiler may fuse differently in the two shader variants (a few pixels); on
 // NVIDIA, whose 8-bit filter weights amplify such rounding, the engine CT case above failed too.
+// Compute slices (pass 2) place their samples with the same maps: the same image.
 bool CheckSamplePositions(vtkImageData* image, bool perspective)
 {
-  std::vector<float> images[2];
+  std::vector<float> images[3];
   double areaFraction = 1.0;
-  for (int pass = 0; pass < 2; ++pass)
+  bool computed = false;
+  for (int pass = 0; pass < 3; ++pass)
   {
     vtkNew<vtkAccelVolumeSliceMapper> mapper;
     mapper->SetInputData(image);
+    mapper->SetSliceCompositing(
+      pass == 2 ? Mapper::SLICE_COMPOSITING_COMPUTE : Mapper::SLICE_COMPOSITING_RASTER);
     mapper->SetBlendModeToComposite();
     mapper->SetEarlyRayTermination(false);
     mapper->SetEmptySpaceSkipping(
@@ -150,6 +159,7 @@ bool CheckSamplePositions(vtkImageData* image, bool perspective)
     window->Render();
     images[pass] = accelvolume_test::ReadPixels(window);
     areaFraction = pass == 1 ? mapper->GetLastProxyAreaFraction() : areaFraction;
+    computed = pass == 2 && mapper->GetLastSliceCompositing() == Mapper::SLICE_COMPOSITING_COMPUTE;
   }
   const accelvolume_test::ImageDifference d =
     accelvolume_test::CompareImages(images[1], images[0], 1.0 / 255.0);
@@ -165,7 +175,19 @@ bool CheckSamplePositions(vtkImageData* image, bool perspective)
             << ", octree vs none: max |diff| " << d.maximum << ", pixels over 1/255 "
             << d.fractionAbove << ", proxy area kept " << areaFraction << ", lit channels "
             << covered << (same && culled && drawn ? "" : "  FAILED") << "\n";
-  return same && culled && drawn;
+  bool computeSame = true;
+  if (computed)
+  {
+    // The compute pass decides which samples lie in the volume by an interval test, where the
+    // rasteriser covers pixel centres: the samples themselves must be the same.
+    const accelvolume_test::ImageDifference c =
+      accelvolume_test::CompareImages(images[2], images[0], 1.0 / 255.0);
+    computeSame = c.fractionAbove <= 0.001;
+    std::cout << "sample positions, " << (perspective ? "perspective" : "parallel")
+              << ", compute vs raster: max |diff| " << c.maximum << ", pixels over 1/255 "
+              << c.fractionAbove << " (limit 0.001)" << (computeSame ? "" : "  FAILED") << "\n";
+  }
+  return same && culled && drawn && computeSame;
 }
 }
 
@@ -191,6 +213,7 @@ bool CheckGeneratedSlices(vtkImageData* image, bool perspective, Crop crop)
     vtkNew<vtkAccelVolumeSliceMapper> mapper;
     mapper->SetInputData(image);
     mapper->SetBlendModeToComposite();
+    mapper->SetSliceCompositing(Mapper::SLICE_COMPOSITING_RASTER);
     mapper->SetGPUSliceGeneration(pass == 1);
     if (crop != Crop::None)
     {
@@ -243,13 +266,22 @@ bool CheckGeneratedSlices(vtkImageData* image, bool perspective, Crop crop)
 
 int TestAccelVolumeEmptySpaceSkipping(int, char*[])
 {
-  bool ok = Check("blobs phantom", accelvolume_test::MakePhantom("blobs", 60, 52, 44), 150, 900);
-  if (auto engine =
-        accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
+  bool ok = true;
+  for (int compositing : { Mapper::SLICE_COMPOSITING_RASTER, Mapper::SLICE_COMPOSITING_COMPUTE })
   {
-    ok = Check("engine CT", engine, 60, 255) && ok;
+    const bool raster = compositing == Mapper::SLICE_COMPOSITING_RASTER;
+    ok = Check(raster ? "blobs phantom, raster" : "blobs phantom, compute",
+           accelvolume_test::MakePhantom("blobs", 60, 52, 44), 150, 900, compositing) &&
+      ok;
+    if (auto engine =
+          accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
+    {
+      ok = Check(raster ? "engine CT, raster" : "engine CT, compute", engine, 60, 255,
+             compositing) &&
+        ok;
+    }
   }
-  else
+  if (!accelvolume_test::LoadSharedVolume("engine_256x256x128_uint8.raw.gz", 256, 256, 128))
   {
     std::cout << "engine CT not found: real-data case skipped\n";
   }

@@ -30,6 +30,8 @@ struct Scene
 std::vector<float> Render(vtkImageData* image, const Scene& scene, bool half, bool& usedHalf)
 {
   vtkNew<vtkAccelVolumeSliceMapper> mapper;
+  // A rasterisation feature: compute slices would take the same samples without it.
+  mapper->SetSliceCompositing(vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER);
   mapper->SetInputData(image);
   mapper->SetBlendMode(scene.BlendMode);
   mapper->SetHalfFloatTarget(half);

@@ -12,8 +12,12 @@ class vtkShaderProgram;
 class vtkAccelVolumeSliceResources;
 struct vtkAccelVolumeSliceFrame;
 
-/** The frame's textures, tables, lights and mask uniforms on a slice or cut-face program. */
-void vtkAccelVolumeSliceSetFrameUniforms(vtkShaderProgram* program,
+/**
+ * The frame's textures, tables, lights and mask uniforms on a slice, cut-face or compute-slice
+ * program (vtkShaderProgram or vtkAccelVolumeComputeProgram, which share the setters).
+ */
+template <class Program>
+void vtkAccelVolumeSliceSetFrameUniforms(Program* program,
   vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame);
 
 /**

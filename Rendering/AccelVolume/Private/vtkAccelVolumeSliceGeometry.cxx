@@ -4,6 +4,7 @@
 #include "slicing/CompositeSlices.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace
 {
@@ -277,6 +278,37 @@ void BuildGeneratedSlices(const vtkAccelVolumeSliceGeometryInput& input, Frame::
   }
 }
 
+// Compute slices: the brick and its region's cell, no geometry; the planes through the region.
+void BuildComputeBrick(const vtkAccelVolumeSliceGeometryInput& input, Frame::BrickDraw& draw,
+  vtkAccelVolumeSliceGeometryStats& stats)
+{
+  const accelvolume::Box& region = input.Regions->front();
+  Frame::Cell cell;
+  cell.Lower = ToFloats(region.lower);
+  cell.Upper = ToFloats(region.upper);
+  draw.Cells.push_back(cell);
+  draw.SliceStarts.assign(2, 0);
+  double minimumDepth = std::numeric_limits<double>::infinity();
+  double maximumDepth = -minimumDepth;
+  for (const accelvolume::Polygon& face : accelvolume::ComputeRegionBoundaryFaces(region, *input.Clip))
+  {
+    for (const accelvolume::Vec3& v : face)
+    {
+      const double depth = accelvolume::Dot(input.Rays.depthGradient, v) + input.Rays.depthOffset;
+      minimumDepth = std::min(minimumDepth, depth);
+      maximumDepth = std::max(maximumDepth, depth);
+    }
+  }
+  long long first = 0;
+  long long last = -1;
+  if (maximumDepth > minimumDepth)
+  {
+    accelvolume::SampleIndexRange(
+      minimumDepth, maximumDepth, input.Phase, input.Spacing, first, last);
+  }
+  stats.Slices = static_cast<int>(std::max(0LL, last - first + 1));
+}
+
 bool CanGenerateSlices(const vtkAccelVolumeSliceGeometryInput& input)
 {
   return input.GenerateSlices && input.Composite && !input.SlicePlane && input.Layout->Single() &&
@@ -323,6 +355,18 @@ void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& in
   sliceRecords.clear();
   stats = vtkAccelVolumeSliceGeometryStats();
   const accelvolume::BrickLayout& layout = *input.Layout;
+  frame.ComputeSlices = input.ComputeSlices && layout.Single() && input.Regions->size() == 1 &&
+    !input.SlicePlane;
+  if (frame.ComputeSlices)
+  {
+    frame.GeneratedSlices = false;
+    frame.Bricked = false;
+    Frame::BrickDraw draw = MakeBrickDraw(0, layout.bricks[0], false);
+    BuildComputeBrick(input, draw, stats);
+    frame.Bricks.push_back(std::move(draw));
+    stats.KeptAreaFraction = -1.0;
+    return;
+  }
   frame.GeneratedSlices = CanGenerateSlices(input);
   if (frame.GeneratedSlices)
   {

@@ -94,6 +94,45 @@ bool LeafTransparent(const accelvolume::MinMaxOctree& octree, std::uint64_t inde
 }
 }
 
+bool vtkAccelVolumeSliceMapper::vtkInternals::UploadEmptyBlocks(
+  vtkOpenGLRenderWindow* window, const std::vector<unsigned char>& leafFlags)
+{
+  constexpr int Block = vtkAccelVolumeSliceResources::LeafBlock;
+  const int* grid = this->LeafGrid;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->BlockGrid[a] = (grid[a] + Block - 1) / Block;
+  }
+  const int* blocks = this->BlockGrid;
+  std::vector<unsigned char> flags(static_cast<size_t>(blocks[0]) * blocks[1] * blocks[2], 255);
+  std::size_t at = 0;
+  for (int k = 0; k < grid[2]; ++k)
+  {
+    for (int j = 0; j < grid[1]; ++j)
+    {
+      for (int i = 0; i < grid[0]; ++i)
+      {
+        if (leafFlags[at++] == 0)
+        {
+          flags[(static_cast<size_t>(k / Block) * blocks[1] + j / Block) * blocks[0] + i / Block] =
+            0;
+        }
+      }
+    }
+  }
+  vtkTextureObject* texture = this->Resources.EmptyBlocks;
+  texture->SetContext(window);
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (!texture->Create3DFromRaw(
+        blocks[0], blocks[1], blocks[2], 1, VTK_UNSIGNED_CHAR, flags.data()))
+  {
+    return false;
+  }
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return true;
+}
+
 bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self,
   vtkOpenGLRenderWindow* window, const std::vector<vtkAccelVolumeLeafSource>& sources)
 {
@@ -179,6 +218,10 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSl
     }
     leaves->SetMinificationFilter(vtkTextureObject::Nearest);
     leaves->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!this->UploadEmptyBlocks(window, flags))
+    {
+      return false;
+    }
     this->LeavesKey = key;
     this->LeavesTransparentFraction =
       flags.empty() ? 0.0 : static_cast<double>(transparent) / static_cast<double>(flags.size());

@@ -83,10 +83,14 @@ public:
   std::vector<double> LeavesKey;
   double LeavesTransparentFraction = 0.0;
   int LeafGrid[3] = { 0, 0, 0 };
+  int BlockGrid[3] = { 0, 0, 0 }; // EmptyBlocks' size
   // The octree's merged non-empty boxes for that classification (slice culling).
   std::vector<accelvolume::Box> NonEmptyBoxes;
   bool HaveNonEmptyBoxes = false;
   std::string Renderer;
+  // Whether the context runs compute slices (asked once per window).
+  vtkOpenGLRenderWindow* ComputeWindow = nullptr;
+  bool ComputeSupported = false;
   std::vector<float> Vertices;
   std::vector<float> SliceRecords; // generated slices (see vtkAccelVolumeSliceFrame)
   // Generated slices: the last frame's view, for GetLastProxyAreaFraction on demand.
@@ -123,6 +127,10 @@ public:
   void BuildProxyGeometry(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
     vtkImageData* input, vtkDataArray* scalars, vtkVolumeProperty* property, const double range[2], const vtkAccelVolumeSliceView& view,
     bool& skipEmptyLeaves, vtkAccelVolumeSliceGeometryStats& stats);
+  // Whether this frame's slices are composited by the compute pass (SliceCompositing, the
+  // frame's inputs and the context).
+  bool UseComputeSlices(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    const vtkAccelVolumeSliceView& view);
   // The frame's settings for the passes; false (reported) when the 2D table fails.
   bool FillFrame(vtkAccelVolumeSliceMapper* self, vtkRenderer* renderer,
     vtkOpenGLRenderWindow* window, vtkImageData* input, vtkDataArray* scalars,
@@ -139,6 +147,9 @@ public:
   // the non-empty boxes; false if unavailable.
   bool UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
     const std::vector<vtkAccelVolumeLeafSource>& sources);
+  // The block texture of the leaf flags just classified (x fastest, 255 = transparent).
+  bool UploadEmptyBlocks(
+    vtkOpenGLRenderWindow* window, const std::vector<unsigned char>& leafFlags);
   // Components (weights, unit distances), masks (vtkAccelVolumeSliceFrameFill.cxx).
   void FillComponentsAndMasks(vtkAccelVolumeSliceMapper* self, vtkDataArray* scalars,
     vtkVolumeProperty* property, const vtkAccelVolumeSliceView& view);

@@ -19,15 +19,18 @@
 #include "vtk_glew.h"
 
 #include "AccelVolumeSliceComponentsFS.h"
+#include "AccelVolumeSliceSampling.h"
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace
 {
 // The shaders read matrices as GLSL column-major; vtkShaderProgram uploads VTK's row-major
 // elements untransposed, so hand it the transpose.
-void SetMatrixUniform(vtkShaderProgram* program, const char* name, vtkMatrix4x4* matrix)
+template <class Program>
+void SetMatrixUniform(Program* program, const char* name, vtkMatrix4x4* matrix)
 {
   vtkNew<vtkMatrix4x4> transposed;
   vtkMatrix4x4::Transpose(matrix, transposed);
@@ -65,7 +68,8 @@ bool ProjectiveSlices(const vtkAccelVolumeSliceFrame& frame)
 // gives the homogeneous eye point (X, Y, W) linear in (nx, ny, 1), with coefficients linear in
 // (alpha, beta, omega) = (P02, P12, P32) z + (P03, P13, P33) and W free of z. Double precision
 // here, and depths relative to a depth near the volume, keep the float maps accurate.
-void SetSliceMapUniforms(vtkShaderProgram* program, const vtkAccelVolumeSliceFrame& frame)
+template <class Program>
+void SetSliceMapUniforms(Program* program, const vtkAccelVolumeSliceFrame& frame)
 {
   vtkMatrix4x4* p = frame.Projection;
   auto P = [p](int r, int c) { return p->GetElement(r, c); };
@@ -175,21 +179,35 @@ std::string vtkAccelVolumeSliceShaderPrelude(
     std::to_string(composite || frame.MaskMode == 1 ? frame.MaskMode : 0) + "\n";
 }
 
-std::string vtkAccelVolumeSliceAssembleShader(const char* source, const std::string& prelude)
+std::string vtkAccelVolumeSliceInsertSampling(const char* source)
 {
   std::string text = source;
-  const std::string part = "//ACCELVOLUME::ComponentsAndIsoSurfaces::Dec";
-  const size_t partAt = text.find(part);
-  if (partAt != std::string::npos)
+  // The shared sampling first: the components part is inserted inside it.
+  const std::pair<const char*, const char*> parts[] = {
+    { "//ACCELVOLUME::Sampling::Dec", AccelVolumeSliceSampling },
+    { "//ACCELVOLUME::ComponentsAndIsoSurfaces::Dec", AccelVolumeSliceComponentsFS }
+  };
+  for (const auto& part : parts)
   {
-    text.replace(partAt, part.size(), AccelVolumeSliceComponentsFS);
+    const size_t at = text.find(part.first);
+    if (at != std::string::npos)
+    {
+      text.replace(at, std::char_traits<char>::length(part.first), part.second);
+    }
   }
+  return text;
+}
+
+std::string vtkAccelVolumeSliceAssembleShader(const char* source, const std::string& prelude)
+{
+  std::string text = vtkAccelVolumeSliceInsertSampling(source);
   const size_t at = text.find("//VTK::Output::Dec");
   text.insert(at == std::string::npos ? 0 : at, prelude);
   return text;
 }
 
-void vtkAccelVolumeSliceSetFrameUniforms(vtkShaderProgram* program,
+template <class Program>
+void vtkAccelVolumeSliceSetFrameUniforms(Program* program,
   vtkAccelVolumeSliceResources& resources, const vtkAccelVolumeSliceFrame& frame)
 {
   program->SetUniformi("transferTable", resources.TransferTable->GetTextureUnit());
@@ -218,6 +236,11 @@ void vtkAccelVolumeSliceSetFrameUniforms(vtkShaderProgram* program,
     program->SetUniformi("emptyLeaves", resources.EmptyLeaves->GetTextureUnit());
     program->SetUniformf("leafSize", frame.LeafSize);
     program->SetUniform3f("leafGridMaximum", frame.LeafGridMaximum);
+    if (frame.ComputeSlices)
+    {
+      program->SetUniformi("emptyBlocks", resources.EmptyBlocks->GetTextureUnit());
+      program->SetUniform3f("blockGridMaximum", frame.BlockGridMaximum);
+    }
   }
   if (frame.GradientTexture)
   {
@@ -283,6 +306,11 @@ void vtkAccelVolumeSliceSetFrameUniforms(vtkShaderProgram* program,
   }
 }
 
+template void vtkAccelVolumeSliceSetFrameUniforms<vtkShaderProgram>(
+  vtkShaderProgram*, vtkAccelVolumeSliceResources&, const vtkAccelVolumeSliceFrame&);
+template void vtkAccelVolumeSliceSetFrameUniforms<vtkAccelVolumeComputeProgram>(
+  vtkAccelVolumeComputeProgram*, vtkAccelVolumeSliceResources&, const vtkAccelVolumeSliceFrame&);
+
 namespace
 {
 
@@ -339,6 +367,7 @@ void ActivateFrameTextures(
   vtkTextureObject* textures[] = { resources.TransferTable, resources.SceneDepth,
     frame.GradientOpacity ? resources.GradientOpacityTable.GetPointer() : nullptr,
     frame.SkipEmptyLeaves ? resources.EmptyLeaves.GetPointer() : nullptr,
+    frame.SkipEmptyLeaves && frame.ComputeSlices ? resources.EmptyBlocks.GetPointer() : nullptr,
     frame.TransferFunction2D ? resources.TransferTable2D.GetPointer() : nullptr,
     frame.GradientTexture ? resources.Gradients.GetPointer() : nullptr,
     frame.Components > 1 ? resources.ComponentTables.GetPointer() : nullptr,
@@ -489,6 +518,16 @@ bool Accumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& res
   return ok;
 }
 
+// Compute slices: one dispatch fills the whole target (no clear, no blending).
+bool ComputeAccumulate(vtkOpenGLRenderWindow* window, vtkAccelVolumeSliceResources& resources,
+  const vtkAccelVolumeSliceFrame& frame, std::string& error)
+{
+  ActivateFrameTextures(resources, frame, true);
+  const bool ok = resources.Compute.Accumulate(window, resources, frame, error);
+  ActivateFrameTextures(resources, frame, false);
+  return ok;
+}
+
 }
 
 bool vtkAccelVolumeSliceReducedTarget(const vtkAccelVolumeSliceFrame& frame)
@@ -542,7 +581,9 @@ bool vtkAccelVolumeRenderSlicePasses(vtkOpenGLRenderWindow* window,
     {
       error = "the scene depth could not be copied";
     }
-    ok = ok && Accumulate(window, resources, frame, error);
+    ok = ok &&
+      (frame.ComputeSlices ? ComputeAccumulate(window, resources, frame, error)
+                           : Accumulate(window, resources, frame, error));
     if (ok && frame.RenderToImage)
     {
       ok = vtkAccelVolumeSliceResolveToImage(window, resources, frame);

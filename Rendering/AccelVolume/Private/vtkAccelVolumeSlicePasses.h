@@ -154,6 +154,7 @@ struct vtkAccelVolumeSliceFrame
   bool SkipEmptyLeaves = false;
   float LeafSize = 8;
   float LeafGridMaximum[3] = { 0, 0, 0 };
+  float BlockGridMaximum[3] = { 0, 0, 0 }; // compute slices: EmptyBlocks' grid size - 1
 
   std::vector<BrickDraw> Bricks;                // in drawing order
   const std::vector<float>* Vertices = nullptr; // triangles, VertexFloats per vertex
@@ -167,6 +168,15 @@ struct vtkAccelVolumeSliceFrame
   const std::vector<float>* SliceRecords = nullptr;
   float DepthGradient[3] = { 0, 0, 1 }; // index space: depth - ReferenceDepth = g . p + offset
   float DepthOffset = 0;
+
+  // Compute slices (composite, MIP, MinIP of one brick and one region): one compute dispatch
+  // takes every slice's samples per pixel instead of drawing proxy slices. Bricks then holds
+  // one brick with one cell (the region box) and no slices. Slice planes lie at relative depths
+  // SliceBase + j * SliceSpacing (j integer).
+  bool ComputeSlices = false;
+  float SliceBase = 0;
+  bool CountSamples = false;      // count the samples taken (a read-back that waits for the GPU)
+  mutable long long Samples = -1; // out: samples taken (compute slices with CountSamples), or -1
 };
 
 /**

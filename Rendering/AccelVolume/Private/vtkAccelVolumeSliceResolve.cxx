@@ -30,6 +30,10 @@ bool vtkAccelVolumeSliceResolve(vtkOpenGLRenderWindow* window,
   vtkOpenGLState* state = window->GetState();
   state->vtkglViewport(lowerLeft[0], lowerLeft[1], frame.ViewportWidth, frame.ViewportHeight);
   state->vtkglDisable(GL_DEPTH_TEST);
+  // Whatever the passes before left (compute slices draw nothing, the depth copy of a reduced
+  // target blends nothing): blend premultiplied colour over the scene.
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   state->vtkglBlendEquation(GL_FUNC_ADD);
   state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   vtkShaderProgram* program = resources.ReadyProgram(window, AccelVolumeResolveVS,

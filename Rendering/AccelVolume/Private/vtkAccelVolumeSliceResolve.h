@@ -18,6 +18,8 @@ std::string vtkAccelVolumeSliceShaderVariant(
 /** The frame's variant #defines alone (a short string: the key of a program variant). */
 std::string vtkAccelVolumeSliceShaderPrelude(
   const vtkAccelVolumeSliceFrame& frame, int slabSamples, bool boundaryFace);
+/** A slice shader's source with the shared sampling (and multi-component) parts inserted. */
+std::string vtkAccelVolumeSliceInsertSampling(const char* source);
 /** A fragment source with a prelude from vtkAccelVolumeSliceShaderPrelude inserted. */
 std::string vtkAccelVolumeSliceAssembleShader(const char* source, const std::string& prelude);
 /** An accumulation target smaller than the viewport (image sample distance above 1). */

@@ -668,6 +668,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->TransferTable->ReleaseGraphicsResources(window);
   this->GradientOpacityTable->ReleaseGraphicsResources(window);
   this->EmptyLeaves->ReleaseGraphicsResources(window);
+  this->EmptyBlocks->ReleaseGraphicsResources(window);
   this->TransferTable2D->ReleaseGraphicsResources(window);
   this->Gradients->ReleaseGraphicsResources(window);
   this->GradientScalars = nullptr;
@@ -682,6 +683,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->VertexBuffer->ReleaseGraphicsResources();
   this->SliceRecordBuffer->ReleaseGraphicsResources();
   this->Programs.clear(); // the window's shader cache releases them
+  this->Compute.ReleaseGraphicsResources(window);
   for (auto& timer : this->FrameTimers)
   {
     if (timer)

@@ -8,6 +8,7 @@
 #define vtkAccelVolumeSliceResources_h
 
 #include "vtkAccelVolumeBrickCache.h"
+#include "vtkAccelVolumeSliceCompute.h"
 #include "vtkAccelVolumeScalarEncoding.h"
 #include "vtkNew.h"
 #include "vtkTimeStamp.h"
@@ -158,6 +159,8 @@ public:
   vtkNew<vtkTextureObject> TransferTable;
   vtkNew<vtkTextureObject> GradientOpacityTable;
   vtkNew<vtkTextureObject> EmptyLeaves;     // R8 over the octree's leaf grid, 1 = transparent
+  vtkNew<vtkTextureObject> EmptyBlocks;     // R8 over blocks of LeafBlock^3 leaves, 1 = all are
+  static constexpr int LeafBlock = 4;       // leaves per block edge (AccelVolumeSliceCS)
   vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
   vtkNew<vtkTextureObject> Gradients;       // RGBA16: index-space gradient (rgb), value (a)
   float GradientScale = 1.0f;               // decoded gradient = (rgb * 2 - 1) * GradientScale
@@ -181,6 +184,7 @@ public:
   vtkNew<vtkOpenGLVertexArrayObject> SliceArray;
   vtkNew<vtkOpenGLVertexArrayObject> GeneratedSliceArray; // instanced slice records
   vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
+  vtkAccelVolumeSliceCompute Compute; // compute slices' programs
 
   static constexpr int TableSize = 1024;
 

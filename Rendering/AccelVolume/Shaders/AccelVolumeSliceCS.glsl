@@ -1,0 +1,284 @@
+// Compute slices (vtkAccelVolumeSliceMapper::SliceCompositing COMPUTE): one invocation per
+// accumulation texel takes the samples where the frame's view-aligned slice planes cross its
+// ray, at the points the proxy-slice fragments would take (the same slice maps and sampling
+// code), composites them front to back in registers and stores the value the blended slices
+// would leave in the target: no rasterisation and no framebuffer blending, so the work runs on
+// every shader core (on compute-class GPUs only a few run fragments) and costs one store per
+// pixel. Composite rays stop at the termination threshold and leap over transparent octree
+// leaves (every sample inside one is skipped by the fragment path too); MIP / MinIP take the
+// cut-face samples that boundary re-rendering adds. The prelude (vtkAccelVolumeSliceShaderPrelude
+// plus ACCELVOLUME_TARGET_FORMAT, ACCELVOLUME_TERMINATE, ACCELVOLUME_COUNT_SAMPLES) comes first.
+#define ACCELVOLUME_COMPUTE_SLICES 1
+#define ACCELVOLUME_PRECISE precise
+vec2 computePixel; // the window position of this texel's centre, as gl_FragCoord.xy
+#define ACCELVOLUME_PIXEL computePixel
+
+//ACCELVOLUME::Sampling::Dec
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(ACCELVOLUME_TARGET_FORMAT, binding = 0) uniform writeonly image2D accumulationImage;
+#if ACCELVOLUME_COUNT_SAMPLES
+layout(std430, binding = 0) buffer SampleCounter
+{
+  uint samplesTaken;
+};
+#endif
+
+// The slice maps of the proxy-slice vertex stage: window (x, y, 1) -> index / eye point on the
+// plane at the reference depth, and their change per unit of relative slice depth.
+uniform mat3 indexMap;
+uniform mat3 indexMapPerDepth;
+uniform mat3 eyeMap;
+uniform mat3 eyeMapPerDepth;
+uniform float sliceBase;           // relative depth (eye depth - reference) of slice number 0
+uniform float referenceDepth;      // eye depth the relative depths are measured from
+uniform float terminationThreshold;
+
+ACCELVOLUME_PRECISE float pixelW; // homogeneous weight of this pixel's slice points (1: affine)
+
+// The point of relative slice depth `depth` on this pixel's ray, rounded as a proxy slice's
+// fragment rounds it (its flat map is indexMap + depth * indexMapPerDepth).
+void placeSample(float depth)
+{
+  ACCELVOLUME_PRECISE mat3 sliceIndexMap = indexMap + depth * indexMapPerDepth;
+  ACCELVOLUME_PRECISE mat3 sliceEyeMap = eyeMap + depth * eyeMapPerDepth;
+  vec2 pixel = computePixel;
+  indexPosition = sliceIndexMap[0] * pixel.x + sliceIndexMap[1] * pixel.y + sliceIndexMap[2];
+  eyePosition = sliceEyeMap[0] * pixel.x + sliceEyeMap[1] * pixel.y + sliceEyeMap[2];
+#if ACCELVOLUME_PROJECTIVE_SLICES
+  indexPosition /= pixelW;
+  eyePosition /= pixelW;
+#endif
+}
+
+// [enter, exit] of relative slice depth where the ray point origin + depth * perDepth lies in
+// the region box and every clip half-space; enter > exit when it misses.
+vec2 depthInterval(vec3 origin, vec3 perDepth)
+{
+  float enter = -1.0e30;
+  float exit = 1.0e30;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (abs(perDepth[axis]) > 1.0e-20)
+    {
+      float a = (regionLower[axis] - origin[axis]) / perDepth[axis];
+      float b = (regionUpper[axis] - origin[axis]) / perDepth[axis];
+      enter = max(enter, min(a, b));
+      exit = min(exit, max(a, b));
+    }
+    else if (origin[axis] < regionLower[axis] || origin[axis] > regionUpper[axis])
+    {
+      return vec2(1.0, -1.0);
+    }
+  }
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    float along = dot(clipPlanes[i].xyz, perDepth);
+    float at = dot(clipPlanes[i].xyz, origin) + clipPlanes[i].w;
+    if (abs(along) <= 1.0e-20)
+    {
+      if (at < 0.0)
+      {
+        return vec2(1.0, -1.0);
+      }
+      continue;
+    }
+    float t = -at / along;
+    if (along > 0.0)
+    {
+      enter = max(enter, t);
+    }
+    else
+    {
+      exit = min(exit, t);
+    }
+  }
+  return vec2(enter, exit);
+}
+
+// Relative depth of the opaque geometry on this pixel (the proxy slices' depth test), or huge.
+float sceneRelativeDepth()
+{
+  float depth = texelFetch(sceneDepth, ivec2(computePixel), 0).r;
+  if (depth >= 1.0)
+  {
+    return 1.0e30;
+  }
+  vec4 ndc = vec4(computePixel / viewportSize * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  vec4 eye = inverseProjection * ndc;
+  return -eye.z / eye.w - referenceDepth;
+}
+
+#if defined(ACCELVOLUME_BLEND_COMPOSITE) && ACCELVOLUME_SKIP_OCTREE
+// Blocks of LeafBlock^3 leaves, transparent where all their leaves are (emptyBlocks): rays leap
+// over empty space a block at a time, then a leaf at a time.
+const float LeafBlock = 4.0;
+uniform sampler3D emptyBlocks;
+uniform vec3 blockGridMaximum;
+
+// Relative depth where the ray (origin + depth * perDepth) leaves the grid cell of edge
+// `cellSize` holding index point `point`; the outermost cells reach past the grid, as the cell
+// lookup clamps points to it.
+float cellExitDepth(vec3 point, float cellSize, vec3 gridMaximum, vec3 origin, vec3 perDepth)
+{
+  vec3 cell = clamp(floor(point / cellSize), vec3(0.0), gridMaximum);
+  float exit = 1.0e30;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (perDepth[axis] > 1.0e-20 && cell[axis] < gridMaximum[axis])
+    {
+      exit = min(exit, ((cell[axis] + 1.0) * cellSize - origin[axis]) / perDepth[axis]);
+    }
+    else if (perDepth[axis] < -1.0e-20 && cell[axis] > 0.0)
+    {
+      exit = min(exit, (cell[axis] * cellSize - origin[axis]) / perDepth[axis]);
+    }
+  }
+  return exit;
+}
+
+// The next slice number to test when the ray point at slice j (index point `point`) is in a
+// transparent block or leaf (at most last + 1), else j. The slices skipped lie inside that block
+// or leaf at least one slice spacing before its exit (so rounding cannot misplace them); the
+// returned one is tested (it may sit on the exit face).
+int leapEmptySpace(int j, int last, vec3 point, vec3 origin, vec3 perDepth)
+{
+  float cellSize = leafSize * LeafBlock;
+  vec3 block = clamp(floor(point / cellSize), vec3(0.0), blockGridMaximum);
+  vec3 gridMaximum = blockGridMaximum;
+  if (texelFetch(emptyBlocks, ivec3(block), 0).r <= 0.5)
+  {
+    vec3 leaf = clamp(floor(point / leafSize), vec3(0.0), leafGridMaximum);
+    if (texelFetch(emptyLeaves, ivec3(leaf), 0).r <= 0.5)
+    {
+      return j;
+    }
+    cellSize = leafSize;
+    gridMaximum = leafGridMaximum;
+  }
+  float exit = cellExitDepth(point, cellSize, gridMaximum, origin, perDepth);
+  float slices = min(floor((exit - sliceBase) / sliceSpacing), float(last + 1));
+  return slices >= float(j + 1) ? int(slices) : j + 1;
+}
+#endif
+
+void main()
+{
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (texel.x >= int(viewportSize.x) || texel.y >= int(viewportSize.y))
+  {
+    return;
+  }
+  computePixel = vec2(texel) + vec2(0.5);
+  vec3 pixel = vec3(computePixel, 1.0);
+  pixelW = 1.0;
+#if ACCELVOLUME_PROJECTIVE_SLICES
+  pixelW = dot(pixelWeight, pixel);
+#endif
+  // The ray as a function of relative slice depth, for the interval and leaf tests only (the
+  // samples themselves are placed by placeSample).
+  vec3 origin = (indexMap * pixel) / pixelW;
+  vec3 perDepth = (indexMapPerDepth * pixel) / pixelW;
+  vec2 interval = depthInterval(origin, perDepth);
+  if (!(interval.x <= interval.y) || abs(interval.x) > 1.0e20 || abs(interval.y) > 1.0e20)
+  {
+    interval = vec2(1.0, -1.0); // misses the region (the region box bounds every hit)
+  }
+  float regionExit = interval.y;
+  float sceneDepthHere = sceneRelativeDepth();
+  interval.y = min(interval.y, sceneDepthHere);
+  // Slices strictly in front of the scene depth (the proxy slices' LESS test).
+  int first = int(ceil((interval.x - sliceBase) / sliceSpacing));
+  int last = interval.x <= interval.y ? int(floor((interval.y - sliceBase) / sliceSpacing)) : first - 1;
+  if (sliceBase + float(last) * sliceSpacing >= sceneDepthHere)
+  {
+    --last;
+  }
+  uint taken = 0u;
+#if defined(ACCELVOLUME_BLEND_COMPOSITE)
+  vec4 accumulated = vec4(0.0);
+  for (int j = first; j <= last; ++j)
+  {
+    float depth = sliceBase + float(j) * sliceSpacing;
+#if ACCELVOLUME_SKIP_OCTREE
+    int next = leapEmptySpace(j, last, origin + depth * perDepth, origin, perDepth);
+    if (next != j)
+    {
+      j = next - 1;
+      continue;
+    }
+#endif
+    placeSample(depth);
+    vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
+    float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+    ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
+#if ACCELVOLUME_JITTER
+    uvec2 jitterPixel = uvec2(computePixel);
+    uint hash = jitterPixel.x * 1973u + jitterPixel.y * 9277u + 26699u;
+    hash = (hash ^ 61u) ^ (hash >> 16u);
+    hash *= 9u;
+    hash = hash ^ (hash >> 4u);
+    hash *= 0x27d4eb2du;
+    hash = hash ^ (hash >> 15u);
+    float noise = float(hash & 0xffffffu) / 16777216.0;
+    samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
+#endif
+    ++taken;
+    vec4 premultiplied;
+    if (compositeSample(samplePosition, rayDirection, step, premultiplied))
+    {
+      accumulated += (1.0 - accumulated.a) * premultiplied;
+#if ACCELVOLUME_TERMINATE
+      if (accumulated.a >= terminationThreshold)
+      {
+        break;
+      }
+#endif
+    }
+  }
+  imageStore(accumulationImage, texel, accumulated);
+#else
+#if defined(ACCELVOLUME_BLEND_MAXIMUM)
+  float cleared = -1.0;
+#define ACCELVOLUME_EXTREME(a, b) max(a, b)
+#else
+  float cleared = 2.0;
+#define ACCELVOLUME_EXTREME(a, b) min(a, b)
+#endif
+  float extreme = cleared;
+  bool sampled = false;
+  for (int j = first; j <= last; ++j)
+  {
+    placeSample(sliceBase + float(j) * sliceSpacing);
+    extreme = ACCELVOLUME_EXTREME(extreme, normalizedScalar());
+    sampled = true;
+    ++taken;
+  }
+  // Boundary re-rendering: the cut faces' samples where the ray enters and leaves the region
+  // (a face behind the opaque geometry is hidden, as its fragments fail the depth test).
+  if (boundaryRerendering != 0 && interval.x <= regionExit)
+  {
+    if (interval.x < sceneDepthHere)
+    {
+      indexPosition = origin + interval.x * perDepth;
+      extreme = ACCELVOLUME_EXTREME(extreme, normalizedScalar());
+      sampled = true;
+      ++taken;
+    }
+    if (regionExit < sceneDepthHere)
+    {
+      indexPosition = origin + regionExit * perDepth;
+      extreme = ACCELVOLUME_EXTREME(extreme, normalizedScalar());
+      sampled = true;
+      ++taken;
+    }
+  }
+  imageStore(accumulationImage, texel, sampled ? vec4(extreme, 1.0, 0.0, 0.0) : vec4(cleared));
+#endif
+#if ACCELVOLUME_COUNT_SAMPLES
+  if (taken > 0u)
+  {
+    atomicAdd(samplesTaken, taken);
+  }
+#endif
+}
