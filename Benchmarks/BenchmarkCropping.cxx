@@ -8,7 +8,14 @@
 //   (c) 1.5x slices, re-rendering off;
 //   (d) 2x slices, re-rendering off;
 //   (e) vtkGPUVolumeRayCastMapper, same cropping, sample distance = smallest spacing;
+//   (b_raster) (b) with rasterised proxy slices and cut faces (the default composites the
+//       slices in a compute pass where it can);
 //   (ref) 8x slices with re-rendering on: the "truth" the aliasing error is measured against.
+// Work per frame (issue 17): one untimed frame per configuration at view 1, counted by GL
+// queries (fragment-shader invocations, fragments blended) or the compute slices' sample
+// counter, and VTK's pixels x samples per ray through the crop box; the CPU cost under Mesa's
+// no-op driver from `accelvolume render` children with GALLIUM_NOOP=1 (--noop-frames; 0 skips it;
+// the CLI's camera is fitted to the whole volume, turned as view 1).
 // Timing: a warm-up frame, then N frames each turning the camera 1 degree in azimuth; each
 // frame is Render() plus a 1x1 read-back (so the GPU work is included). Median reported.
 // Error: grey-level differences (0..255) from the reference at two fixed views (see the
@@ -16,6 +23,7 @@
 // JSON: cropping.json of the report (scripts/bench_report/cropping.py renders it).
 #include "BenchmarkHarness.h"
 #include "BenchmarkImageMetrics.h"
+#include "CompositeCounts.h"
 
 #include "vtkAccelVolumeHeadlessRenderWindow.h"
 #include "vtkAccelVolumeSliceMapper.h"
@@ -62,16 +70,20 @@ struct Config
   bool AutoAdjust = false;
   double SliceFactor = 1.0; // slices per smallest voxel spacing
   bool Reference = false;
+  int Compositing = 0; // vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_* (0: the default)
 };
 
 const std::vector<Config>& Configs()
 {
+  constexpr int Raster = vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER;
   static const std::vector<Config> configs = {
     { "a", "slice 1x (auto), re-render off", false, false, true, 1.0, false },
     { "b", "slice 1x (auto), re-render ON", false, true, true, 1.0, false },
     { "c", "slice 1.5x, re-render off", false, false, false, 1.5, false },
     { "d", "slice 2x, re-render off", false, false, false, 2.0, false },
     { "e", "vtkGPUVolumeRayCastMapper 1x", true, false, false, 1.0, false },
+    { "b_raster", "slice 1x (auto), re-render ON, raster slices", false, true, true, 1.0, false,
+      Raster },
     { "ref", "slice 8x + re-render (reference)", false, true, false, 8.0, true },
   };
   return configs;
@@ -88,6 +100,11 @@ struct ConfigResult
   std::vector<std::vector<std::uint8_t>> Images; // per view, RGB, bottom row first
   std::vector<ErrorStats> Footprint, Band, Face; // per view
   ErrorStats FootprintAll, BandAll, FaceAll;
+  bool ComputeSlices = false;    // composited by the compute pass
+  FrameCounts Counts;            // one untimed frame at view 1
+  long long ComputeSamples = -1; // compute slices: samples taken
+  RaySamples RayWork;            // VTK: pixels x samples per ray through the crop box
+  double NoOpMs = -1;            // CPU cost per frame under GALLIUM_NOOP=1, -1 = not run
   double MedianMs() const { return Median(this->FrameMs); }
   double MinMs() const
   {
@@ -141,6 +158,7 @@ struct Settings
   double AboveThreshold = 2.0; // grey levels: "visibly different" pixel
   double Zoom = 1.0;           // after fitting the camera to the crop box
   std::vector<double> Window;  // --window LOW HIGH overrides the per-dataset window
+  int NoOpFrames = 100;        // frames per configuration of the no-op-driver column (0: skip)
 };
 
 // Transfer-function windows chosen per dataset (grey ramp, linear opacity ramp over the window).
@@ -189,7 +207,23 @@ Json ConfigJson(const DatasetResult& d, const ConfigResult& r)
   if (!r.Cfg.Gpu)
   {
     out["median_mapper_ms"] = Round(Median(r.MapperMs), 3);
+    out["compositing"] = r.ComputeSlices ? "compute" : "raster";
+    // Rasterised: one fragment per sample, each blended into the float target (one channel
+    // for MIP: 4 bytes read and written); compute: the counted samples, no blending.
+    out["fragments_shaded"] = r.Counts.FragmentsShaded;
+    out["fragments_blended"] = r.Counts.SamplesPassed;
+    out["samples_fetched"] = r.ComputeSlices ? r.ComputeSamples : r.Counts.FragmentsShaded;
+    out["bytes_blended"] =
+      r.ComputeSlices ? 0 : (r.Counts.SamplesPassed < 0 ? -1 : 8 * r.Counts.SamplesPassed);
   }
+  else
+  {
+    out["fragments_shaded"] = r.Counts.FragmentsShaded;
+    out["ray_pixels"] = r.RayWork.Pixels;
+    out["samples_fetched"] = r.RayWork.Samples;
+    out["bytes_blended"] = 8 * r.RayWork.Pixels;
+  }
+  out["noop_ms"] = r.NoOpMs > 0 ? Json(Round(r.NoOpMs, 4)) : Json();
   out["frame_ms"] = RoundAll(r.FrameMs, 2);
   auto error = [&](const char* key, const ErrorStats& all, const ErrorStats& baseAll)
   {
@@ -254,6 +288,8 @@ public:
     vtkAccelVolumeHeadlessRenderWindow* window);
   ~Scene() { this->Window->RemoveRenderer(this->Renderer); }
   void Time();
+  void CountWork();
+  void RunNoOp(int frames);
   void CaptureViews();
   void MeasureErrors();
   void SaveImages(const std::string& folder) const;
@@ -289,6 +325,7 @@ private:
       this->Slice->SetBoundaryRerendering(cfg.Rerender);
       this->Slice->SetAutoAdjustSampleDistances(cfg.AutoAdjust);
       this->Slice->SetSampleDistance(this->Result.Info.MinSpacing / cfg.SliceFactor);
+      this->Slice->SetSliceCompositing(cfg.Compositing);
     }
   }
   void RenderAndWait()
@@ -435,6 +472,65 @@ void Scene::Time()
   }
 }
 
+// Work of one untimed frame per configuration at view 1.
+void Scene::CountWork()
+{
+  this->SetView(0);
+  for (ConfigResult& r : this->Result.Results)
+  {
+    this->Apply(r.Cfg);
+    this->Slice->SetCountSamples(!r.Cfg.Gpu);
+    r.Counts = CountFrame(this->Window);
+    this->Slice->SetCountSamples(false);
+    if (r.Cfg.Gpu)
+    {
+      r.RayWork = CountRaySamples(
+        this->Renderer, this->Result.CropPlanes, this->Width, this->Result.Info.MinSpacing);
+    }
+    else
+    {
+      r.ComputeSlices = this->Slice->GetLastSliceCompositing() ==
+        vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_COMPUTE;
+      r.ComputeSamples = this->Slice->GetLastNumberOfSamples();
+    }
+  }
+}
+
+// The CPU cost of each configuration under the no-op driver, through the CLI (view 1's angles).
+void Scene::RunNoOp(int frames)
+{
+  const std::string cli = FindCli();
+  if (frames <= 0 || cli.empty())
+  {
+    return;
+  }
+  const DatasetInfo& info = this->Result.Info;
+  const auto number = [](double v) { return std::to_string(v); };
+  for (ConfigResult& r : this->Result.Results)
+  {
+    if (r.Cfg.Reference)
+    {
+      continue;
+    }
+    const double* c = this->Result.CropPlanes;
+    std::vector<std::string> args = { "--input", info.File, "--spacing", number(info.Spacing[0]),
+      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", "mip", "--window",
+      number(this->Result.Window[0]), number(this->Result.Window[1]), "--crop", number(c[0]),
+      number(c[1]), number(c[2]), number(c[3]), number(c[4]), number(c[5]), "--size",
+      std::to_string(this->Width), std::to_string(this->Height), "--azimuth",
+      number(Views[0].Azimuth), "--elevation", number(Views[0].Elevation),
+      "--sample-distance", number(info.MinSpacing / r.Cfg.SliceFactor) };
+    const std::vector<std::string> mapper = r.Cfg.Gpu
+      ? std::vector<std::string>{ "--mapper", "vtk-gpu" }
+      : std::vector<std::string>{ "--mapper", "slice", "--boundary-rerender",
+          r.Cfg.Rerender ? "on" : "off", "--compositing",
+          r.Cfg.Compositing == vtkAccelVolumeSliceMapper::SLICE_COMPOSITING_RASTER ? "raster"
+                                                                                   : "auto" };
+    args.insert(args.end(), mapper.begin(), mapper.end());
+    r.NoOpMs = NoOpMsPerFrame(cli, args, frames);
+  }
+}
+
 // Every configuration at the fixed views, for the error measurement.
 void Scene::CaptureViews()
 {
@@ -559,6 +655,11 @@ public:
     app.add_option("--zoom", this->S.Zoom, "camera zoom after fitting the crop box")
       ->check(CLI::PositiveNumber);
     app
+      .add_option("--noop-frames", this->S.NoOpFrames,
+        "frames per configuration of the no-op-driver CPU column (accelvolume render on EGL "
+        "with GALLIUM_NOOP=1; 0 = skip)")
+      ->check(CLI::NonNegativeNumber);
+    app
       .add_option("--window", this->S.Window,
         "transfer-function window for every dataset (default: per dataset)")
       ->expected(2)
@@ -606,6 +707,8 @@ bool CroppingBenchmark::RunDataset(const std::string& dataDir, const std::string
   }
   Scene scene(this->S, image, result, window);
   scene.Time();
+  scene.CountWork();
+  scene.RunNoOp(this->S.NoOpFrames);
   scene.CaptureViews();
   scene.MeasureErrors();
   if (saveImages)

@@ -20,12 +20,15 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkOpenGLState.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkTextureObject.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
+#include <vtk_glew.h>
 
 #include <algorithm>
 #include <cstring>
@@ -124,6 +127,23 @@ void SetRamp(vtkPiecewiseFunction* opacity, double low, const double range[2])
 }
 
 // Times forced rebuilds; a build slower than 2 s cuts the repeats so the run stays short.
+// The image's 8/16-bit unsigned scalars as a one-channel normalised 3D texture.
+bool MakeResidentTexture(
+  vtkAccelVolumeHeadlessRenderWindow* window, vtkImageData* image, vtkTextureObject* texture)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  window->MakeCurrent();
+  texture->SetContext(window);
+  window->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const bool ok = texture->Create3DFromRaw(
+    dims[0], dims[1], dims[2], 1, scalars->GetDataType(), scalars->GetVoidPointer(0));
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return ok;
+}
+
 bool TimeBuilds(
   vtkAccelVolumeMinMaxOctree* octree, vtkImageData* image, int repeat, BuildResult& result)
 {
@@ -270,14 +290,24 @@ bool OctreeBenchmark::RunDataset(const std::string& name, vtkImageData* image, D
   const Config configs[] = { { "reference", vtkAccelVolumeMinMaxOctree::BUILDER_REFERENCE, 1 },
     { "cpu", vtkAccelVolumeMinMaxOctree::BUILDER_CPU, 1 },
     { "cpu", vtkAccelVolumeMinMaxOctree::BUILDER_CPU, 0 },
-    { "gpu", vtkAccelVolumeMinMaxOctree::BUILDER_GPU, 0 } };
+    { "gpu", vtkAccelVolumeMinMaxOctree::BUILDER_GPU, 0 },
+    { "gpu_texture", vtkAccelVolumeMinMaxOctree::BUILDER_GPU, 0 } };
+  // "gpu_texture": the GPU builder reading a texture that already holds the scalars, as the
+  // slice mapper's resident volume does (8/16-bit unsigned data: normalised texels).
+  vtkNew<vtkTextureObject> resident;
+  const int type = scalars->GetDataType();
+  const bool residentUsable = this->GPUAvailable &&
+    (type == VTK_UNSIGNED_CHAR || type == VTK_UNSIGNED_SHORT) &&
+    MakeResidentTexture(this->Window, image, resident);
   for (const Config& config : configs)
   {
     const bool gpu = config.Id == vtkAccelVolumeMinMaxOctree::BUILDER_GPU;
-    if (gpu && !this->GPUAvailable)
+    const bool fromTexture = std::string(config.Builder) == "gpu_texture";
+    if ((gpu && !this->GPUAvailable) || (fromTexture && !residentUsable))
     {
       continue;
     }
+    octree->SetInputTexture(fromTexture ? resident.GetPointer() : nullptr);
     BuildResult build;
     build.Builder = config.Builder;
     // "All threads" is the count measured at start-up, set explicitly: in VTK 9.1 (TBB) a
@@ -296,9 +326,11 @@ bool OctreeBenchmark::RunDataset(const std::string& name, vtkImageData* image, D
     d.Nodes = octree->GetNumberOfNodes();
     d.Depth = octree->GetDepth();
   }
+  octree->SetInputTexture(nullptr);
   this->Classify(octree, d);
   this->Window->MakeCurrent();
   octree->ReleaseGraphicsResources();
+  resident->ReleaseGraphicsResources(this->Window);
   return true;
 }
 

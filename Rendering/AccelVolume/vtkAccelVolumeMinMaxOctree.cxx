@@ -5,6 +5,7 @@
 
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeRenderProgress.h"
+#include "vtkAccelVolumeScalarEncoding.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -14,6 +15,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkTextureObject.h"
 #include "vtkTimerLog.h"
 
 #include <algorithm>
@@ -150,8 +152,24 @@ bool BuildLevels(int builder, int numberOfThreads,
       break;
     }
     default:
-      ok = internals.GPUBuilder.Build(internals.Window, image, internals.Octree, error);
-      internals.LastUploadTime = internals.GPUBuilder.GetLastUploadTime();
+      if (internals.InputTexture && internals.InputTexture->GetHandle())
+      {
+        // The caller's texture holds the scalars already: decode it as they were encoded.
+        vtkDataArray* scalars = image->GetPointData()->GetScalars();
+        double range[2];
+        vtkAccelVolumeScalarRange(scalars, range);
+        vtkAccelVolumeEncodedScalars encoding;
+        ok = vtkAccelVolumeScalarEncodingOf(scalars, range, encoding, error) &&
+          internals.GPUBuilder.BuildFromTexture(internals.Window,
+            internals.InputTexture->GetHandle(), vtkAccelVolumeOctreeGPUBuilder::DecodeOf(encoding),
+            internals.Octree, error);
+        internals.LastUploadTime = 0.0;
+      }
+      else
+      {
+        ok = internals.GPUBuilder.Build(internals.Window, image, internals.Octree, error);
+        internals.LastUploadTime = internals.GPUBuilder.GetLastUploadTime();
+      }
       break;
   }
   return ok;
@@ -214,6 +232,15 @@ void vtkAccelVolumeMinMaxOctree::SetRenderWindow(vtkOpenGLRenderWindow* window)
     // Buffers belong to the old context: free them there and rebuild in the new one.
     this->ReleaseGraphicsResources();
     this->Internals->Window = window;
+    this->Modified();
+  }
+}
+
+void vtkAccelVolumeMinMaxOctree::SetInputTexture(vtkTextureObject* texture)
+{
+  if (this->Internals->InputTexture != texture)
+  {
+    this->Internals->InputTexture = texture;
     this->Modified();
   }
 }
@@ -445,6 +472,7 @@ void vtkAccelVolumeMinMaxOctree::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "RenderWindow: " << internals.Window << "\n";
+  os << indent << "InputTexture: " << internals.InputTexture << "\n";
   os << indent << "Built: " << (internals.Built ? "yes" : "no") << "\n";
   if (internals.Built)
   {

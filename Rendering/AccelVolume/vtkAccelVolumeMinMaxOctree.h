@@ -34,6 +34,7 @@
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+class vtkTextureObject;
 class vtkPiecewiseFunction;
 
 class VTKRENDERINGACCELVOLUME_EXPORT vtkAccelVolumeMinMaxOctree : public vtkObject
@@ -84,6 +85,17 @@ public:
 
   /** OpenGL context for BUILDER_GPU (not reference counted: keep the window alive). */
   void SetRenderWindow(vtkOpenGLRenderWindow* window);
+
+  /**
+   * BUILDER_GPU: read the scalars from this 3D texture of the render window's context instead
+   * of uploading them (default none). It must hold the input's scalars as the module's mappers
+   * store them: 8/16-bit integers as unsigned normalised texels (signed ones offset), other
+   * types normalised to their finite range; vtkAccelVolumeSliceMapper passes its resident volume
+   * this way (SetOctreeBuilder), so a time-varying volume is uploaded once per step, for
+   * rendering, and its octree built from that copy. Not reference counted: keep it alive, or
+   * set nullptr.
+   */
+  void SetInputTexture(vtkTextureObject* texture);
 
   /**
    * Builds the octree if the input scalars, LeafSize or Builder changed since the last build.

@@ -149,6 +149,13 @@ void vtkAccelVolumeSliceMapper::ReleaseGraphicsResources(vtkWindow* window)
   const vtkAccelVolumeWindowContext current(window);
   this->Internals->Resources.ReleaseGraphicsResources(window);
   this->Internals->Mask.ReleaseGraphicsResources(window);
+  // GPU-built octree levels (OctreeBuilder GPU) live in this context too.
+  this->Internals->Octree->ReleaseGraphicsResources();
+  this->Internals->Octree->SetInputTexture(nullptr);
+  for (auto& octree : this->Internals->ComponentOctrees)
+  {
+    octree->ReleaseGraphicsResources();
+  }
 }
 
 bool vtkAccelVolumeSliceMapper::ValidateInput(
@@ -364,6 +371,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   const bool contourCulled =
     self->UsesDepthPass() && !ContourValuesVisible(property, self->GetDepthPassContourValues());
   // Multi-component scalars: the octree of each contributing component (see LeafSources).
+  self->LastOctreeBuilder = -1; // UpdateEmptyLeaves says which built the frame's octree
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
     !self->UsesLabelMap() && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
     this->UpdateEmptyLeaves(self, window, this->LeafSources(input, scalars, property, range));

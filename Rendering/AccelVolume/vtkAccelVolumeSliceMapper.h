@@ -381,6 +381,17 @@ public:
   vtkGetMacro(EmptySpaceSkipping, int);
   vtkSetClampMacro(OctreeLeafSize, int, 2, 64);
   vtkGetMacro(OctreeLeafSize, int);
+  /**
+   * Which vtkAccelVolumeMinMaxOctree builder builds the skipping octree when the scalars change
+   * (default BUILDER_CPU, all threads). BUILDER_GPU builds it with compute shaders from the
+   * mapper's resident volume texture (one brick, one component: no second upload; otherwise
+   * the builder uploads the scalars itself) and reads the levels back for the classification;
+   * without compute shaders it falls back to the CPU builder (the same octree).
+   */
+  vtkSetClampMacro(OctreeBuilder, int, 1, 2);
+  vtkGetMacro(OctreeBuilder, int);
+  /** The builder of the skipping octree the last frame used (-1: no octree). */
+  vtkGetMacro(LastOctreeBuilder, int);
   /** Fraction of octree leaves found transparent in the last frame (-1 when unused). */
   vtkGetMacro(LastTransparentLeafFraction, double);
   /**
@@ -561,6 +572,8 @@ protected:
   vtkTypeBool PrecomputeGradients = 1;
   vtkTypeBool Jittering = 0;
   int OctreeLeafSize = 8;
+  int OctreeBuilder = 1; // vtkAccelVolumeMinMaxOctree::BUILDER_CPU
+  int LastOctreeBuilder = -1;
   double LastTransparentLeafFraction = -1.0;
   double LastProxyAreaFraction = 1.0;
   vtkTypeBool GPUSliceGeneration = 1;

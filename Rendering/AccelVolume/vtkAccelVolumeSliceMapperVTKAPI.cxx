@@ -151,6 +151,8 @@ void vtkAccelVolumeSliceMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PrecomputeGradients: " << this->PrecomputeGradients << "\n";
   os << indent << "Jittering: " << this->Jittering << "\n";
   os << indent << "OctreeLeafSize: " << this->OctreeLeafSize << "\n";
+  os << indent << "OctreeBuilder: " << this->OctreeBuilder << "\n";
+  os << indent << "LastOctreeBuilder: " << this->LastOctreeBuilder << "\n";
   os << indent << "EarlyRayTerminationInterval: " << this->EarlyRayTerminationInterval << "\n";
   os << indent << "LastNumberOfTerminationPasses: " << this->LastNumberOfTerminationPasses << "\n";
   os << indent << "AdditiveUnitDistance: " << this->AdditiveUnitDistance << "\n";

@@ -27,6 +27,7 @@ public:
   accelvolume::MinMaxOctree Octree;
   vtkSmartPointer<vtkImageData> Input;
   vtkOpenGLRenderWindow* Window = nullptr; // not reference counted (the header says why)
+  vtkTextureObject* InputTexture = nullptr; // SetInputTexture's (not reference counted)
   vtkAccelVolumeOctreeGPUBuilder GPUBuilder;
 
   // What the last successful build saw, so that Update() knows when to rebuild.

@@ -26,7 +26,7 @@
 
 namespace
 {
-constexpr unsigned int GroupSize = 64;    // local_size_x of both shaders
+constexpr unsigned int GroupSize = 64;    // local_size_x of both shaders (leaf: one group a leaf)
 constexpr unsigned int MaxGroups = 65535; // the guaranteed GL_MAX_COMPUTE_WORK_GROUP_COUNT
 
 // Makes the window's context current and restores VTK's state and the bindings we touch on exit,
@@ -130,10 +130,9 @@ GLuint CompileProgram(const char* source, const char* name, std::string& error)
   return program;
 }
 
-// One invocation per item; a second grid dimension lifts the 65535-group limit of x.
-bool Dispatch(unsigned long long items, std::string& error)
+// `groups` workgroups in a grid whose second dimension lifts the 65535-group limit of x.
+bool DispatchGroups(unsigned long long groups, std::string& error)
 {
-  const unsigned long long groups = (items + GroupSize - 1) / GroupSize;
   const unsigned long long x = std::min<unsigned long long>(std::max(groups, 1ULL), MaxGroups);
   const unsigned long long y = (groups + x - 1) / x;
   if (y > MaxGroups)
@@ -145,6 +144,12 @@ bool Dispatch(unsigned long long items, std::string& error)
   return true;
 }
 
+// One invocation per item (the reduce passes).
+bool Dispatch(unsigned long long items, std::string& error)
+{
+  return DispatchGroups((items + GroupSize - 1) / GroupSize, error);
+}
+
 unsigned long long LevelLength(const accelvolume::OctreeLevel& level)
 {
   return accelvolume::MortonEncode(static_cast<std::uint32_t>(std::max(level.gridSize[0], 1) - 1),
@@ -153,6 +158,28 @@ unsigned long long LevelLength(const accelvolume::OctreeLevel& level)
     1;
 }
 
+}
+
+vtkAccelVolumeOctreeGPUBuilder::Decode vtkAccelVolumeOctreeGPUBuilder::DecodeOf(
+  const vtkAccelVolumeEncodedScalars& encoding)
+{
+  Decode decode;
+  decode.roundTexel = !encoding.Normalized;
+  if (encoding.Normalized)
+  {
+    const double* range = encoding.Range;
+    decode.scale = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    decode.offset = range[0];
+    // Normalising and decoding each round twice in float (~2^-24 relative to the range's
+    // magnitude); widen by a few of those so the ranges stay conservative.
+    decode.margin = std::ldexp(std::fabs(range[0]) + std::fabs(range[1]), -20);
+  }
+  else
+  {
+    decode.scale = encoding.DecodeScale;
+    decode.offset = encoding.DecodeOffset;
+  }
+  return decode;
 }
 
 vtkAccelVolumeOctreeGPUBuilder::vtkAccelVolumeOctreeGPUBuilder() = default;
@@ -286,7 +313,8 @@ bool vtkAccelVolumeOctreeGPUBuilder::BuildCurrent(vtkOpenGLRenderWindow* window,
   glUniform1i(glGetUniformLocation(leaf, "roundTexel"), decode.roundTexel ? 1 : 0);
   glUniform1f(glGetUniformLocation(leaf, "margin"), static_cast<float>(decode.margin));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, this->Buffers[0]);
-  bool ok = Dispatch(lengths[0], error);
+  // One workgroup per leaf (a shared-memory reduction over its voxels).
+  bool ok = DispatchGroups(lengths[0], error);
 
   glBindTexture(GL_TEXTURE_3D, static_cast<GLuint>(previousTexture));
   units->Free(unit);
@@ -366,21 +394,7 @@ bool vtkAccelVolumeOctreeGPUBuilder::Build(vtkOpenGLRenderWindow* window, vtkIma
     internalFormat = GL_R16;
     type = GL_UNSIGNED_SHORT;
   }
-  Decode decode;
-  decode.roundTexel = !encoded.Normalized;
-  if (encoded.Normalized)
-  {
-    decode.scale = range[1] > range[0] ? range[1] - range[0] : 1.0;
-    decode.offset = range[0];
-    // Normalising and decoding each round twice in float (~2^-24 relative to the range's
-    // magnitude); widen by a few of those so the ranges stay conservative.
-    decode.margin = std::ldexp(std::fabs(range[0]) + std::fabs(range[1]), -20);
-  }
-  else
-  {
-    decode.scale = encoded.DecodeScale;
-    decode.offset = encoded.DecodeOffset;
-  }
+  const Decode decode = DecodeOf(encoded);
 
   ScopedComputeState scope(window);
   vtkOpenGLState* state = window->GetState();

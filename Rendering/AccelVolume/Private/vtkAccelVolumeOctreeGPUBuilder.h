@@ -2,9 +2,10 @@
 /**
  * @class   vtkAccelVolumeOctreeGPUBuilder
  * @brief   GPU builder of the min-max octree (Lim and Shin 2009, with compute shaders instead of
- *          CUDA): a leaf pass (one invocation per leaf, texelFetch over its voxel range, with
- *          the one-voxel overlap of the core layout) and one reduce pass per level (one
- *          invocation per parent reading children 8p .. 8p+7).
+ *          CUDA): a leaf pass (one workgroup per leaf: its invocations stride over the leaf's
+ *          voxels with texelFetch, with the one-voxel overlap of the core layout, and reduce
+ *          their extremes in shared memory) and one reduce pass per level (one invocation per
+ *          parent reading children 8p .. 8p+7).
  *
  * Each level lives in its own shader storage buffer of interleaved (min, max) floats in Morton
  * order, the same layout as accelvolume::OctreeLevel; padding nodes are (+inf, -inf). The
@@ -22,6 +23,7 @@
 
 class vtkImageData;
 class vtkOpenGLRenderWindow;
+struct vtkAccelVolumeEncodedScalars;
 
 namespace accelvolume
 {
@@ -54,6 +56,9 @@ public:
     bool roundTexel = false;
     double margin = 0.0;
   };
+
+  /** How to decode a texture holding scalars of this encoding (vtkAccelVolumeScalarEncoding). */
+  static Decode DecodeOf(const vtkAccelVolumeEncodedScalars& encoding);
 
   /**
    * Builds every level of `octree` (already Configure()d for the texture's dimensions) from a

@@ -90,3 +90,36 @@ bool vtkAccelVolumeEncodeScalars(vtkDataArray* scalars, const double range[2],
   encoded.Normalized = true;
   return true;
 }
+
+bool vtkAccelVolumeScalarEncodingOf(vtkDataArray* scalars, const double range[2],
+  vtkAccelVolumeEncodedScalars& encoding, std::string& error)
+{
+  encoding = vtkAccelVolumeEncodedScalars();
+  encoding.Range[0] = range[0];
+  encoding.Range[1] = range[1];
+  switch (scalars->GetDataType())
+  {
+    case VTK_UNSIGNED_CHAR:
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      encoding.TextureType = VTK_UNSIGNED_CHAR;
+      encoding.DecodeScale = 255.0;
+      encoding.DecodeOffset = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 0.0 : -128.0;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+    case VTK_SHORT:
+      encoding.TextureType = VTK_UNSIGNED_SHORT;
+      encoding.DecodeScale = 65535.0;
+      encoding.DecodeOffset = scalars->GetDataType() == VTK_SHORT ? -32768.0 : 0.0;
+      return true;
+    case VTK_INT:
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      encoding.TextureType = VTK_FLOAT;
+      encoding.Normalized = true;
+      return true;
+    default:
+      error = std::string("unsupported scalar type ") + scalars->GetDataTypeAsString();
+      return false;
+  }
+}

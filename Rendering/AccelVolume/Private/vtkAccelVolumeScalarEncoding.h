@@ -36,4 +36,12 @@ struct vtkAccelVolumeEncodedScalars
 bool vtkAccelVolumeEncodeScalars(vtkDataArray* scalars, const double range[2],
   vtkAccelVolumeEncodedScalars& encoded, std::string& error);
 
+/**
+ * The encoding vtkAccelVolumeEncodeScalars would choose (TextureType, DecodeScale, DecodeOffset,
+ * Normalized, Range), without encoding anything: how to decode a texture made from these
+ * scalars. False with `error` for unsupported types.
+ */
+bool vtkAccelVolumeScalarEncodingOf(vtkDataArray* scalars, const double range[2],
+  vtkAccelVolumeEncodedScalars& encoding, std::string& error);
+
 #endif

@@ -154,6 +154,23 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSl
       s == 0 ? this->Octree.GetPointer() : this->ComponentOctrees[s - 1].GetPointer();
     octree->SetInputData(source.Image);
     octree->SetLeafSize(self->OctreeLeafSize);
+    octree->SetBuilder(self->OctreeBuilder);
+    octree->SetInputTexture(nullptr);
+    if (self->OctreeBuilder == vtkAccelVolumeMinMaxOctree::BUILDER_GPU)
+    {
+      octree->SetRenderWindow(window);
+      // The scalars themselves, in one brick: build from the texture the frame samples (brought
+      // up to date first: a new time step is uploaded here rather than when the slices draw).
+      if (s == 0 && source.Image->GetPointData()->GetScalars() &&
+        source.Image->GetPointData()->GetScalars() == this->Resources.GetUploadedScalars() &&
+        this->Resources.GetBrickLayout().Single())
+      {
+        std::string error;
+        vtkTextureObject* texture =
+          this->Resources.Bricks.Acquire(window, 0, this->Frame.Linear, error);
+        octree->SetInputTexture(texture);
+      }
+    }
     if (!octree->Update() || !octree->Classify(source.Opacity, source.Range))
     {
       return false;
@@ -230,5 +247,6 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSl
     this->NonEmptyBoxes = classified->NonEmptyBoxes();
   }
   self->LastTransparentLeafFraction = this->LeavesTransparentFraction;
+  self->LastOctreeBuilder = this->Octree->GetLastBuilder();
   return true;
 }

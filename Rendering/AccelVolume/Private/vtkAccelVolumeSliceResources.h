@@ -81,6 +81,9 @@ public:
   vtkMTimeType ComponentTableVolumeTime = 0;
   int ComponentTableLayout = 0; // components, negative when dependent
 
+  /** The one-component scalars the bricks hold (PrepareVolume's), or null. */
+  vtkDataArray* GetUploadedScalars() const { return this->UploadedScalars; }
+
   /** The bricks of the prepared volume (one brick when it fits a texture and the budget). */
   const accelvolume::BrickLayout& GetBrickLayout() const { return this->Layout; }
 

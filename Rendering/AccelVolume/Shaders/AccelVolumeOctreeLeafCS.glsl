@@ -1,5 +1,7 @@
-// Min-max octree leaf pass: one invocation per leaf (by Morton index) takes the min and max of
-// the voxels its box covers, decoded to raw scalar values, into the level-0 buffer.
+// Min-max octree leaf pass: one workgroup per leaf (by Morton index). Its 64 invocations stride
+// over the voxels the leaf's box covers (x fastest, so neighbouring invocations read
+// neighbouring texels), each keeping a min and max, then reduce them in shared memory; the first
+// writes the leaf's range, decoded to raw scalar values, into the level-0 buffer.
 #version 430
 
 layout(local_size_x = 64) in;
@@ -19,6 +21,9 @@ layout(std430, binding = 0) writeonly buffer Level
   vec2 nodes[]; // (min, max) by Morton index
 };
 
+shared float lows[64];
+shared float highs[64];
+
 // Gathers every third bit (the inverse of the core's Morton interleave, x in bit 0).
 uint Compact(uint v)
 {
@@ -32,36 +37,58 @@ uint Compact(uint v)
 
 void main()
 {
-  // 2D dispatch: the x group count is limited to 65535.
-  uint index = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u +
-    gl_LocalInvocationID.x;
+  // 2D grid of workgroups: the x group count is limited to 65535. Every test that returns early
+  // depends on the workgroup alone, so no invocation skips the barriers of its group.
+  uint index = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   if (index >= nodeCount)
   {
     return;
   }
+  uint lane = gl_LocalInvocationID.x;
   ivec3 leaf = ivec3(Compact(index), Compact(index >> 1), Compact(index >> 2));
   // The core's padding convention: empty nodes are (+inf, -inf).
-  vec2 range = vec2(uintBitsToFloat(0x7f800000u), uintBitsToFloat(0xff800000u));
-  if (all(lessThan(leaf, leafGrid)))
+  float low = uintBitsToFloat(0x7f800000u);
+  float high = uintBitsToFloat(0xff800000u);
+  bool inside = all(lessThan(leaf, leafGrid));
+  if (inside)
   {
     // Voxels [i*L, (i+1)*L] clamped to the volume: one voxel of overlap with the next leaf.
     ivec3 first = leaf * leafSize;
     ivec3 last = min(first + ivec3(leafSize), dims - ivec3(1));
-    float low = uintBitsToFloat(0x7f800000u);
-    float high = uintBitsToFloat(0xff800000u);
-    for (int z = first.z; z <= last.z; ++z)
+    ivec3 extent = last - first + ivec3(1);
+    int count = extent.x * extent.y * extent.z;
+    for (int v = int(lane); v < count; v += 64)
     {
-      for (int y = first.y; y <= last.y; ++y)
-      {
-        for (int x = first.x; x <= last.x; ++x)
-        {
-          float texel = texelFetch(volume, ivec3(x, y, z), 0).r;
-          low = min(low, texel);
-          high = max(high, texel);
-        }
-      }
+      int x = v % extent.x;
+      int yz = v / extent.x;
+      ivec3 voxel = first + ivec3(x, yz % extent.y, yz / extent.y);
+      float texel = texelFetch(volume, voxel, 0).r;
+      low = min(low, texel);
+      high = max(high, texel);
     }
+  }
+  lows[lane] = low;
+  highs[lane] = high;
+  barrier();
+  for (uint stride = 32u; stride > 0u; stride >>= 1)
+  {
+    if (lane < stride)
+    {
+      lows[lane] = min(lows[lane], lows[lane + stride]);
+      highs[lane] = max(highs[lane], highs[lane + stride]);
+    }
+    barrier();
+  }
+  if (lane != 0u)
+  {
+    return;
+  }
+  vec2 range = vec2(lows[0], highs[0]);
+  if (inside)
+  {
     // Decoding is monotonic (decodeScale > 0), so decode only the extremes.
+    low = lows[0];
+    high = highs[0];
     if (roundTexel)
     {
       low = round(low * decodeScale);

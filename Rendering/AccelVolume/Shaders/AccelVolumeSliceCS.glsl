@@ -140,17 +140,22 @@ float cellExitDepth(vec3 point, float cellSize, vec3 gridMaximum, vec3 origin, v
 // The next slice number to test when the ray point at slice j (index point `point`) is in a
 // transparent block or leaf (at most last + 1), else j. The slices skipped lie inside that block
 // or leaf at least one slice spacing before its exit (so rounding cannot misplace them); the
-// returned one is tested (it may sit on the exit face).
-int leapEmptySpace(int j, int last, vec3 point, vec3 origin, vec3 perDepth)
+// returned one is tested (it may sit on the exit face). When the leaf is not transparent,
+// `visibleUntil` gets the depth where the ray leaves it: the samples up to there need no test
+// (one on the exit face belongs to the next leaf, but then lies in this leaf's voxels too, so
+// were that leaf transparent, its opacity would be 0 all the same).
+int leapEmptySpace(int j, int last, vec3 point, vec3 origin, vec3 perDepth, out float visibleUntil)
 {
   float cellSize = leafSize * LeafBlock;
   vec3 block = clamp(floor(point / cellSize), vec3(0.0), blockGridMaximum);
   vec3 gridMaximum = blockGridMaximum;
+  visibleUntil = -1.0e30;
   if (texelFetch(emptyBlocks, ivec3(block), 0).r <= 0.5)
   {
     vec3 leaf = clamp(floor(point / leafSize), vec3(0.0), leafGridMaximum);
     if (texelFetch(emptyLeaves, ivec3(leaf), 0).r <= 0.5)
     {
+      visibleUntil = cellExitDepth(point, leafSize, leafGridMaximum, origin, perDepth);
       return j;
     }
     cellSize = leafSize;
@@ -197,15 +202,19 @@ void main()
   uint taken = 0u;
 #if defined(ACCELVOLUME_BLEND_COMPOSITE)
   vec4 accumulated = vec4(0.0);
+  float visibleUntil = -1.0e30; // the ray is in a leaf that is not transparent up to here
   for (int j = first; j <= last; ++j)
   {
     float depth = sliceBase + float(j) * sliceSpacing;
 #if ACCELVOLUME_SKIP_OCTREE
-    int next = leapEmptySpace(j, last, origin + depth * perDepth, origin, perDepth);
-    if (next != j)
+    if (depth > visibleUntil)
     {
-      j = next - 1;
-      continue;
+      int next = leapEmptySpace(j, last, origin + depth * perDepth, origin, perDepth, visibleUntil);
+      if (next != j)
+      {
+        j = next - 1;
+        continue;
+      }
     }
 #endif
     placeSample(depth);
