@@ -512,7 +512,12 @@ void Scene::RunNoOp(int frames)
     {
       continue;
     }
-    const double* c = this->Result.CropPlanes;
+    // The CLI crops in voxel indices (the raw volumes sit at the origin).
+    double c[6];
+    for (int i = 0; i < 6; ++i)
+    {
+      c[i] = this->Result.CropPlanes[i] / info.Spacing[i / 2];
+    }
     std::vector<std::string> args = { "--input", info.File, "--spacing", number(info.Spacing[0]),
       number(info.Spacing[1]), number(info.Spacing[2]), "--blend", "mip", "--window",
       number(this->Result.Window[0]), number(this->Result.Window[1]), "--crop", number(c[0]),

@@ -27,6 +27,12 @@
  *   fragment and with a min-max octree (slices clipped to the non-empty boxes, fragments in
  *   transparent leaves discarded before any shading).
  *
+ * Compute slices (SliceCompositing, default AUTO): where the frame allows it (composite, MIP,
+ * MinIP; one brick, one cropping region, one component, no mask), the same slices' samples are
+ * composited per pixel in one compute pass instead of rasterised and blended, each ray stopping
+ * at the termination threshold and leaping over transparent octree leaves; the image is the
+ * rasterised one up to rounding and the termination bound.
+ *
  * Cropping (VTK's region flags, any combination: each visible region is drawn as a convex
  * cell) and up to 8 clipping planes restrict the sampled region. With BoundaryRerendering on
  * (the default) the faces of each cell are drawn as extra textured polygons after the

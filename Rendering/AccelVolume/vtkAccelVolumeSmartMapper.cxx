@@ -346,12 +346,16 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
   {
     if (hardware && excluded != SLICE_RENDER)
     {
-      reason += "hardware OpenGL (" + glRenderer + ") with 3D textures -> slice";
+      reason += "hardware OpenGL (" + glRenderer +
+        ") with 3D textures -> slice (fastest of the three where measured on a GPU: "
+        "docs/benchmarks/mapper-choice.md)";
       return SLICE_RENDER;
     }
     if (sliceUsable)
     {
-      reason += "software OpenGL (" + glRenderer + ")";
+      reason += "software OpenGL (" + glRenderer +
+        "): the CPU mappers were faster than the slice mapper in every measured case "
+        "(docs/benchmarks/mapper-choice.md)";
     }
     else if (excluded != SLICE_RENDER)
     {
@@ -364,7 +368,8 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     if (shearWarpUsable && interactive && excluded != SHEARWARP_RENDER)
     {
       reason += std::string("; parallel ") + BlendName(blend) +
-        ", no cropping or clipping, interactive frame -> shear-warp";
+        ", no cropping or clipping, interactive frame -> shear-warp (fastest measured on "
+        "parallel views)";
       return SHEARWARP_RENDER;
     }
     if (excluded == SHEARWARP_RENDER)
@@ -377,9 +382,10 @@ int vtkAccelVolumeSmartMapper::ChooseMode(
     }
     else if (!interactive)
     {
-      reason += "; still frame (allocated time >= 1 / InteractiveUpdateRate)";
+      reason += "; still frame (allocated time >= 1 / InteractiveUpdateRate): exact ray casting "
+                "rather than shear-warp's resampling";
     }
-    reason += " -> ray cast";
+    reason += " -> ray cast (fastest measured on perspective views)";
     return RAYCAST_RENDER;
   };
 

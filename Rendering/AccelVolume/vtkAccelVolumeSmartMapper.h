@@ -24,14 +24,19 @@
  * | otherwise (perspective, raysum / average, cropping, clipping,         |            |
  * | still frames)                                                         | ray cast   |
  *
- * Why (measured in docs/benchmarks-summary.md): on software GL the slice mapper's fragment work
- * runs on the same CPU cores as everything else, and the CPU paths are faster there: the ray
- * caster with distance-map leaping for shaded perspective composite, shear-warp faster still
- * for interactive frames. Shear-warp is therefore the interactive CPU path, but it pre-classifies voxels,
+ * Why (the matrix of Benchmarks/mapper_choice.py, docs/benchmarks/mapper-choice.md: the three
+ * mappers on the same volumes, transfer functions, views and threads): on software GL the slice
+ * mapper's work runs on the same CPU cores as everything else, and the CPU mappers were faster
+ * in every measured case: shear-warp on every parallel view, the ray caster (distance-map
+ * leaping) on every perspective one. Shear-warp is therefore the interactive CPU path, but it
+ * pre-classifies voxels,
  * resamples bilinearly with one sample per slice and warps the image, ignores cropping,
  * clipping planes and scene geometry, and cannot do perspective, raysum or average; the ray
  * caster is exact with every feature, so it renders still frames and everything shear-warp
- * cannot. With a hardware GPU the slice mapper has every feature and is the fastest.
+ * cannot. With a hardware GPU the slice mapper has every feature and was the fastest where
+ * measured (an NVIDIA H200, rasterised slices, against the ray caster on 16 threads); its compute
+ * slices run on every shader core of such a GPU (the matrix's GPU column is measured by
+ * scripts/bench-device.sh when a GPU is at hand).
  * (Opaque geometry in the scene is not detected: a scene that needs it to hide the volume in
  * interactive parallel frames should request RAYCAST_RENDER.)
  *

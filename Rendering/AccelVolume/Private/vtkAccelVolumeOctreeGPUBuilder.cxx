@@ -100,7 +100,10 @@ bool MakeCurrent(vtkOpenGLRenderWindow* window, std::string& error)
   return true;
 }
 
-GLuint CompileProgram(const char* source, const char* name, std::string& error)
+}
+
+unsigned int vtkAccelVolumeOctreeGPUBuilder::CompileProgram(
+  const char* source, const char* name, std::string& error)
 {
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   glShaderSource(shader, 1, &source, nullptr);
@@ -129,6 +132,9 @@ GLuint CompileProgram(const char* source, const char* name, std::string& error)
   }
   return program;
 }
+
+namespace
+{
 
 // `groups` workgroups in a grid whose second dimension lifts the 65535-group limit of x.
 bool DispatchGroups(unsigned long long groups, std::string& error)

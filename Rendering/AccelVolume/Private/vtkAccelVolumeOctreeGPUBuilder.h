@@ -43,6 +43,13 @@ public:
   static bool IsSupported(vtkOpenGLRenderWindow* window, std::string& why);
 
   /**
+   * Compiles and links one compute shader in the current context (also the slice mapper's
+   * compute slices): the program name, or 0 with `error` set to "NAME does not compile: log" /
+   * "... does not link: ...".
+   */
+  static unsigned int CompileProgram(const char* source, const char* name, std::string& error);
+
+  /**
    * How texels of a one-channel 3D texture decode to raw scalar values:
    * value = (roundTexel ? round(texel * scale) : texel * scale) + offset. roundTexel makes the
    * normalised 8/16-bit integer encodings exact. margin widens every non-empty leaf range

@@ -40,36 +40,6 @@ void TargetFormat(int channels, bool halfFloat, std::string& name, GLenum& forma
   }
 }
 
-GLuint CompileComputeProgram(const std::string& source, std::string& error)
-{
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  std::string log(8192, '\0');
-  if (!ok)
-  {
-    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, &log[0]);
-    error = std::string("the compute-slice shader does not compile: ") + log.c_str();
-    glDeleteShader(shader);
-    return 0;
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader); // freed with the program
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok)
-  {
-    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, &log[0]);
-    error = std::string("the compute-slice shader does not link: ") + log.c_str();
-    glDeleteProgram(program);
-    return 0;
-  }
-  return program;
-}
 }
 
 int vtkAccelVolumeComputeProgram::Location(const char* name)
@@ -227,7 +197,8 @@ vtkAccelVolumeComputeProgram* vtkAccelVolumeSliceCompute::ReadyProgram(
   }
   const std::string source =
     "#version 430 core\n" + prelude + vtkAccelVolumeSliceInsertSampling(AccelVolumeSliceCS);
-  const GLuint handle = CompileComputeProgram(source, error);
+  const GLuint handle =
+    vtkAccelVolumeOctreeGPUBuilder::CompileProgram(source.c_str(), "the compute-slice shader", error);
   if (!handle)
   {
     return nullptr;

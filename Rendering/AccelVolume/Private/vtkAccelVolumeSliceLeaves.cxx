@@ -94,6 +94,29 @@ bool LeafTransparent(const accelvolume::MinMaxOctree& octree, std::uint64_t inde
 }
 }
 
+void vtkAccelVolumeSliceMapper::vtkInternals::ConfigureOctree(vtkAccelVolumeSliceMapper* self,
+  vtkOpenGLRenderWindow* window, vtkAccelVolumeMinMaxOctree* octree, vtkImageData* image)
+{
+  octree->SetInputData(image);
+  octree->SetLeafSize(self->OctreeLeafSize);
+  octree->SetBuilder(self->OctreeBuilder);
+  octree->SetInputTexture(nullptr);
+  if (self->OctreeBuilder != vtkAccelVolumeMinMaxOctree::BUILDER_GPU)
+  {
+    return;
+  }
+  octree->SetRenderWindow(window);
+  // The scalars themselves, in one brick: build from the texture the frame samples (brought up to
+  // date first: a new time step is uploaded here rather than when the slices draw).
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars && scalars == this->Resources.GetUploadedScalars() &&
+    this->Resources.GetBrickLayout().Single())
+  {
+    std::string error;
+    octree->SetInputTexture(this->Resources.Bricks.Acquire(window, 0, this->Frame.Linear, error));
+  }
+}
+
 bool vtkAccelVolumeSliceMapper::vtkInternals::UploadEmptyBlocks(
   vtkOpenGLRenderWindow* window, const std::vector<unsigned char>& leafFlags)
 {
@@ -152,25 +175,7 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSl
     const vtkAccelVolumeLeafSource& source = sources[s];
     vtkAccelVolumeMinMaxOctree* octree =
       s == 0 ? this->Octree.GetPointer() : this->ComponentOctrees[s - 1].GetPointer();
-    octree->SetInputData(source.Image);
-    octree->SetLeafSize(self->OctreeLeafSize);
-    octree->SetBuilder(self->OctreeBuilder);
-    octree->SetInputTexture(nullptr);
-    if (self->OctreeBuilder == vtkAccelVolumeMinMaxOctree::BUILDER_GPU)
-    {
-      octree->SetRenderWindow(window);
-      // The scalars themselves, in one brick: build from the texture the frame samples (brought
-      // up to date first: a new time step is uploaded here rather than when the slices draw).
-      if (s == 0 && source.Image->GetPointData()->GetScalars() &&
-        source.Image->GetPointData()->GetScalars() == this->Resources.GetUploadedScalars() &&
-        this->Resources.GetBrickLayout().Single())
-      {
-        std::string error;
-        vtkTextureObject* texture =
-          this->Resources.Bricks.Acquire(window, 0, this->Frame.Linear, error);
-        octree->SetInputTexture(texture);
-      }
-    }
+    this->ConfigureOctree(self, window, octree, source.Image);
     if (!octree->Update() || !octree->Classify(source.Opacity, source.Range))
     {
       return false;

@@ -147,6 +147,10 @@ public:
   // the non-empty boxes; false if unavailable.
   bool UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
     const std::vector<vtkAccelVolumeLeafSource>& sources);
+  // The octree of `image` set up for this frame's build: builder, window and (GPU builder, the
+  // uploaded scalars in one brick) the resident texture to build from.
+  void ConfigureOctree(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    vtkAccelVolumeMinMaxOctree* octree, vtkImageData* image);
   // The block texture of the leaf flags just classified (x fastest, 255 = transparent).
   bool UploadEmptyBlocks(
     vtkOpenGLRenderWindow* window, const std::vector<unsigned char>& leafFlags);

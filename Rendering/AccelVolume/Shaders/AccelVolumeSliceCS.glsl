@@ -71,29 +71,7 @@ vec2 depthInterval(vec3 origin, vec3 perDepth)
       return vec2(1.0, -1.0);
     }
   }
-  for (int i = 0; i < clipPlaneCount; ++i)
-  {
-    float along = dot(clipPlanes[i].xyz, perDepth);
-    float at = dot(clipPlanes[i].xyz, origin) + clipPlanes[i].w;
-    if (abs(along) <= 1.0e-20)
-    {
-      if (at < 0.0)
-      {
-        return vec2(1.0, -1.0);
-      }
-      continue;
-    }
-    float t = -at / along;
-    if (along > 0.0)
-    {
-      enter = max(enter, t);
-    }
-    else
-    {
-      exit = min(exit, t);
-    }
-  }
-  return vec2(enter, exit);
+  return clipInterval(origin, perDepth, vec2(enter, exit), false);
 }
 
 // Relative depth of the opaque geometry on this pixel (the proxy slices' depth test), or huge.
@@ -165,6 +143,7 @@ int leapEmptySpace(int j, int last, vec3 point, vec3 origin, vec3 perDepth, out 
   float slices = min(floor((exit - sliceBase) / sliceSpacing), float(last + 1));
   return slices >= float(j + 1) ? int(slices) : j + 1;
 }
+
 #endif
 
 void main()
@@ -222,15 +201,8 @@ void main()
     float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
     ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
 #if ACCELVOLUME_JITTER
-    uvec2 jitterPixel = uvec2(computePixel);
-    uint hash = jitterPixel.x * 1973u + jitterPixel.y * 9277u + 26699u;
-    hash = (hash ^ 61u) ^ (hash >> 16u);
-    hash *= 9u;
-    hash = hash ^ (hash >> 4u);
-    hash *= 0x27d4eb2du;
-    hash = hash ^ (hash >> 15u);
-    float noise = float(hash & 0xffffffu) / 16777216.0;
-    samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
+    samplePosition +=
+      (mat3(eyeToIndex) * rayDirection) * (step * (jitterNoise(computePixel) - 0.5));
 #endif
     ++taken;
     vec4 premultiplied;

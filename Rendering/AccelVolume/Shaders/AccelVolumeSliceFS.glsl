@@ -160,18 +160,9 @@ void main()
   float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
   ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
 #if ACCELVOLUME_JITTER
-  // Per-pixel offset of up to half a slice along the ray turns wood-grain rings into fine
-  // noise: white noise from an integer hash of the pixel (as VTK's random noise texture; a
-  // low-discrepancy pattern such as interleaved gradient noise shows as a regular hatch).
-  uvec2 jitterPixel = uvec2(gl_FragCoord.xy);
-  uint hash = jitterPixel.x * 1973u + jitterPixel.y * 9277u + 26699u;
-  hash = (hash ^ 61u) ^ (hash >> 16u);
-  hash *= 9u;
-  hash = hash ^ (hash >> 4u);
-  hash *= 0x27d4eb2du;
-  hash = hash ^ (hash >> 15u);
-  float noise = float(hash & 0xffffffu) / 16777216.0;
-  samplePosition += (mat3(eyeToIndex) * rayDirection) * (step * (noise - 0.5));
+  // Per-pixel offset of up to half a slice along the ray turns wood-grain rings into fine noise.
+  samplePosition +=
+    (mat3(eyeToIndex) * rayDirection) * (step * (jitterNoise(gl_FragCoord.xy) - 0.5));
 #endif
 #if ACCELVOLUME_SLICE_PLANE && ACCELVOLUME_COMPONENTS > 1
   // SLICE_BLEND of multi-component scalars: the plane's sample classified as composite

@@ -133,7 +133,38 @@ float sceneDistance(vec3 rayOrigin, vec3 rayDirection)
   return dot(eye.xyz - rayOrigin, rayDirection);
 }
 
-// Ray parameter interval inside the region box and all clip half-spaces.
+// `interval` of the index-space line origin + t * direction narrowed to every clip half-space.
+// A line parallel to a plane is kept where `keepParallel` (the caller's geometry was clipped to
+// the plane already), else emptied when it lies outside.
+vec2 clipInterval(vec3 origin, vec3 direction, vec2 interval, bool keepParallel)
+{
+  for (int i = 0; i < clipPlaneCount; ++i)
+  {
+    float along = dot(clipPlanes[i].xyz, direction);
+    float at = dot(clipPlanes[i].xyz, origin) + clipPlanes[i].w;
+    if (abs(along) < 1.0e-20)
+    {
+      if (!keepParallel && at < 0.0)
+      {
+        return vec2(1.0, -1.0);
+      }
+      continue;
+    }
+    float t = -at / along;
+    if (along > 0.0)
+    {
+      interval.x = max(interval.x, t);
+    }
+    else
+    {
+      interval.y = min(interval.y, t);
+    }
+  }
+  return interval;
+}
+
+// Ray parameter interval inside the region box and all clip half-spaces (proxy fragments: they
+// lie on polygons clipped to the planes).
 vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
 {
   vec3 origin = (eyeToIndex * vec4(rayOrigin, 1.0)).xyz;
@@ -143,28 +174,26 @@ vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
   vec3 t1 = (regionUpper - origin) / safeDirection;
   vec3 tNear = min(t0, t1);
   vec3 tFar = max(t0, t1);
-  float enter = max(max(tNear.x, tNear.y), tNear.z);
-  float exit = min(min(tFar.x, tFar.y), tFar.z);
-  for (int i = 0; i < clipPlaneCount; ++i)
-  {
-    float along = dot(clipPlanes[i].xyz, direction);
-    float at = dot(clipPlanes[i].xyz, origin) + clipPlanes[i].w;
-    if (abs(along) < 1.0e-20)
-    {
-      continue; // parallel: the polygon was clipped already, so the ray is inside
-    }
-    float t = -at / along;
-    if (along > 0.0)
-    {
-      enter = max(enter, t);
-    }
-    else
-    {
-      exit = min(exit, t);
-    }
-  }
-  return vec2(enter, exit);
+  vec2 box = vec2(max(max(tNear.x, tNear.y), tNear.z), min(min(tFar.x, tFar.y), tFar.z));
+  return clipInterval(origin, direction, box, true);
 }
+
+#if ACCELVOLUME_JITTER
+// Jitter noise in [0, 1) of a pixel: white noise from an integer hash of the pixel (as VTK's
+// random noise texture; a low-discrepancy pattern such as interleaved gradient noise shows as a
+// regular hatch).
+float jitterNoise(vec2 pixel)
+{
+  uvec2 jitterPixel = uvec2(pixel);
+  uint hash = jitterPixel.x * 1973u + jitterPixel.y * 9277u + 26699u;
+  hash = (hash ^ 61u) ^ (hash >> 16u);
+  hash *= 9u;
+  hash = hash ^ (hash >> 4u);
+  hash *= 0x27d4eb2du;
+  hash = hash ^ (hash >> 15u);
+  return float(hash & 0xffffffu) / 16777216.0;
+}
+#endif
 
 #if ACCELVOLUME_SHADE
 // The colour `rgb` lit by VTK's light model for an eye-space gradient, with the property's
