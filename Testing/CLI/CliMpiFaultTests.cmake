@@ -16,6 +16,9 @@
 #   LAUNCHER_REGEX the whole stderr must match this too (mpiexec's note of a dead rank)
 #   OTHER_LINE_REGEX  lines matching this are left out before the one-line check (optional)
 #   MIN_SECONDS, MAX_SECONDS  bounds of the job's wall-clock time
+#   LINE_MAY_BE_LOST  no line at all is accepted too (a rank killed by the launcher: Open MPI may
+#                  tear down its output forwarding before rank 0's last line gets through; about
+#                  one run in fifteen here); LAUNCHER_REGEX still has to match
 # The tests use --mpi-timeout 5: above the ranks' start-up skew on a loaded 2-core machine, so a
 # healthy exchange never runs out, and short enough for CI.
 if (CMAKE_SCRIPT_MODE_FILE)
@@ -79,6 +82,10 @@ if (CMAKE_SCRIPT_MODE_FILE)
       endif ()
     endif ()
   endforeach ()
+  if (LINE_MAY_BE_LOST AND printed STREQUAL "")
+    message(STATUS "no line from the ranks: the launcher's teardown dropped it (allowed here)")
+    return()
+  endif ()
   if (NOT printed MATCHES "^accelvolume: error: [^\n]+\n$")
     fail("expected exactly one line 'accelvolume: error: ...' from the ranks, got:\n${printed}")
   endif ()
@@ -92,9 +99,10 @@ endif ()
 set(_av_mpi_fault_script "${CMAKE_CURRENT_LIST_FILE}")
 # accelvolume_mpi_fault_test(NAME RANKS n EXPECT code MAX_SECONDS s ERROR_REGEX re
 #   [MIN_SECONDS s] [FAULT spec] [LAUNCHER_REGEX re] [OTHER_LINE_REGEX re] [NO_LAUNCHER]
+#   [LINE_MAY_BE_LOST]
 #   ARGS ... [LAST_RANK_ARGS ...])
 function(accelvolume_mpi_fault_test name)
-  cmake_parse_arguments(PARSE_ARGV 1 test "NO_LAUNCHER"
+  cmake_parse_arguments(PARSE_ARGV 1 test "NO_LAUNCHER;LINE_MAY_BE_LOST"
     "RANKS;FAULT;EXPECT;MIN_SECONDS;MAX_SECONDS;ERROR_REGEX;LAUNCHER_REGEX;OTHER_LINE_REGEX"
     "ARGS;LAST_RANK_ARGS")
   if (NOT DEFINED test_MIN_SECONDS)
@@ -105,7 +113,8 @@ function(accelvolume_mpi_fault_test name)
   set(definitions "-DEXE=$<TARGET_FILE:accelvolume>" "-DARGS=${joined}" "-DRANKS=${test_RANKS}"
     "-DFAULT=${test_FAULT}" "-DEXPECT=${test_EXPECT}" "-DMIN_SECONDS=${test_MIN_SECONDS}"
     "-DMAX_SECONDS=${test_MAX_SECONDS}" "-DERROR_REGEX=${test_ERROR_REGEX}"
-    "-DLAUNCHER_REGEX=${test_LAUNCHER_REGEX}" "-DOTHER_LINE_REGEX=${test_OTHER_LINE_REGEX}")
+    "-DLAUNCHER_REGEX=${test_LAUNCHER_REGEX}" "-DOTHER_LINE_REGEX=${test_OTHER_LINE_REGEX}"
+    "-DLINE_MAY_BE_LOST=${test_LINE_MAY_BE_LOST}")
   if (NOT test_NO_LAUNCHER)
     list(APPEND definitions "-DMPIEXEC=${MPIEXEC_EXECUTABLE}"
       "-DNUMPROC_FLAG=${MPIEXEC_NUMPROC_FLAG}" "-DPREFLAGS=${preflags}")
@@ -135,13 +144,15 @@ accelvolume_mpi_fault_test(load_rank2_of_3 RANKS 3 EXPECT 1 MAX_SECONDS 30
   LAST_RANK_ARGS ${_av_fault_render} --input "${_av_fault_missing}"
   ERROR_REGEX "rank 2: cannot open '[^']*missing.mhd'")
 # b. A rank dies in the second frame (SIGKILL; std::abort): Open MPI's mpiexec ends the job at
-#    once with SIGTERM to the others and names the dead rank; rank 0 says what it waited for.
+#    once with SIGTERM to the others and names the dead rank; rank 0 says what it waited for
+#    (when the launcher still forwards it: LINE_MAY_BE_LOST).
 accelvolume_mpi_fault_test(die_rank1 RANKS 2 FAULT "die:1:frame=2" EXPECT 137 MAX_SECONDS 30
+  LINE_MAY_BE_LOST
   ARGS ${_av_fault_render}
   ERROR_REGEX "rank 0 was ended by SIGTERM"
   LAUNCHER_REGEX "process rank 1 with PID [0-9]+ on node [^ ]+ exited on signal 9")
 accelvolume_mpi_fault_test(abort_rank2_of_3 RANKS 3 FAULT "abort:2:frame=2" EXPECT 134
-  MAX_SECONDS 30 ARGS ${_av_fault_render}
+  MAX_SECONDS 30 LINE_MAY_BE_LOST ARGS ${_av_fault_render}
   ERROR_REGEX "rank 0 was ended by SIGTERM"
   LAUNCHER_REGEX "process rank 2 with PID [0-9]+ on node [^ ]+ exited on signal 6")
 # c. A rank hangs (sleeps forever): after --mpi-timeout (5 s) rank 0 names it and MPI_Abort
