@@ -26,6 +26,7 @@ set(_av_private_sources
   vtkAccelVolumeCPUMask
   vtkAccelVolumeDepthCopy
   vtkAccelVolumeDepthPeeling
+  vtkAccelVolumeGPUClassifier
   vtkAccelVolumeImageDisplay
   vtkAccelVolumeInputAdapter
   vtkAccelVolumeMapperSupport
@@ -54,7 +55,8 @@ set(_av_shaders
   AccelVolumeTerminationFS
   AccelVolumeDepthDownsampleFS
   AccelVolumeOctreeLeafCS
-  AccelVolumeOctreeReduceCS)
+  AccelVolumeOctreeReduceCS
+  AccelVolumeOctreeClassifyCS)
 
 set(_av_vtk_dir "${_av_root}/Rendering/AccelVolume")
 set(_av_class_files)

@@ -372,9 +372,11 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
     self->UsesDepthPass() && !ContourValuesVisible(property, self->GetDepthPassContourValues());
   // Multi-component scalars: the octree of each contributing component (see LeafSources).
   self->LastOctreeBuilder = -1; // UpdateEmptyLeaves says which built the frame's octree
+  const bool computeSlices = this->UseComputeSlices(self, window, view);
   skipEmptyLeaves = self->BlendMode == COMPOSITE_BLEND && !transferFunction2D && !contourCulled &&
     !self->UsesLabelMap() && (self->EmptySpaceSkipping & SKIP_OCTREE) &&
-    this->UpdateEmptyLeaves(self, window, this->LeafSources(input, scalars, property, range));
+    this->UpdateEmptyLeaves(
+      self, window, this->LeafSources(input, scalars, property, range), computeSlices);
   const accelvolume::BrickLayout& layout = this->Resources.GetBrickLayout();
   vtkAccelVolumeSliceGeometryInput geometry;
   geometry.Regions = &view.Regions;
@@ -392,7 +394,7 @@ void vtkAccelVolumeSliceMapper::vtkInternals::BuildProxyGeometry(vtkAccelVolumeS
   geometry.NonEmpty = skipEmptyLeaves && this->HaveNonEmptyBoxes ? &this->NonEmptyBoxes : nullptr;
   geometry.Layout = &layout;
   geometry.GenerateSlices = self->GPUSliceGeneration != 0;
-  geometry.ComputeSlices = this->UseComputeSlices(self, window, view);
+  geometry.ComputeSlices = computeSlices;
   // Relative depth of the slice plane nearest the reference depth (the compute slices count
   // planes from it; slice depths are Phase + k * Spacing).
   const double nearest = std::round((view.ReferenceDepth - SlicePhase) / view.Spacing);

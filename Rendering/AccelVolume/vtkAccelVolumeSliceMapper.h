@@ -391,8 +391,10 @@ public:
    * Which vtkAccelVolumeMinMaxOctree builder builds the skipping octree when the scalars change
    * (default BUILDER_CPU, all threads). BUILDER_GPU builds it with compute shaders from the
    * mapper's resident volume texture (one brick, one component: no second upload; otherwise
-   * the builder uploads the scalars itself) and reads the levels back for the classification;
-   * without compute shaders it falls back to the CPU builder (the same octree).
+   * the builder uploads the scalars itself); compute slices then classify it on the GPU too,
+   * straight into the skipping textures (nothing read back but the count of transparent
+   * leaves), while rasterised slices read the levels back for the CPU classification and the
+   * slice culling. Without compute shaders it falls back to the CPU builder (the same octree).
    */
   vtkSetClampMacro(OctreeBuilder, int, 1, 2);
   vtkGetMacro(OctreeBuilder, int);

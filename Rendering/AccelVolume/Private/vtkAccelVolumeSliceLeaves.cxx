@@ -156,13 +156,75 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadEmptyBlocks(
   return true;
 }
 
+bool vtkAccelVolumeSliceMapper::vtkInternals::ClassifyOnGPU(vtkAccelVolumeSliceMapper* self,
+  vtkOpenGLRenderWindow* window, const vtkAccelVolumeLeafSource& source)
+{
+  vtkAccelVolumeMinMaxOctree* octree = this->Octree;
+  this->ConfigureOctree(self, window, octree, source.Image);
+  if (!octree->Update() || octree->GetLastBuilder() != vtkAccelVolumeMinMaxOctree::BUILDER_GPU ||
+    !octree->GetGPULevelBuffer(0))
+  {
+    return false;
+  }
+  vtkDataArray* scalars = source.Image->GetPointData()->GetScalars();
+  // The GPU classification's textures are not the CPU path's (no non-empty boxes): its own key.
+  const std::vector<double> key = { -1.0,
+    static_cast<double>(std::max(source.Image->GetMTime(), scalars ? scalars->GetMTime() : 0)),
+    static_cast<double>(source.Opacity->GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(source.Image)), source.Range[0],
+    source.Range[1], static_cast<double>(self->OctreeLeafSize) };
+  if (this->Resources.EmptyLeaves->GetHandle() && key == this->LeavesKey)
+  {
+    self->LastTransparentLeafFraction = this->LeavesTransparentFraction;
+    self->LastOctreeBuilder = vtkAccelVolumeMinMaxOctree::BUILDER_GPU;
+    return true;
+  }
+  // The opacities of the shaders' transfer table (vtkAccelVolumeTransferTable's sampling).
+  constexpr int TableSize = vtkAccelVolumeSliceResources::TableSize;
+  const double high = source.Range[1] > source.Range[0] ? source.Range[1] : source.Range[0] + 1.0;
+  std::vector<float> opacities(TableSize);
+  source.Opacity->GetTable(source.Range[0], high, TableSize, opacities.data());
+  octree->GetLeafGridSize(this->LeafGrid);
+  constexpr int Block = vtkAccelVolumeSliceResources::LeafBlock;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->BlockGrid[a] = (this->LeafGrid[a] + Block - 1) / Block;
+  }
+  const double tableRange[2] = { source.Range[0], high };
+  long long transparent = 0;
+  std::string error;
+  if (!this->Resources.Classifier.Classify(window, octree->GetGPULevelBuffer(0), this->LeafGrid,
+        opacities, tableRange, this->Resources.EmptyLeaves, this->Resources.EmptyBlocks,
+        this->BlockGrid, Block, transparent, error))
+  {
+    vtkErrorWithObjectMacro(self, "Classifying the octree on the GPU failed: " << error);
+    return false;
+  }
+  const double leaves =
+    static_cast<double>(this->LeafGrid[0]) * this->LeafGrid[1] * this->LeafGrid[2];
+  this->LeavesTransparentFraction = leaves > 0 ? static_cast<double>(transparent) / leaves : 0.0;
+  this->LeavesKey = key;
+  this->HaveNonEmptyBoxes = false;
+  this->NonEmptyBoxes.clear();
+  self->LastTransparentLeafFraction = this->LeavesTransparentFraction;
+  self->LastOctreeBuilder = vtkAccelVolumeMinMaxOctree::BUILDER_GPU;
+  return true;
+}
+
 bool vtkAccelVolumeSliceMapper::vtkInternals::UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self,
-  vtkOpenGLRenderWindow* window, const std::vector<vtkAccelVolumeLeafSource>& sources)
+  vtkOpenGLRenderWindow* window, const std::vector<vtkAccelVolumeLeafSource>& sources,
+  bool computeSlices)
 {
   // No weighted component: nothing is visible, but no skipping is simpler and still exact.
   if (sources.empty())
   {
     return false;
+  }
+  if (computeSlices && sources.size() == 1 &&
+    self->OctreeBuilder == vtkAccelVolumeMinMaxOctree::BUILDER_GPU &&
+    this->ClassifyOnGPU(self, window, sources.front()))
+  {
+    return true;
   }
   while (this->ComponentOctrees.size() + 1 < sources.size())
   {

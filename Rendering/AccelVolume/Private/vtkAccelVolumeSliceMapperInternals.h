@@ -146,7 +146,12 @@ public:
   // Builds / classifies the octrees of the sources, uploads their leaf transparency and keeps
   // the non-empty boxes; false if unavailable.
   bool UpdateEmptyLeaves(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
-    const std::vector<vtkAccelVolumeLeafSource>& sources);
+    const std::vector<vtkAccelVolumeLeafSource>& sources, bool computeSlices);
+  // Compute slices with OctreeBuilder GPU and one source: the octree built and classified on the
+  // GPU into the skipping textures, nothing read back (no non-empty boxes: the rasterised
+  // slices' culling needs the CPU path). False when that cannot run (the CPU path then does).
+  bool ClassifyOnGPU(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,
+    const vtkAccelVolumeLeafSource& source);
   // The octree of `image` set up for this frame's build: builder, window and (GPU builder, the
   // uploaded scalars in one brick) the resident texture to build from.
   void ConfigureOctree(vtkAccelVolumeSliceMapper* self, vtkOpenGLRenderWindow* window,

@@ -684,6 +684,7 @@ void vtkAccelVolumeSliceResources::ReleaseGraphicsResources(vtkWindow* window)
   this->SliceRecordBuffer->ReleaseGraphicsResources();
   this->Programs.clear(); // the window's shader cache releases them
   this->Compute.ReleaseGraphicsResources(window);
+  this->Classifier.ReleaseGraphicsResources();
   for (auto& timer : this->FrameTimers)
   {
     if (timer)

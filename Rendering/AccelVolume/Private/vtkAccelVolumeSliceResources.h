@@ -8,6 +8,7 @@
 #define vtkAccelVolumeSliceResources_h
 
 #include "vtkAccelVolumeBrickCache.h"
+#include "vtkAccelVolumeGPUClassifier.h"
 #include "vtkAccelVolumeSliceCompute.h"
 #include "vtkAccelVolumeScalarEncoding.h"
 #include "vtkNew.h"
@@ -188,6 +189,7 @@ public:
   vtkNew<vtkOpenGLVertexArrayObject> GeneratedSliceArray; // instanced slice records
   vtkNew<vtkOpenGLVertexArrayObject> ResolveArray;
   vtkAccelVolumeSliceCompute Compute; // compute slices' programs
+  vtkAccelVolumeGPUClassifier Classifier; // skipping textures from a GPU-built octree
 
   static constexpr int TableSize = 1024;
 
