@@ -198,6 +198,9 @@ float jitterNoise(vec2 pixel)
 #if ACCELVOLUME_SHADE
 // The colour `rgb` lit by VTK's light model for an eye-space gradient, with the property's
 // (ambient, diffuse, specular, specular power) `coefficients`.
+// The prelude fixes the light count, whether any light is positional, two-sided lighting and
+// VTK's single-headlight ambient rule (ACCELVOLUME_LIGHT_COUNT, _POSITIONAL_LIGHTS, _TWO_SIDED,
+// _HEADLIGHT_ONLY): the loop unrolls and the unused branches go, the arithmetic is the same.
 vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
 {
   // VTK's light model: per light ambient, diffuse (N.L) and Blinn-Phong specular (N.H) colours,
@@ -208,7 +211,7 @@ vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
   vec3 specularSum = vec3(0.0);
   vec3 normal = gradientLength > 1.0e-8 ? -eyeGradient / gradientLength : vec3(0.0);
   vec3 toViewer = -rayDirection;
-  for (int i = 0; i < lightCount; ++i)
+  for (int i = 0; i < ACCELVOLUME_LIGHT_COUNT; ++i)
   {
     ambientSum += lightAmbient[i];
     if (gradientLength <= 1.0e-8)
@@ -217,6 +220,7 @@ vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
     }
     vec3 toLight = -lightAxis[i];
     float attenuation = 1.0;
+#if ACCELVOLUME_POSITIONAL_LIGHTS
     if (lightPositional[i] != 0)
     {
       vec3 d = lightPosition[i] - eyePosition;
@@ -232,8 +236,11 @@ vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
                                               : 0.0;
       }
     }
+#endif
     float nDotL = dot(normal, toLight);
-    nDotL = twoSidedLighting != 0 ? abs(nDotL) : nDotL;
+#if ACCELVOLUME_TWO_SIDED
+    nDotL = abs(nDotL);
+#endif
     if (nDotL > 0.0)
     {
       diffuseSum += attenuation * nDotL * lightDiffuse[i];
@@ -243,14 +250,20 @@ vec3 shadeWith(vec3 rgb, vec3 eyeGradient, vec3 rayDirection, vec4 coefficients)
     if (halfLength > 0.0)
     {
       float nDotH = dot(normal, halfVector) / halfLength;
-      nDotH = twoSidedLighting != 0 ? abs(nDotH) : nDotH;
+#if ACCELVOLUME_TWO_SIDED
+      nDotH = abs(nDotH);
+#endif
       if (nDotH > 0.0)
       {
         specularSum += attenuation * pow(min(nDotH, 1.0), coefficients.w) * lightSpecular[i];
       }
     }
   }
-  vec3 ambientFactor = headlightOnly != 0 ? vec3(1.0) : ambientSum;
+#if ACCELVOLUME_HEADLIGHT_ONLY
+  vec3 ambientFactor = vec3(1.0);
+#else
+  vec3 ambientFactor = ambientSum;
+#endif
   vec3 shaded = rgb * (coefficients.x * ambientFactor + coefficients.y * diffuseSum) +
     coefficients.z * specularSum;
   return min(shaded, vec3(1.0));
