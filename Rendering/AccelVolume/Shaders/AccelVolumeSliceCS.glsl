@@ -5,9 +5,10 @@
 // would leave in the target: no rasterisation and no framebuffer blending, so the work runs on
 // every shader core (on compute-class GPUs only a few run fragments) and costs one store per
 // pixel. Composite rays stop at the termination threshold and leap over transparent octree
-// leaves (every sample inside one is skipped by the fragment path too); MIP / MinIP take the
-// cut-face samples that boundary re-rendering adds. The prelude (vtkAccelVolumeSliceShaderPrelude
-// plus ACCELVOLUME_TARGET_FORMAT, ACCELVOLUME_TERMINATE, ACCELVOLUME_COUNT_SAMPLES) comes first.
+// blocks and leaves (every sample inside one is skipped by the fragment path too); MIP / MinIP
+// take the cut-face samples that boundary re-rendering adds. The prelude
+// (vtkAccelVolumeSliceShaderPrelude plus ACCELVOLUME_TARGET_FORMAT, ACCELVOLUME_TERMINATE,
+// ACCELVOLUME_COUNT_SAMPLES) comes first.
 #define ACCELVOLUME_COMPUTE_SLICES 1
 #define ACCELVOLUME_PRECISE precise
 vec2 computePixel; // the window position of this texel's centre, as gl_FragCoord.xy
