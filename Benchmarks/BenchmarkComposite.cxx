@@ -435,8 +435,6 @@ private:
   {
     return size > 256 && this->LargeFrames > 0 ? this->LargeFrames : this->Frames;
   }
-  // The CLI's --blend value of this run's blend mode.
-  const char* BlendFlag() const { return this->Blend == "composite" ? "composite" : this->Blend.c_str(); }
   int BlendMode() const
   {
     return this->Blend == "mip" ? vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND
@@ -460,7 +458,7 @@ void CompositeBenchmark::RunNoOp(CaseResult& c, const DatasetInfo& info) const
   for (ConfigResult& r : c.Results)
   {
     std::vector<std::string> args = { "--input", info.File, "--spacing", number(info.Spacing[0]),
-      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", this->BlendFlag(), "--shade",
+      number(info.Spacing[1]), number(info.Spacing[2]), "--blend", this->Blend, "--shade",
       "on", "--sample-distance", number(info.MinSpacing), "--size",
       std::to_string(c.Size), std::to_string(c.Size), "--azimuth", number(this->View[0]),
       "--elevation", number(this->View[1]) };

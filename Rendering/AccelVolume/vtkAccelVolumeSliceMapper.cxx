@@ -582,10 +582,12 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::FillFrame(vtkAccelVolumeSliceMappe
   self->LastTransparentLeafFraction =
     frame.SkipEmptyLeaves ? self->LastTransparentLeafFraction : -1.0;
   frame.LeafSize = static_cast<float>(self->OctreeLeafSize);
+  int blocks[3];
+  vtkAccelVolumeSliceResources::BlockGridOf(this->LeafGrid, blocks);
   for (int c = 0; c < 3; ++c)
   {
     frame.LeafGridMaximum[c] = static_cast<float>(std::max(0, this->LeafGrid[c] - 1));
-    frame.BlockGridMaximum[c] = static_cast<float>(std::max(0, this->BlockGrid[c] - 1));
+    frame.BlockGridMaximum[c] = static_cast<float>(std::max(0, blocks[c] - 1));
   }
   this->FillShadingAndGradients(self, renderer, window, input, scalars, property, range, view);
   this->FillProjectionScales(self, property, range);

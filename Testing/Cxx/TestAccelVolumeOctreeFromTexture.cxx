@@ -173,7 +173,6 @@ int TestAccelVolumeOctreeFromTexture(int, char*[])
       Scene gpu(first, Octree::BUILDER_GPU, compositing);
       Scene cpu(first, Octree::BUILDER_CPU, compositing);
       const Frame a = gpu.Render();
-      std::string why;
       auto* window = vtkOpenGLRenderWindow::SafeDownCast(gpu.GetWindow());
       int major = 0;
       int minor = 0;

@@ -56,119 +56,69 @@ int vtkAccelVolumeComputeProgram::Location(const char* name)
 
 bool vtkAccelVolumeComputeProgram::SetUniformi(const char* name, int value)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform1i(location, value);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform1i(location, value); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniformf(const char* name, float value)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform1f(location, value);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform1f(location, value); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform2f(const char* name, const float value[2])
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform2fv(location, 1, value);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform2fv(location, 1, value); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform3f(const char* name, const float value[3])
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform3fv(location, 1, value);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform3fv(location, 1, value); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform4f(const char* name, const float value[4])
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform4fv(location, 1, value);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform4fv(location, 1, value); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform1iv(const char* name, int count, const int* values)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform1iv(location, count, values);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform1iv(location, count, values); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform1fv(const char* name, int count, const float* values)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform1fv(location, count, values);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform1fv(location, count, values); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform3fv(
   const char* name, int count, const float (*values)[3])
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform3fv(location, count, &values[0][0]);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform3fv(location, count, &values[0][0]); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniform4fv(
   const char* name, int count, const float (*values)[4])
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniform4fv(location, count, &values[0][0]);
-  }
-  return location >= 0;
+  return this->With(name, [&](int location) { glUniform4fv(location, count, &values[0][0]); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniformMatrix3x3(const char* name, float* matrix)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    glUniformMatrix3fv(location, 1, GL_FALSE, matrix);
-  }
-  return location >= 0;
+  return this->With(
+    name, [&](int location) { glUniformMatrix3fv(location, 1, GL_FALSE, matrix); });
 }
 
 bool vtkAccelVolumeComputeProgram::SetUniformMatrix(const char* name, vtkMatrix4x4* matrix)
 {
-  const int location = this->Location(name);
-  if (location >= 0)
-  {
-    float elements[16];
-    for (int i = 0; i < 16; ++i)
+  return this->With(name,
+    [&](int location)
     {
-      elements[i] = static_cast<float>(matrix->GetElement(i / 4, i % 4));
-    }
-    glUniformMatrix4fv(location, 1, GL_FALSE, elements);
-  }
-  return location >= 0;
+      float elements[16];
+      for (int i = 0; i < 16; ++i)
+      {
+        elements[i] = static_cast<float>(matrix->GetElement(i / 4, i % 4));
+      }
+      glUniformMatrix4fv(location, 1, GL_FALSE, elements);
+    });
 }
 
 vtkAccelVolumeSliceCompute::~vtkAccelVolumeSliceCompute() = default;

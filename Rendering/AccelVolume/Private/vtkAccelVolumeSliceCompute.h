@@ -47,6 +47,17 @@ public:
 
 private:
   int Location(const char* name);
+  // Calls set(location) when the program has the active uniform `name`; whether it has.
+  template <class Set>
+  bool With(const char* name, Set&& set)
+  {
+    const int location = this->Location(name);
+    if (location >= 0)
+    {
+      set(location);
+    }
+    return location >= 0;
+  }
   unsigned int Handle = 0;
   std::map<std::string, int> Locations;
 };

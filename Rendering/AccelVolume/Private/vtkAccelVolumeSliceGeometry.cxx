@@ -4,7 +4,6 @@
 #include "slicing/CompositeSlices.h"
 
 #include <algorithm>
-#include <limits>
 
 namespace
 {
@@ -288,20 +287,12 @@ void BuildComputeBrick(const vtkAccelVolumeSliceGeometryInput& input, Frame::Bri
   cell.Upper = ToFloats(region.upper);
   draw.Cells.push_back(cell);
   draw.SliceStarts.assign(2, 0);
-  double minimumDepth = std::numeric_limits<double>::infinity();
-  double maximumDepth = -minimumDepth;
-  for (const accelvolume::Polygon& face : accelvolume::ComputeRegionBoundaryFaces(region, *input.Clip))
-  {
-    for (const accelvolume::Vec3& v : face)
-    {
-      const double depth = accelvolume::Dot(input.Rays.depthGradient, v) + input.Rays.depthOffset;
-      minimumDepth = std::min(minimumDepth, depth);
-      maximumDepth = std::max(maximumDepth, depth);
-    }
-  }
+  double minimumDepth = 0.0;
+  double maximumDepth = 0.0;
   long long first = 0;
   long long last = -1;
-  if (maximumDepth > minimumDepth)
+  if (accelvolume::RegionDepthRange(region, *input.Clip, input.Rays.depthGradient,
+        input.Rays.depthOffset, minimumDepth, maximumDepth))
   {
     accelvolume::SampleIndexRange(
       minimumDepth, maximumDepth, input.Phase, input.Spacing, first, last);
@@ -355,8 +346,7 @@ void vtkAccelVolumeBuildSliceGeometry(const vtkAccelVolumeSliceGeometryInput& in
   sliceRecords.clear();
   stats = vtkAccelVolumeSliceGeometryStats();
   const accelvolume::BrickLayout& layout = *input.Layout;
-  frame.ComputeSlices = input.ComputeSlices && layout.Single() && input.Regions->size() == 1 &&
-    !input.SlicePlane;
+  frame.ComputeSlices = input.ComputeSlices; // the mapper checked one brick and one region
   if (frame.ComputeSlices)
   {
     frame.GeneratedSlices = false;

@@ -122,11 +122,8 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::UploadEmptyBlocks(
 {
   constexpr int Block = vtkAccelVolumeSliceResources::LeafBlock;
   const int* grid = this->LeafGrid;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->BlockGrid[a] = (grid[a] + Block - 1) / Block;
-  }
-  const int* blocks = this->BlockGrid;
+  int blocks[3];
+  vtkAccelVolumeSliceResources::BlockGridOf(grid, blocks);
   std::vector<unsigned char> flags(static_cast<size_t>(blocks[0]) * blocks[1] * blocks[2], 255);
   std::size_t at = 0;
   for (int k = 0; k < grid[2]; ++k)
@@ -185,17 +182,14 @@ bool vtkAccelVolumeSliceMapper::vtkInternals::ClassifyOnGPU(vtkAccelVolumeSliceM
   std::vector<float> opacities(TableSize);
   source.Opacity->GetTable(source.Range[0], high, TableSize, opacities.data());
   octree->GetLeafGridSize(this->LeafGrid);
-  constexpr int Block = vtkAccelVolumeSliceResources::LeafBlock;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->BlockGrid[a] = (this->LeafGrid[a] + Block - 1) / Block;
-  }
+  int blocks[3];
+  vtkAccelVolumeSliceResources::BlockGridOf(this->LeafGrid, blocks);
   const double tableRange[2] = { source.Range[0], high };
   long long transparent = 0;
   std::string error;
   if (!this->Resources.Classifier.Classify(window, octree->GetGPULevelBuffer(0), this->LeafGrid,
-        opacities, tableRange, this->Resources.EmptyLeaves, this->Resources.EmptyBlocks,
-        this->BlockGrid, Block, transparent, error))
+        opacities, tableRange, this->Resources.EmptyLeaves, this->Resources.EmptyBlocks, blocks,
+        vtkAccelVolumeSliceResources::LeafBlock, transparent, error))
   {
     vtkErrorWithObjectMacro(self, "Classifying the octree on the GPU failed: " << error);
     return false;

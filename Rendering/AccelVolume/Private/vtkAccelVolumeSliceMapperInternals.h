@@ -83,7 +83,6 @@ public:
   std::vector<double> LeavesKey;
   double LeavesTransparentFraction = 0.0;
   int LeafGrid[3] = { 0, 0, 0 };
-  int BlockGrid[3] = { 0, 0, 0 }; // EmptyBlocks' size
   // The octree's merged non-empty boxes for that classification (slice culling).
   std::vector<accelvolume::Box> NonEmptyBoxes;
   bool HaveNonEmptyBoxes = false;

@@ -54,6 +54,24 @@ std::string BlendName(int blendMode)
   }
 }
 
+// The lights as compile-time constants of the shading code (see shadeWith): their count, whether
+// any is positional, two-sided lighting, VTK's single-headlight ambient rule.
+// Unshaded frames: none (fewer variants; the shading code is compiled out).
+std::string LightingPrelude(const vtkAccelVolumeSliceFrame& frame)
+{
+  const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
+  const int count = composite && frame.Shade
+    ? std::clamp(frame.LightCount, 0, vtkAccelVolumeSliceFrame::MaximumLights)
+    : 0;
+  const bool positional = std::any_of(frame.LightPositional, frame.LightPositional + count,
+    [](int value) { return value != 0; });
+  return "#define ACCELVOLUME_LIGHT_COUNT " + std::to_string(count) +
+    "\n#define ACCELVOLUME_POSITIONAL_LIGHTS " + (positional ? "1" : "0") +
+    "\n#define ACCELVOLUME_TWO_SIDED " + (count > 0 && frame.TwoSidedLighting ? "1" : "0") +
+    "\n#define ACCELVOLUME_HEADLIGHT_ONLY " + (count > 0 && frame.HeadlightOnly ? "1" : "0") +
+    "\n";
+}
+
 // True when the projection's w row depends on eye x or y (an explicit projection matrix): a
 // slice plane then maps to the window projectively rather than affinely.
 bool ProjectiveSlices(const vtkAccelVolumeSliceFrame& frame)
@@ -148,24 +166,6 @@ std::string vtkAccelVolumeSliceShaderVariant(
 {
   return vtkAccelVolumeSliceAssembleShader(
     source, vtkAccelVolumeSliceShaderPrelude(frame, slabSamples, boundaryFace));
-}
-
-// The lights as compile-time constants of the shading code (see shadeWith): their count, whether
-// any is positional, two-sided lighting, VTK's single-headlight ambient rule.
-// Unshaded frames: none (fewer variants; the shading code is compiled out).
-static std::string LightingPrelude(const vtkAccelVolumeSliceFrame& frame)
-{
-  const bool composite = frame.BlendMode == vtkVolumeMapper::COMPOSITE_BLEND;
-  const int count = composite && frame.Shade
-    ? std::clamp(frame.LightCount, 0, vtkAccelVolumeSliceFrame::MaximumLights)
-    : 0;
-  const bool positional = std::any_of(frame.LightPositional, frame.LightPositional + count,
-    [](int value) { return value != 0; });
-  return "#define ACCELVOLUME_LIGHT_COUNT " + std::to_string(count) +
-    "\n#define ACCELVOLUME_POSITIONAL_LIGHTS " + (positional ? "1" : "0") +
-    "\n#define ACCELVOLUME_TWO_SIDED " + (count > 0 && frame.TwoSidedLighting ? "1" : "0") +
-    "\n#define ACCELVOLUME_HEADLIGHT_ONLY " + (count > 0 && frame.HeadlightOnly ? "1" : "0") +
-    "\n";
 }
 
 std::string vtkAccelVolumeSliceShaderPrelude(

@@ -165,6 +165,14 @@ public:
   vtkNew<vtkTextureObject> EmptyLeaves;     // R8 over the octree's leaf grid, 1 = transparent
   vtkNew<vtkTextureObject> EmptyBlocks;     // R8 over blocks of LeafBlock^3 leaves, 1 = all are
   static constexpr int LeafBlock = 4;       // leaves per block edge (AccelVolumeSliceCS)
+  /** EmptyBlocks' size for a leaf grid (whole blocks over it). */
+  static void BlockGridOf(const int leaves[3], int blocks[3])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      blocks[a] = (leaves[a] + LeafBlock - 1) / LeafBlock;
+    }
+  }
   vtkNew<vtkTextureObject> TransferTable2D; // RGBA over (scalar, gradient magnitude)
   vtkNew<vtkTextureObject> Gradients;       // RGBA16: index-space gradient (rgb), value (a)
   float GradientScale = 1.0f;               // decoded gradient = (rgb * 2 - 1) * GradientScale

@@ -56,36 +56,14 @@ void placeSample(float depth)
 // the region box and every clip half-space; enter > exit when it misses.
 vec2 depthInterval(vec3 origin, vec3 perDepth)
 {
-  float enter = -1.0e30;
-  float exit = 1.0e30;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    if (abs(perDepth[axis]) > 1.0e-20)
-    {
-      float a = (regionLower[axis] - origin[axis]) / perDepth[axis];
-      float b = (regionUpper[axis] - origin[axis]) / perDepth[axis];
-      enter = max(enter, min(a, b));
-      exit = min(exit, max(a, b));
-    }
-    else if (origin[axis] < regionLower[axis] || origin[axis] > regionUpper[axis])
-    {
-      return vec2(1.0, -1.0);
-    }
-  }
-  return clipInterval(origin, perDepth, vec2(enter, exit), false);
+  return clipInterval(origin, perDepth, boxInterval(origin, perDepth), false);
 }
 
 // Relative depth of the opaque geometry on this pixel (the proxy slices' depth test), or huge.
 float sceneRelativeDepth()
 {
-  float depth = texelFetch(sceneDepth, ivec2(computePixel), 0).r;
-  if (depth >= 1.0)
-  {
-    return 1.0e30;
-  }
-  vec4 ndc = vec4(computePixel / viewportSize * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-  vec4 eye = inverseProjection * ndc;
-  return -eye.z / eye.w - referenceDepth;
+  vec3 eye;
+  return sceneEyePoint(eye) ? -eye.z - referenceDepth : 1.0e30;
 }
 
 #if defined(ACCELVOLUME_BLEND_COMPOSITE) && ACCELVOLUME_SKIP_OCTREE

@@ -119,18 +119,21 @@ vec3 centralDifferences(vec3 center)
         texture(volumeTexture, center - vec3(0.0, 0.0, texel.z)).r);
 }
 
+// The eye point of the opaque geometry on this pixel; false where there is none.
+bool sceneEyePoint(out vec3 point)
+{
+  float depth = texelFetch(sceneDepth, ivec2(ACCELVOLUME_PIXEL), 0).r;
+  vec4 ndc = vec4(ACCELVOLUME_PIXEL / viewportSize * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  vec4 eye = inverseProjection * ndc;
+  point = eye.xyz / eye.w;
+  return depth < 1.0;
+}
+
 // Distance along the pixel ray (world units) of the opaque geometry, or a huge value.
 float sceneDistance(vec3 rayOrigin, vec3 rayDirection)
 {
-  float depth = texelFetch(sceneDepth, ivec2(ACCELVOLUME_PIXEL), 0).r;
-  if (depth >= 1.0)
-  {
-    return 1.0e30;
-  }
-  vec4 ndc = vec4(ACCELVOLUME_PIXEL / viewportSize * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-  vec4 eye = inverseProjection * ndc;
-  eye /= eye.w;
-  return dot(eye.xyz - rayOrigin, rayDirection);
+  vec3 eye;
+  return sceneEyePoint(eye) ? dot(eye - rayOrigin, rayDirection) : 1.0e30;
 }
 
 // `interval` of the index-space line origin + t * direction narrowed to every clip half-space.
@@ -163,19 +166,25 @@ vec2 clipInterval(vec3 origin, vec3 direction, vec2 interval, bool keepParallel)
   return interval;
 }
 
+// Parameter interval of the index-space line origin + t * direction inside the region box
+// (empty, x > y, when it misses).
+vec2 boxInterval(vec3 origin, vec3 direction)
+{
+  vec3 safeDirection = mix(direction, vec3(1.0e-20), equal(direction, vec3(0.0)));
+  vec3 t0 = (regionLower - origin) / safeDirection;
+  vec3 t1 = (regionUpper - origin) / safeDirection;
+  vec3 tNear = min(t0, t1);
+  vec3 tFar = max(t0, t1);
+  return vec2(max(max(tNear.x, tNear.y), tNear.z), min(min(tFar.x, tFar.y), tFar.z));
+}
+
 // Ray parameter interval inside the region box and all clip half-spaces (proxy fragments: they
 // lie on polygons clipped to the planes).
 vec2 regionInterval(vec3 rayOrigin, vec3 rayDirection)
 {
   vec3 origin = (eyeToIndex * vec4(rayOrigin, 1.0)).xyz;
   vec3 direction = mat3(eyeToIndex) * rayDirection;
-  vec3 safeDirection = mix(direction, vec3(1.0e-20), equal(direction, vec3(0.0)));
-  vec3 t0 = (regionLower - origin) / safeDirection;
-  vec3 t1 = (regionUpper - origin) / safeDirection;
-  vec3 tNear = min(t0, t1);
-  vec3 tFar = max(t0, t1);
-  vec2 box = vec2(max(max(tNear.x, tNear.y), tNear.z), min(min(tFar.x, tFar.y), tFar.z));
-  return clipInterval(origin, direction, box, true);
+  return clipInterval(origin, direction, boxInterval(origin, direction), true);
 }
 
 #if ACCELVOLUME_JITTER

@@ -299,16 +299,11 @@ void SampleIndexRange(double minimumDepth, double maximumDepth, double phase, do
   }
 }
 
-SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpace>& clip,
-  const Vec3& depthGradient, double depthOffset, double spacing, double phase, SliceOrder order)
+bool RegionDepthRange(const Box& region, const std::vector<HalfSpace>& clip,
+  const Vec3& depthGradient, double depthOffset, double& minimumDepth, double& maximumDepth)
 {
-  SliceStack stack;
-  if (!(spacing > 0) || !(Length(depthGradient) > 0) || !std::isfinite(phase))
-  {
-    return stack;
-  }
-  double minimumDepth = std::numeric_limits<double>::infinity();
-  double maximumDepth = -minimumDepth;
+  minimumDepth = std::numeric_limits<double>::infinity();
+  maximumDepth = -minimumDepth;
   for (const Polygon& face : ComputeRegionBoundaryFaces(region, clip))
   {
     for (const Vec3& v : face)
@@ -318,7 +313,20 @@ SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpa
       maximumDepth = std::max(maximumDepth, depth);
     }
   }
-  if (!(maximumDepth > minimumDepth))
+  return maximumDepth > minimumDepth;
+}
+
+SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpace>& clip,
+  const Vec3& depthGradient, double depthOffset, double spacing, double phase, SliceOrder order)
+{
+  SliceStack stack;
+  if (!(spacing > 0) || !(Length(depthGradient) > 0) || !std::isfinite(phase))
+  {
+    return stack;
+  }
+  double minimumDepth = 0.0;
+  double maximumDepth = 0.0;
+  if (!RegionDepthRange(region, clip, depthGradient, depthOffset, minimumDepth, maximumDepth))
   {
     return stack;
   }

@@ -119,6 +119,11 @@ enum class SliceOrder
 void SampleIndexRange(double minimumDepth, double maximumDepth, double phase, double spacing,
   long long& first, long long& last);
 
+// Depth range (depth(p) = Dot(depthGradient, p) + depthOffset) of the region box ∩ clip; false
+// when the region has no depth extent (empty, or flat across the view direction).
+bool RegionDepthRange(const Box& region, const std::vector<HalfSpace>& clip,
+  const Vec3& depthGradient, double depthOffset, double& minimumDepth, double& maximumDepth);
+
 SliceStack ComputeViewAlignedSlices(const Box& region, const std::vector<HalfSpace>& clip,
   const Vec3& depthGradient, double depthOffset, double spacing, double phase, SliceOrder order);
 
