@@ -460,7 +460,10 @@ public:
    * ghost array, with at most one cropping region and no RenderToImage; other frames are
    * rasterised. The image equals the rasterised one up to rounding (composite without
    * termination), or within the termination bound (the rays stop exactly at the threshold
-   * instead of at the next mark pass). AUTO takes compute slices where they apply.
+   * instead of at the next mark pass). With PrecomputeGradients, compute rays read the scalar
+   * from the gradient texture's 16-bit copy (one fetch per sample instead of two): exact for
+   * 8-bit data, within 1/131070 of the scalar range otherwise. AUTO takes compute slices where
+   * they apply.
    * GetLastSliceCompositing says which ran.
    */
   vtkSetClampMacro(SliceCompositing, int, SLICE_COMPOSITING_AUTO, SLICE_COMPOSITING_COMPUTE);

@@ -1,7 +1,7 @@
 // Compute slices (vtkAccelVolumeSliceMapper::SliceCompositing COMPUTE): one invocation per
 // accumulation texel takes the samples where the frame's view-aligned slice planes cross its
 // ray, at the points the proxy-slice fragments would take (the same slice maps and sampling
-// code), composites them front to back in registers and stores the value the blended slices
+// code, to rounding), composites them front to back in registers and stores the value the blended slices
 // would leave in the target: no rasterisation and no framebuffer blending, so the work runs on
 // every shader core (on compute-class GPUs only a few run fragments) and costs one store per
 // pixel. Composite rays stop at the termination threshold and leap over transparent octree
@@ -36,22 +36,6 @@ uniform float referenceDepth;      // eye depth the relative depths are measured
 uniform float terminationThreshold;
 
 ACCELVOLUME_PRECISE float pixelW; // homogeneous weight of this pixel's slice points (1: affine)
-
-// The point of relative slice depth `depth` on this pixel's ray, rounded as a proxy slice's
-// fragment rounds it (its flat map is indexMap + depth * indexMapPerDepth).
-void placeSample(float depth)
-{
-  ACCELVOLUME_PRECISE mat3 sliceIndexMap = indexMap + depth * indexMapPerDepth;
-  ACCELVOLUME_PRECISE mat3 sliceEyeMap = eyeMap + depth * eyeMapPerDepth;
-  vec2 pixel = computePixel;
-  indexPosition = sliceIndexMap[0] * pixel.x + sliceIndexMap[1] * pixel.y + sliceIndexMap[2];
-  eyePosition = sliceEyeMap[0] * pixel.x + sliceEyeMap[1] * pixel.y + sliceEyeMap[2];
-#if ACCELVOLUME_PROJECTIVE_SLICES
-  indexPosition /= pixelW;
-  eyePosition /= pixelW;
-#endif
-}
-
 // [enter, exit] of relative slice depth where the ray point origin + depth * perDepth lies in
 // the region box and every clip half-space; enter > exit when it misses.
 vec2 depthInterval(vec3 origin, vec3 perDepth)
@@ -103,22 +87,26 @@ float cellExitDepth(vec3 point, float cellSize, vec3 gridMaximum, vec3 origin, v
 // were that leaf transparent, its opacity would be 0 all the same).
 int leapEmptySpace(int j, int last, vec3 point, vec3 origin, vec3 perDepth, out float visibleUntil)
 {
+  // One exit computation for whichever cell the point is tested in (CPU drivers run both
+  // branches of a per-lane test, so the two cases share it).
   float cellSize = leafSize * LeafBlock;
-  vec3 block = clamp(floor(point / cellSize), vec3(0.0), blockGridMaximum);
   vec3 gridMaximum = blockGridMaximum;
-  visibleUntil = -1.0e30;
-  if (texelFetch(emptyBlocks, ivec3(block), 0).r <= 0.5)
+  vec3 block = clamp(floor(point / cellSize), vec3(0.0), blockGridMaximum);
+  bool transparent = texelFetch(emptyBlocks, ivec3(block), 0).r > 0.5;
+  if (!transparent)
   {
     vec3 leaf = clamp(floor(point / leafSize), vec3(0.0), leafGridMaximum);
-    if (texelFetch(emptyLeaves, ivec3(leaf), 0).r <= 0.5)
-    {
-      visibleUntil = cellExitDepth(point, leafSize, leafGridMaximum, origin, perDepth);
-      return j;
-    }
+    transparent = texelFetch(emptyLeaves, ivec3(leaf), 0).r > 0.5;
     cellSize = leafSize;
     gridMaximum = leafGridMaximum;
   }
   float exit = cellExitDepth(point, cellSize, gridMaximum, origin, perDepth);
+  if (!transparent)
+  {
+    visibleUntil = exit;
+    return j;
+  }
+  visibleUntil = -1.0e30;
   float slices = min(floor((exit - sliceBase) / sliceSpacing), float(last + 1));
   return slices >= float(j + 1) ? int(slices) : j + 1;
 }
@@ -138,10 +126,13 @@ void main()
 #if ACCELVOLUME_PROJECTIVE_SLICES
   pixelW = dot(pixelWeight, pixel);
 #endif
-  // The ray as a function of relative slice depth, for the interval and leaf tests only (the
-  // samples themselves are placed by placeSample).
+  // The ray as a function of relative slice depth (index and eye points): the samples lie where
+  // the slice planes cross it, as the proxy slices' fragments do (to rounding: each fragment
+  // evaluates its slice's map; a ray steps along one line, which costs less per sample).
   vec3 origin = (indexMap * pixel) / pixelW;
   vec3 perDepth = (indexMapPerDepth * pixel) / pixelW;
+  vec3 eyeOrigin = (eyeMap * pixel) / pixelW;
+  vec3 eyeRay = (eyeMapPerDepth * pixel) / pixelW;
   vec2 interval = depthInterval(origin, perDepth);
   if (!(interval.x <= interval.y) || abs(interval.x) > 1.0e20 || abs(interval.y) > 1.0e20)
   {
@@ -159,6 +150,11 @@ void main()
   }
   uint taken = 0u;
 #if defined(ACCELVOLUME_BLEND_COMPOSITE)
+  vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyeRay);
+  float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+#if ACCELVOLUME_JITTER
+  vec3 jitterOffset = (mat3(eyeToIndex) * rayDirection) * (step * (jitterNoise(computePixel) - 0.5));
+#endif
   vec4 accumulated = vec4(0.0);
   float visibleUntil = -1.0e30; // the ray is in a leaf that is not transparent up to here
   for (int j = first; j <= last; ++j)
@@ -175,13 +171,13 @@ void main()
       }
     }
 #endif
-    placeSample(depth);
-    vec3 rayDirection = parallelProjection != 0 ? vec3(0.0, 0.0, -1.0) : normalize(eyePosition);
-    float step = sliceSpacing / max(-rayDirection.z, 1.0e-6);
+    indexPosition = origin + depth * perDepth;
+#if ACCELVOLUME_POSITIONAL_LIGHTS
+    eyePosition = eyeOrigin + depth * eyeRay;
+#endif
     ACCELVOLUME_PRECISE vec3 samplePosition = indexPosition;
 #if ACCELVOLUME_JITTER
-    samplePosition +=
-      (mat3(eyeToIndex) * rayDirection) * (step * (jitterNoise(computePixel) - 0.5));
+    samplePosition += jitterOffset;
 #endif
     ++taken;
     vec4 premultiplied;
@@ -209,7 +205,7 @@ void main()
   bool sampled = false;
   for (int j = first; j <= last; ++j)
   {
-    placeSample(sliceBase + float(j) * sliceSpacing);
+    indexPosition = origin + (sliceBase + float(j) * sliceSpacing) * perDepth;
     extreme = ACCELVOLUME_EXTREME(extreme, normalizedScalar());
     sampled = true;
     ++taken;

@@ -326,11 +326,21 @@ bool compositeSample(vec3 samplePosition, vec3 rayDirection, float step, out vec
     return false;
   }
 #endif
+#if ACCELVOLUME_GRADIENT_TEXTURE && defined(ACCELVOLUME_COMPUTE_SLICES)
+#define ACCELVOLUME_PACKED_SAMPLE 1
+  // The gradient texture holds the normalized scalar in alpha: one fetch serves both (CPU
+  // drivers pay for every fetch on every lane). The proxy slices keep the scalar texture.
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
+  vec4 gradientSample = texture(gradientTexture, center);
+  float sampleScalar = gradientSample.a;
+#else
+  float sampleScalar = normalizedScalarAt(samplePosition);
+#endif
 #if ACCELVOLUME_TF2D
-  float scalar2D = normalizedScalarAt(samplePosition);
+  float scalar2D = sampleScalar;
   vec4 classified = vec4(0.0);
 #else
-  vec4 classified = classify(normalizedScalarAt(samplePosition));
+  vec4 classified = classify(sampleScalar);
 #endif
 #if ACCELVOLUME_MASK == 2
   // Label map: a labelled voxel takes its label's colour and opacity, blended with the
@@ -352,11 +362,14 @@ bool compositeSample(vec3 samplePosition, vec3 rayDirection, float step, out vec
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
+#if defined(ACCELVOLUME_PACKED_SAMPLE)
+  vec3 indexGradient = (gradientSample.rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
+#elif ACCELVOLUME_GRADIENT_TEXTURE
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
-#if ACCELVOLUME_GRADIENT_TEXTURE
   vec3 indexGradient =
     (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
 #else
+  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
   vec3 indexGradient = centralDifferences(center);
 #endif
   vec3 eyeGradient = normalMatrix * indexGradient;
