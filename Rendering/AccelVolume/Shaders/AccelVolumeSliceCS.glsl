@@ -1,10 +1,10 @@
 // Compute slices (vtkAccelVolumeSliceMapper::SliceCompositing COMPUTE): one invocation per
 // accumulation texel takes the samples where the frame's view-aligned slice planes cross its
 // ray, at the points the proxy-slice fragments would take (the same slice maps and sampling
-// code, to rounding), composites them front to back in registers and stores the value the blended slices
-// would leave in the target: no rasterisation and no framebuffer blending, so the work runs on
-// every shader core (on compute-class GPUs only a few run fragments) and costs one store per
-// pixel. Composite rays stop at the termination threshold and leap over transparent octree
+// code, to rounding), composites them front to back in registers and stores the value the
+// blended slices would leave in the target: no rasterisation and no framebuffer blending, so the
+// work runs on every shader core (on compute-class GPUs only a few run fragments) and costs one
+// store per pixel. Composite rays stop at the termination threshold and leap over transparent octree
 // blocks and leaves (every sample inside one is skipped by the fragment path too); MIP / MinIP
 // take the cut-face samples that boundary re-rendering adds. The prelude
 // (vtkAccelVolumeSliceShaderPrelude plus ACCELVOLUME_TARGET_FORMAT, ACCELVOLUME_TERMINATE,

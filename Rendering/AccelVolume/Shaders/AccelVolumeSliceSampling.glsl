@@ -66,6 +66,13 @@ uniform float leafSize;
 // normalized scalar units, stored as rgb * 2 - 1 times gradientTextureScale.
 uniform sampler3D gradientTexture;
 uniform float gradientTextureScale;
+// The gradient texture's alpha holds the normalized scalar: compute rays read both from one
+// fetch (CPU drivers pay for every fetch on every lane); the proxy slices keep the scalar texture.
+#if ACCELVOLUME_GRADIENT_TEXTURE && defined(ACCELVOLUME_COMPUTE_SLICES)
+#define ACCELVOLUME_PACKED_SAMPLE 1
+#else
+#define ACCELVOLUME_PACKED_SAMPLE 0
+#endif
 // 2D transfer function (ACCELVOLUME_TF2D): rgba over (scalar, gradient magnitude / maximum).
 uniform sampler2D transferTable2D;
 uniform float gradient2DMaximum;
@@ -326,11 +333,8 @@ bool compositeSample(vec3 samplePosition, vec3 rayDirection, float step, out vec
     return false;
   }
 #endif
-#if ACCELVOLUME_GRADIENT_TEXTURE && defined(ACCELVOLUME_COMPUTE_SLICES)
-#define ACCELVOLUME_PACKED_SAMPLE 1
-  // The gradient texture holds the normalized scalar in alpha: one fetch serves both (CPU
-  // drivers pay for every fetch on every lane). The proxy slices keep the scalar texture.
   ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
+#if ACCELVOLUME_PACKED_SAMPLE
   vec4 gradientSample = texture(gradientTexture, center);
   float sampleScalar = gradientSample.a;
 #else
@@ -362,14 +366,12 @@ bool compositeSample(vec3 samplePosition, vec3 rayDirection, float step, out vec
   }
 #endif
 #if ACCELVOLUME_SHADE || ACCELVOLUME_GRADIENT_OPACITY || ACCELVOLUME_TF2D
-#if defined(ACCELVOLUME_PACKED_SAMPLE)
+#if ACCELVOLUME_GRADIENT_TEXTURE && !ACCELVOLUME_PACKED_SAMPLE
+  vec4 gradientSample = texture(gradientTexture, center);
+#endif
+#if ACCELVOLUME_GRADIENT_TEXTURE
   vec3 indexGradient = (gradientSample.rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
-#elif ACCELVOLUME_GRADIENT_TEXTURE
-  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
-  vec3 indexGradient =
-    (texture(gradientTexture, center).rgb * 2.0 - vec3(1.0)) * gradientTextureScale;
 #else
-  ACCELVOLUME_PRECISE vec3 center = ACCELVOLUME_TEXEL_CENTRE(samplePosition) / volumeDimensions;
   vec3 indexGradient = centralDifferences(center);
 #endif
   vec3 eyeGradient = normalMatrix * indexGradient;
