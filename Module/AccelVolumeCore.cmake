@@ -7,6 +7,7 @@ set(_av_core_sources
   common/Affine
   common/Camera
   common/Geometry
+  common/ParallelFor
   common/Progress
   skipping/CellClassification
   skipping/CellLeapTable

@@ -415,7 +415,12 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::Cast(vtkAccelVolumeRayCastMapper
   vtkAccelVolumeRenderProgress& progress, const RayCastFrameInputs& in,
   accelvolume::RayCastCounters& counters, std::string& error)
 {
-  const accelvolume::ParallelFor parallel = vtkAccelVolumeSMPParallelFor();
+  // More threads than cores only adds contention. A set thread count gets exactly that many
+  // workers (vtkSMPTools::LocalScope does not limit VTK 9.1's TBB backend).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const accelvolume::ParallelFor parallel = self->NumberOfThreads > 0
+    ? accelvolume::FixedThreadsParallelFor(std::min(self->NumberOfThreads, cores))
+    : vtkAccelVolumeSMPParallelFor();
   bool ok = false;
   auto cast = [&]()
   {
@@ -436,16 +441,7 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::Cast(vtkAccelVolumeRayCastMapper
     }
     this->Caster.SetProgressFunction(nullptr); // it refers to this render's progress
   };
-  // More threads than cores only adds contention (and TBB refuses them with a warning).
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (self->NumberOfThreads > 0)
-  {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ std::min(self->NumberOfThreads, cores) }, cast);
-  }
-  else
-  {
-    cast();
-  }
+  cast();
   return ok;
 }
 

@@ -14,6 +14,11 @@ namespace accelvolume
 using ParallelFor =
   std::function<void(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)>;
 
+// Exactly `threads` workers (the caller and threads - 1 others) taking chunks of [0, count)
+// as they finish (dynamic balance). For a user's thread count: vtkSMPTools::LocalScope does not
+// limit Debian VTK 9.1's TBB backend. An exception from body is rethrown on the caller.
+ParallelFor FixedThreadsParallelFor(int threads);
+
 } // namespace accelvolume
 
 #endif
