@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 namespace accelvolume
@@ -102,6 +103,49 @@ void LightingTerms(const LightModel& model, const float normal[3], const float p
           specular[c] += term * light.specular[c];
         }
       }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    factor[c] =
+      model.ambient * (model.headlightOnly ? 1.0f : ambient[c]) + model.diffuse * diffuse[c];
+    highlight[c] = model.specular * specular[c];
+  }
+}
+
+/**
+ * LightingTerms with each light's unit direction towards it and unit half vector fixed (a
+ * directional light, or a light at the eye seen along a ray through the eye); the same terms
+ * up to float rounding, without a square root per light.
+ */
+template <typename Power>
+inline void FixedLightingTerms(const LightModel& model, const float normal[3], const float (*toLight)[3],
+  const float (*half)[3], Power power, float factor[3], float highlight[3])
+{
+  float ambient[3] = { 0, 0, 0 };
+  float diffuse[3] = { 0, 0, 0 };
+  float specular[3] = { 0, 0, 0 };
+  std::size_t index = 0;
+  for (const SceneLight& light : model.lights)
+  {
+    const float* l = toLight[index];
+    const float* h = half[index++];
+    float nDotL = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
+    float nDotH = normal[0] * h[0] + normal[1] * h[1] + normal[2] * h[2];
+    if (model.twoSided)
+    {
+      nDotL = std::abs(nDotL);
+      nDotH = std::abs(nDotH);
+    }
+    // Selects rather than branches (the caller may run this for every sample of a ray).
+    const float d = std::max(nDotL, 0.0f);
+    const float highlightTerm = power(std::min(std::max(nDotH, 0.0f), 1.0f));
+    const float term = nDotH > 0 ? highlightTerm : 0.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      ambient[c] += light.ambient[c];
+      diffuse[c] += d * light.diffuse[c];
+      specular[c] += term * light.specular[c];
     }
   }
   for (int c = 0; c < 3; ++c)

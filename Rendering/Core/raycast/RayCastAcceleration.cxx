@@ -2,6 +2,7 @@
 // classification and distance map, the packed cell table, precomputed gradients), rebuilt only
 // when the scalars or the transfer function change.
 #include "raycast/RayCastEngineInternals.h"
+#include "skipping/CellBricks.h"
 
 #include "skipping/DistanceMap.h"
 
@@ -399,7 +400,10 @@ void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
   MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
   std::vector<std::uint8_t>().swap(cells.configuration);
   this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
-  ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, this->DistanceOnly);
+  ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
+  // The dead flags' buffer takes the bricked map (the layout the rays read).
+  CellBricks(cells.cellDims).Reorder(cells.cellDims, cells.configuration, cells.nonEmpty, parallel);
+  this->DistanceOnly.swap(cells.nonEmpty);
   this->Packed = false;
   std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
   this->CellInfoHasDistance = true;
@@ -473,7 +477,9 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
     ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
-    this->DistanceOnly.swap(cells.configuration);
+    // The dead flags' buffer takes the bricked map (the layout the rays read).
+    CellBricks(cells.cellDims).Reorder(cells.cellDims, cells.configuration, cells.nonEmpty, parallel);
+    this->DistanceOnly.swap(cells.nonEmpty);
   }
   else
   {
@@ -501,17 +507,28 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
 void RayCaster::Internals::PackCellInfo(const CellClassification& cells,
   const std::vector<std::uint8_t>& distance, const ParallelFor& parallel)
 {
-  ResizeWithHugePages(this->CellInfo, cells.configuration.size());
+  // Bricked (CellBricks) like the distance map alone: the layout the rays read.
+  const CellBricks bricks(cells.cellDims);
+  ResizeWithHugePages(this->CellInfo, bricks.Entries());
+  std::fill(this->CellInfo.begin(), this->CellInfo.end(), std::uint16_t(0));
   const std::uint8_t* configuration = cells.configuration.data();
   const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
   std::uint16_t* info = this->CellInfo.data();
-  parallel(cells.configuration.size(),
+  const int* dims = cells.cellDims;
+  parallel(static_cast<std::size_t>(dims[2]),
     [&](std::size_t begin, std::size_t end)
     {
-      for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t z = begin; z < end; ++z)
       {
-        info[i] =
-          static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
+        std::size_t i = z * static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
+        for (int y = 0; y < dims[1]; ++y)
+        {
+          for (int x = 0; x < dims[0]; ++x, ++i)
+          {
+            info[bricks.Index(x, y, static_cast<int>(z))] = static_cast<std::uint16_t>(
+              (configuration[i] << 8) | (distances ? distances[i] : 0));
+          }
+        }
       }
     });
 }

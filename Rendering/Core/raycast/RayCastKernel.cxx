@@ -1,6 +1,7 @@
 // RayCastKernel: per-tile ray loops, templated on the scalar type.
 #include "raycast/RayCastKernel.h"
 
+#include "raycast/RayCastPixelRay.h"
 #include "raycast/RayCastSampler.h"
 
 #include "common/IndexRay.h"
@@ -19,70 +20,6 @@ namespace detail
 {
 namespace
 {
-
-// A pixel's ray: world near-plane point and unit direction, index-space origin / direction,
-// and the world length before opaque geometry.
-struct PixelRay
-{
-  IndexRay index;
-  float toViewer[3]; // eye space, unit length (shading only)
-};
-
-void Unproject(const double m[4][4], double x, double y, double z, double out[3])
-{
-  double h[4];
-  for (int r = 0; r < 4; ++r)
-  {
-    h[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    out[r] = h[r] / h[3];
-  }
-}
-
-PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
-{
-  const RayCastView& view = *frame.view;
-  const double x = 2.0 * (i + 0.5) / view.width - 1.0;
-  const double y = 2.0 * (j + 0.5) / view.height - 1.0;
-  double nearPoint[3], farPoint[3];
-  Unproject(view.clipToWorld, x, y, -1.0, nearPoint);
-  Unproject(view.clipToWorld, x, y, 1.0, farPoint);
-  const Vec3 origin{ nearPoint[0], nearPoint[1], nearPoint[2] };
-  const Vec3 direction = Normalize(
-    Vec3{ farPoint[0] - nearPoint[0], farPoint[1] - nearPoint[1], farPoint[2] - nearPoint[2] });
-  double end = std::numeric_limits<double>::infinity();
-  if (view.depth)
-  {
-    const float depth = (*view.depth)[static_cast<std::size_t>(j) * view.width + i];
-    if (depth < 1.0f)
-    {
-      double hit[3];
-      Unproject(view.clipToWorld, x, y, 2.0 * depth - 1.0, hit);
-      end = Dot(Vec3{ hit[0], hit[1], hit[2] } - origin, direction);
-    }
-  }
-  PixelRay ray;
-  ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
-  const RayCastLighting& l = *frame.lighting;
-  if (!l.shade)
-  {
-    return ray; // the eye-space direction only serves specular lighting
-  }
-  const Vec3& d = ray.index.direction;
-  double eye[3];
-  for (int r = 0; r < 3; ++r)
-  {
-    eye[r] = l.indexToEye[r][0] * d.x + l.indexToEye[r][1] * d.y + l.indexToEye[r][2] * d.z;
-  }
-  const double length = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
-  for (int r = 0; r < 3; ++r)
-  {
-    ray.toViewer[r] = static_cast<float>(length > 0 ? -eye[r] / length : 0.0);
-  }
-  return ray;
-}
 
 struct Interval
 {
@@ -114,6 +51,7 @@ public:
     {
       this->Channels.emplace_back(frame.volume, frame.components, c);
     }
+    this->Batching = this->CanBatch();
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -129,6 +67,33 @@ public:
     {
       return;
     }
+    // A projection's rays share one centre: three corner rays through the eye mean all do.
+    const RayCastLighting& lighting = *this->Frame.lighting;
+    bool throughEye = false;
+    if (lighting.shade && lighting.model.anyPositional)
+    {
+      const int w = this->Frame.view->width, hgt = this->Frame.view->height;
+      throughEye = true;
+      const int corners[3][2] = { { 0, 0 }, { w - 1, 0 }, { 0, hgt - 1 } };
+      for (const auto& c : corners)
+      {
+        throughEye = throughEye &&
+          PassesThroughEye(lighting, MakePixelRay(this->Frame, c[0], c[1], false).index);
+      }
+    }
+    if (!this->Frame.useOctree)
+    {
+      // Each ray as it is cast (only the octree's distance template needs them all first).
+      for (int j = y0; j < y1; ++j)
+      {
+        for (int i = x0; i < x1; ++i)
+        {
+          float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
+          this->CastRay(MakePixelRay(this->Frame, i, j, throughEye), out);
+        }
+      }
+      return;
+    }
     std::vector<PixelRay>& rays = this->Rays;
     rays.clear();
     double maximumStep[3] = { 0, 0, 0 };
@@ -137,22 +102,19 @@ public:
     {
       for (int i = x0; i < x1; ++i)
       {
-        rays.push_back(MakePixelRay(this->Frame, i, j));
+        rays.push_back(MakePixelRay(this->Frame, i, j, throughEye));
         const Vec3& d = rays.back().index.direction;
         maximumStep[0] = std::max(maximumStep[0], std::abs(d.x * h));
         maximumStep[1] = std::max(maximumStep[1], std::abs(d.y * h));
         maximumStep[2] = std::max(maximumStep[2], std::abs(d.z * h));
       }
     }
-    if (this->Frame.useOctree)
+    const MinMaxOctree& octree = *this->Frame.octree;
+    while ((1 << this->LeafShift) < octree.GetLeafSize())
     {
-      const MinMaxOctree& octree = *this->Frame.octree;
-      while ((1 << this->LeafShift) < octree.GetLeafSize())
-      {
-        ++this->LeafShift;
-      }
-      this->Template.Build(maximumStep, octree.GetLeafSize() << octree.GetDepth());
+      ++this->LeafShift;
     }
+    this->Template.Build(maximumStep, octree.GetLeafSize() << octree.GetDepth());
     std::size_t at = 0;
     for (int j = y0; j < y1; ++j)
     {
@@ -298,7 +260,14 @@ private:
     switch (this->Settings.blend)
     {
       case Blend::Composite:
-        this->Composite(pixel, out);
+        if (this->Batching)
+        {
+          this->CompositeBatched(pixel, out);
+        }
+        else
+        {
+          this->Composite(pixel, out);
+        }
         break;
       case Blend::Maximum:
       case Blend::Minimum:
@@ -316,6 +285,37 @@ private:
         break;
     }
   }
+
+  // Composite rays of the common case in batches (RayCastKernelBatch.inl).
+  static constexpr int BatchSize = 16;
+  struct BatchSample
+  {
+    SampleCell cell;
+    double p[3];
+    float value, alpha, fraction;
+    int entry; // table entry below the value
+  };
+  struct BatchedRay
+  {
+    float colour[3] = { 0, 0, 0 };
+    float alpha = 0;
+  };
+  bool CanBatch() const;
+  void CompositeBatched(const PixelRay& pixel, float* out);
+  bool CompositeBatch(const PixelRay& pixel, int n, BatchedRay& state);
+  bool ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay& state);
+  // Per-lane arrays of a batch (structure of arrays: the loops over them vectorise).
+  struct BatchLanes
+  {
+    float corner[8][BatchSize];
+    float fx[BatchSize], fy[BatchSize], fz[BatchSize];
+    float gradient[3][8][BatchSize];
+    float eye[3][BatchSize];
+    float rgb[3][BatchSize];
+    float alpha[BatchSize];
+    float factor[3][BatchSize], highlight[3][BatchSize];
+    int visible[BatchSize];
+  };
 
   // MIP / MinIP and raysum / average rays (RayCastKernelProjections.inl).
   void Extreme(const PixelRay& pixel, float* out);
@@ -647,11 +647,28 @@ private:
     const double p[3], const float eyeGradient[3], float rgb[3]) const
   {
     const RayCastLighting& l = *this->Frame.lighting;
+    const int size = this->Frame.specularTableSize;
+    const auto power = [table, size](float x)
+    {
+      const float u = x * static_cast<float>(size - 1);
+      const int k = std::min(static_cast<int>(u), size - 2);
+      return Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+    };
     float factor[3];
     float highlight[3];
     const float squared = eyeGradient[0] * eyeGradient[0] + eyeGradient[1] * eyeGradient[1] +
       eyeGradient[2] * eyeGradient[2];
-    if (squared > 1.0e-16f)
+    // Component tables' models share the frame's lights (only their coefficients differ).
+    if (pixel.fixedLights && model.lights.size() == l.model.lights.size())
+    {
+      // Without branches on the data (they mispredict from sample to sample): a vanishing
+      // gradient gives a zero normal, hence the ambient terms alone, as AmbientTerms.
+      const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
+      const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
+        eyeGradient[2] * inverse };
+      FixedLightingTerms(model, normal, pixel.toLight, pixel.half, power, factor, highlight);
+    }
+    else if (squared > 1.0e-16f)
     {
       const float inverse = -1.0f / std::sqrt(squared);
       const float normal[3] = { eyeGradient[0] * inverse, eyeGradient[1] * inverse,
@@ -665,13 +682,6 @@ private:
             l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r]);
         }
       }
-      const int size = this->Frame.specularTableSize;
-      const auto power = [table, size](float x)
-      {
-        const float u = x * static_cast<float>(size - 1);
-        const int k = std::min(static_cast<int>(u), size - 2);
-        return Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-      };
       LightingTerms(model, normal, eye, pixel.toViewer, power, factor, highlight);
     }
     else
@@ -696,9 +706,13 @@ private:
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
   bool LastContributed = false;         // the ray's last sample added something
+  bool Batching = false;                // composite rays take CompositeBatched
+  BatchSample Batch[BatchSize];
+  BatchLanes Lanes;
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };
 
+#include "raycast/RayCastKernelBatch.inl"
 #include "raycast/RayCastKernelComponents.inl"
 #include "raycast/RayCastKernelPlanes.inl"
 #include "raycast/RayCastKernelProjections.inl"

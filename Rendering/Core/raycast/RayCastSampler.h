@@ -5,6 +5,7 @@
 #define accelvolume_RayCastSampler_h
 
 #include "common/VolumeView.h"
+#include "skipping/CellBricks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,7 @@ struct SampleCell
   std::ptrdiff_t base = 0;
   std::ptrdiff_t offset[3] = { 0, 0, 0 };
   float f[3] = { 0, 0, 0 };
-  std::size_t cell = 0;
+  std::size_t cell = 0; // index into the CellBricks layout of per-cell arrays
 };
 
 template <typename T>
@@ -45,6 +46,7 @@ public:
       this->Dims[a] = volume.dims[a];
       this->CellDims[a] = std::max(volume.dims[a] - 1, 1);
     }
+    this->Bricks = CellBricks(this->CellDims);
     this->Stride[0] = components;
     this->Stride[1] = static_cast<std::ptrdiff_t>(volume.dims[0]) * components;
     this->Stride[2] = static_cast<std::ptrdiff_t>(volume.dims[0]) * volume.dims[1] * components;
@@ -53,8 +55,7 @@ public:
   void Locate(const double p[3], SampleCell& s) const
   {
     std::ptrdiff_t base = 0;
-    std::size_t cell = 0;
-    std::size_t cellStride = 1;
+    int c[3];
     for (int a = 0; a < 3; ++a)
     {
       const int n = this->Dims[a];
@@ -74,12 +75,13 @@ public:
       }
       s.f[a] = f;
       base += i * this->Stride[a];
-      cell += static_cast<std::size_t>(i) * cellStride;
-      cellStride *= static_cast<std::size_t>(this->CellDims[a]);
+      c[a] = i;
     }
     s.base = base;
-    s.cell = cell;
+    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
   }
+
+  const T* Voxels() const { return this->Data; }
 
   float Corner(const SampleCell& s, int c) const
   {
@@ -128,6 +130,7 @@ private:
   const T* Data;
   int Dims[3];
   int CellDims[3];
+  CellBricks Bricks;
   std::ptrdiff_t Stride[3];
 };
 

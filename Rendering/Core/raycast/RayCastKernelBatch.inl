@@ -1,0 +1,398 @@
+// RayCastKernelBatch.inl: composite rays of the common case (one component, trilinear, no
+// mask, distance-map or no leaping) in batches, included inside RayCasterTile. The walk, leaps
+// included, first collects up to BatchSize samples to visit; their trilinear values and
+// opacities then come from tight loops over independent samples, and only then are the
+// visible ones shaded and composited in order. Each sample's arithmetic is Walk's and
+// Composite's, so images are bit-identical to theirs (and to every leaping configuration).
+
+template <typename T>
+bool RayCasterTile<T>::CanBatch() const
+{
+  const KernelFrame& frame = this->Frame;
+  const bool needGradient = frame.gradientOpacity != nullptr || frame.lighting->shade;
+  return frame.components == 1 && this->Settings.blend == Blend::Composite &&
+    !this->Settings.nearest && frame.mask == nullptr && !frame.useOctree && !frame.useCellLeap &&
+    (!needGradient || frame.gradients != nullptr);
+}
+
+template <typename T>
+void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
+{
+  const KernelFrame& frame = this->Frame;
+  const IndexRay& ray = pixel.index;
+  const double h = this->Settings.sampleDistance;
+  const Vec3 step = ray.direction * h;
+  const double stepAlong[3] = { step.x, step.y, step.z };
+  double inverseStep[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
+  }
+  const bool distance = frame.useDistance;
+  const bool opaqueBox = frame.useOpaqueBox && distance;
+  BatchedRay state;
+  int n = 0;
+  // The last cell the map found non-empty: its samples need no second look.
+  std::size_t filledCell = static_cast<std::size_t>(-1);
+  bool going = true;
+  for (const Interval& interval : this->RayIntervals)
+  {
+    if (!going)
+    {
+      break;
+    }
+    const std::int64_t count =
+      static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+    std::int64_t first = 0;
+    std::int64_t last = count;
+    if (opaqueBox)
+    {
+      static const std::vector<HalfSpace> noClip;
+      double enter, leave;
+      if (!IntersectRayRegion(ray.origin, ray.direction, frame.opaqueBox, noClip, enter, leave))
+      {
+        first = last = count;
+      }
+      else
+      {
+        first = std::max<std::int64_t>(
+          0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
+        last = std::min<std::int64_t>(
+          count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
+        first = std::min(first, count);
+        last = std::max(last, first);
+      }
+      this->Counters.leapedDistance += static_cast<std::uint64_t>(first + (count - last));
+    }
+    for (std::int64_t k = first; k < last; ++k)
+    {
+      const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
+      BatchSample& sample = this->Batch[n];
+      double* p = sample.p;
+      p[0] = ray.origin.x + t * ray.direction.x;
+      p[1] = ray.origin.y + t * ray.direction.y;
+      p[2] = ray.origin.z + t * ray.direction.z;
+      SampleCell& cell = sample.cell;
+      this->Sampling.Locate(p, cell);
+      if (distance && cell.cell != filledCell)
+      {
+        const int d = (frame.distanceOnly ? frame.distanceOnly[cell.cell]
+                                          : frame.cellInfo[cell.cell]) & 0xff;
+        if (d > 0)
+        {
+          // Walk's leap (see there): the same room, the same margin.
+          double room = 1.0e30;
+          for (int a = 0; a < 3; ++a)
+          {
+            if (inverseStep[a] > 0 && cell.offset[a] != 0)
+            {
+              const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
+              room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
+            }
+          }
+          const auto more = static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+          const std::int64_t skipped = std::min(more + 1, last - k);
+          this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
+          ++this->Counters.distanceLeaps;
+          k += skipped - 1;
+          continue;
+        }
+        filledCell = cell.cell;
+      }
+      // Near termination, small batches: a ray that stops wastes at most the rest of one.
+      if (++n == (state.alpha < 0.5f ? BatchSize : BatchSize / 4))
+      {
+        going = this->CompositeBatch(pixel, n, state);
+        n = 0;
+        if (!going)
+        {
+          break;
+        }
+      }
+    }
+  }
+  if (going && n > 0)
+  {
+    this->CompositeBatch(pixel, n, state);
+  }
+  out[0] = state.colour[0];
+  out[1] = state.colour[1];
+  out[2] = state.colour[2];
+  out[3] = state.alpha;
+}
+
+template <typename T>
+bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& state)
+{
+  const KernelFrame& frame = this->Frame;
+  BatchSample* batch = this->Batch;
+  BatchLanes& lanes = this->Lanes;
+  // Sampler::Trilinear lane by lane: the loads first, then the same lerps in the same order.
+  const T* voxels = this->Sampling.Voxels();
+  const std::ptrdiff_t ox = batch[0].cell.offset[0], oy = batch[0].cell.offset[1],
+                       oz = batch[0].cell.offset[2];
+  const std::ptrdiff_t corners[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
+  for (int s = 0; s < n; ++s)
+  {
+    const T* d = voxels + batch[s].cell.base;
+    for (int c = 0; c < 8; ++c)
+    {
+      lanes.corner[c][s] = static_cast<float>(d[corners[c]]);
+    }
+    lanes.fx[s] = batch[s].cell.f[0];
+    lanes.fy[s] = batch[s].cell.f[1];
+    lanes.fz[s] = batch[s].cell.f[2];
+  }
+  float values[BatchSize];
+  for (int s = 0; s < n; ++s)
+  {
+    const float fx = lanes.fx[s], fy = lanes.fy[s];
+    const float c00 = Lerp(lanes.corner[0][s], lanes.corner[1][s], fx);
+    const float c10 = Lerp(lanes.corner[2][s], lanes.corner[3][s], fx);
+    const float c01 = Lerp(lanes.corner[4][s], lanes.corner[5][s], fx);
+    const float c11 = Lerp(lanes.corner[6][s], lanes.corner[7][s], fx);
+    values[s] = Lerp(Lerp(c00, c10, fy), Lerp(c01, c11, fy), lanes.fz[s]);
+  }
+  for (int s = 0; s < n; ++s)
+  {
+    BatchSample& sample = batch[s];
+    sample.value = values[s];
+    TablePosition(frame, sample.value, sample.entry, sample.fraction);
+    const float a = Lerp(frame.correctedAlpha[sample.entry], frame.correctedAlpha[sample.entry + 1],
+      sample.fraction);
+    sample.alpha = sample.value != sample.value ? 0.0f : a; // NaN samples are transparent
+  }
+  const RayCastLighting& lighting = *frame.lighting;
+  if (frame.gradientOpacity == nullptr &&
+    (!lighting.shade ||
+      (pixel.fixedLights && frame.lighting->model.lights.size() <= MaximumRayLights)))
+  {
+    return this->ShadeBatchLanes(pixel, n, state);
+  }
+  const bool gradientOpacity = frame.gradientOpacity != nullptr;
+  const bool needGradient = gradientOpacity || lighting.shade;
+  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+  const bool terminate = this->Settings.earlyTermination;
+  // The visible samples, in order, without a branch per sample.
+  int visible[BatchSize];
+  int count = 0;
+  for (int s = 0; s < n; ++s)
+  {
+    visible[count] = s;
+    count += batch[s].alpha > 0.0f ? 1 : 0;
+  }
+  // Shaded a few at a time, then composited: independent samples overlap, and a ray that
+  // terminates wastes at most the rest of its group.
+  constexpr int Group = 4;
+  float rgba[Group][4];
+  for (int first = 0; first < count; first += Group)
+  {
+    const int last = std::min(first + Group, count);
+    for (int v = first; v < last; ++v)
+    {
+      const BatchSample& sample = batch[visible[v]];
+      float* colour = rgba[v - first];
+      const float* e0 = frame.rgba + 4 * sample.entry;
+      const float* e1 = e0 + 4;
+      const float fraction = sample.fraction;
+      colour[0] = Lerp(e0[0], e1[0], fraction);
+      colour[1] = Lerp(e0[1], e1[1], fraction);
+      colour[2] = Lerp(e0[2], e1[2], fraction);
+      float a = sample.alpha;
+      if (needGradient)
+      {
+        float eyeGradient[3];
+        float indexGradient[3];
+        this->Gradient(sample.p, sample.cell, eyeGradient, indexGradient);
+        if (gradientOpacity)
+        {
+          const float* scale = frame.gradientAxisScale;
+          const float gx = indexGradient[0] * scale[0], gy = indexGradient[1] * scale[1],
+                      gz = indexGradient[2] * scale[2];
+          const float magnitude = std::sqrt(gx * gx + gy * gy + gz * gz) * frame.rangeWidth;
+          const float tableAlpha = Lerp(e0[3], e1[3], fraction) * this->GradientOpacity(magnitude);
+          a = 1.0f - std::pow(std::max(1.0f - tableAlpha, 0.0f), frame.opacityExponent);
+        }
+        if (lighting.shade)
+        {
+          this->Shade(pixel, sample.p, eyeGradient, colour);
+        }
+      }
+      colour[3] = a;
+    }
+    for (int v = first; v < last; ++v)
+    {
+      const float* colour = rgba[v - first];
+      const float a = colour[3];
+      if (a <= 0.0f)
+      {
+        continue; // transparent after gradient opacity: adds nothing
+      }
+      const float weight = (1.0f - state.alpha) * a;
+      state.colour[0] += weight * colour[0];
+      state.colour[1] += weight * colour[1];
+      state.colour[2] += weight * colour[2];
+      state.alpha += weight;
+      if (terminate && state.alpha >= threshold)
+      {
+        ++this->Counters.terminatedRays;
+        this->Counters.samples += static_cast<std::uint64_t>(visible[v] + 1);
+        return false;
+      }
+    }
+  }
+  this->Counters.samples += static_cast<std::uint64_t>(n);
+  return true;
+}
+
+// CompositeBatch's common case (no gradient opacity; no shading or lights fixed along the ray)
+// lane by lane: Gradient and ShadeWith's arithmetic in the same order, so the same bits.
+template <typename T>
+bool RayCasterTile<T>::ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay& state)
+{
+  const KernelFrame& frame = this->Frame;
+  const BatchSample* batch = this->Batch;
+  BatchLanes& lanes = this->Lanes;
+  int count = 0;
+  for (int s = 0; s < n; ++s)
+  {
+    lanes.visible[count] = s;
+    count += batch[s].alpha > 0.0f ? 1 : 0;
+  }
+  for (int v = 0; v < count; ++v)
+  {
+    const BatchSample& sample = batch[lanes.visible[v]];
+    const float* e0 = frame.rgba + 4 * sample.entry;
+    const float* e1 = e0 + 4;
+    lanes.rgb[0][v] = Lerp(e0[0], e1[0], sample.fraction);
+    lanes.rgb[1][v] = Lerp(e0[1], e1[1], sample.fraction);
+    lanes.rgb[2][v] = Lerp(e0[2], e1[2], sample.fraction);
+    lanes.alpha[v] = sample.alpha;
+    lanes.fx[v] = sample.cell.f[0];
+    lanes.fy[v] = sample.cell.f[1];
+    lanes.fz[v] = sample.cell.f[2];
+  }
+  const LightModel& model = frame.lighting->model;
+  if (frame.lighting->shade)
+  {
+    const std::ptrdiff_t ox = 3 * batch[0].cell.offset[0], oy = 3 * batch[0].cell.offset[1],
+                         oz = 3 * batch[0].cell.offset[2];
+    const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
+    for (int v = 0; v < count; ++v)
+    {
+      const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
+      for (int c = 0; c < 8; ++c)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          lanes.gradient[k][c][v] = static_cast<float>(d[at[c] + k]);
+        }
+      }
+    }
+    const float(*m)[3] = frame.normalMatrix;
+    for (int v = 0; v < count; ++v)
+    {
+      const float fx = lanes.fx[v], fy = lanes.fy[v], fz = lanes.fz[v];
+      const float wy[2] = { (1 - fy), fy };
+      const float wz[2] = { (1 - fz), fz };
+      float g[3] = { 0, 0, 0 };
+      for (int c = 0; c < 8; ++c)
+      {
+        const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
+        g[0] += w * lanes.gradient[0][c][v];
+        g[1] += w * lanes.gradient[1][c][v];
+        g[2] += w * lanes.gradient[2][c][v];
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        lanes.eye[r][v] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
+      }
+    }
+    // ShadeWith's fixed-light terms (FixedLightingTerms), light by light over the lanes.
+    float normal[3][BatchSize];
+    for (int v = 0; v < count; ++v)
+    {
+      const float e0 = lanes.eye[0][v], e1 = lanes.eye[1][v], e2 = lanes.eye[2][v];
+      const float squared = e0 * e0 + e1 * e1 + e2 * e2;
+      const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
+      normal[0][v] = e0 * inverse;
+      normal[1][v] = e1 * inverse;
+      normal[2][v] = e2 * inverse;
+    }
+    float diffuse[3][BatchSize], specular[3][BatchSize];
+    float ambient[3] = { 0, 0, 0 };
+    for (int c = 0; c < 3; ++c)
+    {
+      std::fill(diffuse[c], diffuse[c] + count, 0.0f);
+      std::fill(specular[c], specular[c] + count, 0.0f);
+    }
+    const float* table = frame.specularTable;
+    const int size = frame.specularTableSize;
+    std::size_t index = 0;
+    for (const SceneLight& light : model.lights)
+    {
+      const float* l = pixel.toLight[index];
+      const float* h = pixel.half[index++];
+      float term[BatchSize], lit[BatchSize];
+      for (int v = 0; v < count; ++v)
+      {
+        const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
+        float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
+        float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
+        if (model.twoSided)
+        {
+          nDotL = std::abs(nDotL);
+          nDotH = std::abs(nDotH);
+        }
+        lit[v] = std::max(nDotL, 0.0f);
+        term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
+      }
+      for (int v = 0; v < count; ++v)
+      {
+        const float nDotH = term[v];
+        const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+        const float u = x * static_cast<float>(size - 1);
+        const int k = std::min(static_cast<int>(u), size - 2);
+        const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+        term[v] = nDotH > 0 ? highlightTerm : 0.0f;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        ambient[c] += light.ambient[c];
+        for (int v = 0; v < count; ++v)
+        {
+          diffuse[c][v] += lit[v] * light.diffuse[c];
+          specular[c][v] += term[v] * light.specular[c];
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const float base = model.ambient * (model.headlightOnly ? 1.0f : ambient[c]);
+      for (int v = 0; v < count; ++v)
+      {
+        const float factor = base + model.diffuse * diffuse[c][v];
+        const float highlight = model.specular * specular[c][v];
+        lanes.rgb[c][v] = std::min(lanes.rgb[c][v] * factor + highlight, 1.0f);
+      }
+    }
+  }
+  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+  const bool terminate = this->Settings.earlyTermination;
+  for (int v = 0; v < count; ++v)
+  {
+    const float weight = (1.0f - state.alpha) * lanes.alpha[v];
+    state.colour[0] += weight * lanes.rgb[0][v];
+    state.colour[1] += weight * lanes.rgb[1][v];
+    state.colour[2] += weight * lanes.rgb[2][v];
+    state.alpha += weight;
+    if (terminate && state.alpha >= threshold)
+    {
+      ++this->Counters.terminatedRays;
+      this->Counters.samples += static_cast<std::uint64_t>(lanes.visible[v] + 1);
+      return false;
+    }
+  }
+  this->Counters.samples += static_cast<std::uint64_t>(n);
+  return true;
+}
