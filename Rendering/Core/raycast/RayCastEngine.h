@@ -143,6 +143,9 @@ struct RayCastSettings
   double averageRange[2] = { 0, 1 }; // raw scalar range counted by Average
   int octreeLeafSize = 8;
   int tileSize = 16;
+  // The composite kernel's lane loops take AVX2 where the CPU has it; true forces the x86-64
+  // baseline (SSE2) build of them (tests: both give the same bits).
+  bool baselineLanes = false;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).

@@ -21,6 +21,27 @@ namespace detail
 namespace
 {
 
+// The composite kernel's lane loops (RayCastKernelBatch.inl): an AVX2 build besides the
+// baseline on x86-64.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define ACCELVOLUME_AVX2_LANES 1
+#define ACCELVOLUME_INLINE_LANES __attribute__((always_inline)) inline
+#else
+#define ACCELVOLUME_AVX2_LANES 0
+#define ACCELVOLUME_INLINE_LANES inline
+#endif
+
+// Whether this CPU runs the AVX2 build of the lane loops.
+inline bool LanesOnAvx2()
+{
+#if ACCELVOLUME_AVX2_LANES
+  static const bool avx2 = __builtin_cpu_supports("avx2") != 0;
+  return avx2;
+#else
+  return false;
+#endif
+}
+
 struct Interval
 {
   double t0, t1;
@@ -52,6 +73,7 @@ public:
       this->Channels.emplace_back(frame.volume, frame.components, c);
     }
     this->Batching = this->CanBatch();
+    this->Avx2Lanes = !this->Settings.baselineLanes && LanesOnAvx2();
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -303,7 +325,10 @@ private:
   bool CanBatch() const;
   void CompositeBatched(const PixelRay& pixel, float* out);
   bool CompositeBatch(const PixelRay& pixel, int n, BatchedRay& state);
+  // The shading lanes: one body, built for the x86-64 baseline and for AVX2.
   bool ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay& state);
+  bool ShadeBatchLanesAvx2(const PixelRay& pixel, int n, BatchedRay& state);
+  bool ShadeBatchLanesIn(const PixelRay& pixel, int n, BatchedRay& state);
   // Per-lane arrays of a batch (structure of arrays: the loops over them vectorise).
   struct BatchLanes
   {
@@ -707,6 +732,7 @@ private:
   int LeafShift = 0;                    // log2 of the octree leaf size
   bool LastContributed = false;         // the ray's last sample added something
   bool Batching = false;                // composite rays take CompositeBatched
+  bool Avx2Lanes = false;               // the shading lanes' AVX2 build
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)

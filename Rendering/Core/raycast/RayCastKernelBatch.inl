@@ -1,9 +1,14 @@
 // RayCastKernelBatch.inl: composite rays of the common case (one component, trilinear, no
-// mask, distance-map or no leaping) in batches, included inside RayCasterTile. The walk, leaps
-// included, first collects up to BatchSize samples to visit; their trilinear values and
-// opacities then come from tight loops over independent samples, and only then are the
-// visible ones shaded and composited in order. Each sample's arithmetic is Walk's and
-// Composite's, so images are bit-identical to theirs (and to every leaping configuration).
+// mask, distance-map or no leaping, with or without cell leaping) in batches, included inside
+// RayCasterTile. The walk, leaps included, first collects up to BatchSize samples to visit;
+// their trilinear values and opacities then come from tight loops over independent samples,
+// and only then are the visible ones shaded and composited in order. Each sample's arithmetic
+// is Walk's and Composite's, so images are bit-identical to theirs (and to every leaping
+// configuration). The shading lane loops are compiled for AVX2 besides the x86-64 baseline
+// and chosen at run time (LanesOnAvx2): IEEE adds, multiplies, divides and square roots in the
+// same order on every target and no FMA contraction (-ffp-contract=off), so the same bits on
+// every CPU (TestRayCastEngine compares the two). LanesOnAvx2: RayCastKernel.cxx.
+
 
 template <typename T>
 bool RayCasterTile<T>::CanBatch() const
@@ -11,7 +16,7 @@ bool RayCasterTile<T>::CanBatch() const
   const KernelFrame& frame = this->Frame;
   const bool needGradient = frame.gradientOpacity != nullptr || frame.lighting->shade;
   return frame.components == 1 && this->Settings.blend == Blend::Composite &&
-    !this->Settings.nearest && frame.mask == nullptr && !frame.useOctree && !frame.useCellLeap &&
+    !this->Settings.nearest && frame.mask == nullptr && !frame.useOctree &&
     (!needGradient || frame.gradients != nullptr);
 }
 
@@ -29,9 +34,11 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
     inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
   }
   const bool distance = frame.useDistance;
+  const bool cellLeap = frame.useCellLeap;
   const bool opaqueBox = frame.useOpaqueBox && distance;
   BatchedRay state;
   int n = 0;
+  int flushAt = BatchSize / 2;
   // The last cell the map found non-empty: its samples need no second look.
   std::size_t filledCell = static_cast<std::size_t>(-1);
   bool going = true;
@@ -74,11 +81,12 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
       p[2] = ray.origin.z + t * ray.direction.z;
       SampleCell& cell = sample.cell;
       this->Sampling.Locate(p, cell);
-      if (distance && cell.cell != filledCell)
+      if (cellLeap || (distance && cell.cell != filledCell))
       {
-        const int d = (frame.distanceOnly ? frame.distanceOnly[cell.cell]
-                                          : frame.cellInfo[cell.cell]) & 0xff;
-        if (d > 0)
+        const std::uint16_t info =
+          frame.distanceOnly ? frame.distanceOnly[cell.cell] : frame.cellInfo[cell.cell];
+        const int d = info & 0xff;
+        if (distance && d > 0)
         {
           // Walk's leap (see there): the same room, the same margin.
           double room = 1.0e30;
@@ -97,13 +105,34 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
           k += skipped - 1;
           continue;
         }
+        if (cellLeap)
+        {
+          // Walk's cell test: every corner transparent, or the sample outside the box of the
+          // cell's iso-surface (the modified Marching Cubes table).
+          const int configuration = info >> 8;
+          if (configuration == 0)
+          {
+            ++this->Counters.leapedEmptyCell;
+            continue;
+          }
+          const CellLeapCase& leapCase = this->Table[configuration];
+          if (leapCase.leapCase >= 0 &&
+            CellLeapSampleIsTransparent(leapCase, cell.f, frame.leapThreshold,
+              [this, &cell](int c) { return this->Sampling.Corner(cell, c); }))
+          {
+            ++this->Counters.leapedCell;
+            continue;
+          }
+        }
         filledCell = cell.cell;
       }
-      // Near termination, small batches: a ray that stops wastes at most the rest of one.
-      if (++n == (state.alpha < 0.5f ? BatchSize : BatchSize / 4))
+      // Batches grow along the ray and shrink near termination: a ray that stops (an opaque
+      // surface after a few samples) wastes at most the rest of a small one.
+      if (++n == flushAt)
       {
         going = this->CompositeBatch(pixel, n, state);
         n = 0;
+        flushAt = state.alpha < 0.5f ? BatchSize : BatchSize / 4;
         if (!going)
         {
           break;
@@ -163,10 +192,17 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
     sample.alpha = sample.value != sample.value ? 0.0f : a; // NaN samples are transparent
   }
   const RayCastLighting& lighting = *frame.lighting;
-  if (frame.gradientOpacity == nullptr &&
+  // Lane by lane pays from a few samples on (its loops' set-up costs more than a short batch).
+  if (n >= 4 && frame.gradientOpacity == nullptr &&
     (!lighting.shade ||
       (pixel.fixedLights && frame.lighting->model.lights.size() <= MaximumRayLights)))
   {
+#if ACCELVOLUME_AVX2_LANES
+    if (this->Avx2Lanes)
+    {
+      return this->ShadeBatchLanesAvx2(pixel, n, state);
+    }
+#endif
     return this->ShadeBatchLanes(pixel, n, state);
   }
   const bool gradientOpacity = frame.gradientOpacity != nullptr;
@@ -247,8 +283,24 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
 
 // CompositeBatch's common case (no gradient opacity; no shading or lights fixed along the ray)
 // lane by lane: Gradient and ShadeWith's arithmetic in the same order, so the same bits.
+#if ACCELVOLUME_AVX2_LANES
+template <typename T>
+__attribute__((target("avx2"))) bool RayCasterTile<T>::ShadeBatchLanesAvx2(
+  const PixelRay& pixel, int n, BatchedRay& state)
+{
+  return this->ShadeBatchLanesIn(pixel, n, state);
+}
+#endif
+
 template <typename T>
 bool RayCasterTile<T>::ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay& state)
+{
+  return this->ShadeBatchLanesIn(pixel, n, state);
+}
+
+template <typename T>
+ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
+  const PixelRay& pixel, int n, BatchedRay& state)
 {
   const KernelFrame& frame = this->Frame;
   const BatchSample* batch = this->Batch;
@@ -259,138 +311,144 @@ bool RayCasterTile<T>::ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay&
     lanes.visible[count] = s;
     count += batch[s].alpha > 0.0f ? 1 : 0;
   }
-  for (int v = 0; v < count; ++v)
+  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
+  const bool terminate = this->Settings.earlyTermination;
+  // A few lanes at a time, composited before the next: a ray that terminates early shades
+  // (and fetches the gradients of) few samples it does not need.
+  for (int first = 0, group = 4; first < count; first += group, group = BatchSize)
   {
-    const BatchSample& sample = batch[lanes.visible[v]];
-    const float* e0 = frame.rgba + 4 * sample.entry;
-    const float* e1 = e0 + 4;
-    lanes.rgb[0][v] = Lerp(e0[0], e1[0], sample.fraction);
-    lanes.rgb[1][v] = Lerp(e0[1], e1[1], sample.fraction);
-    lanes.rgb[2][v] = Lerp(e0[2], e1[2], sample.fraction);
-    lanes.alpha[v] = sample.alpha;
-    lanes.fx[v] = sample.cell.f[0];
-    lanes.fy[v] = sample.cell.f[1];
-    lanes.fz[v] = sample.cell.f[2];
-  }
-  const LightModel& model = frame.lighting->model;
-  if (frame.lighting->shade)
-  {
-    const std::ptrdiff_t ox = 3 * batch[0].cell.offset[0], oy = 3 * batch[0].cell.offset[1],
-                         oz = 3 * batch[0].cell.offset[2];
-    const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
-    for (int v = 0; v < count; ++v)
+    const int last = std::min(first + group, count);
+    for (int v = first; v < last; ++v)
     {
-      const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
-      for (int c = 0; c < 8; ++c)
+      const BatchSample& sample = batch[lanes.visible[v]];
+      const float* e0 = frame.rgba + 4 * sample.entry;
+      const float* e1 = e0 + 4;
+      lanes.rgb[0][v] = Lerp(e0[0], e1[0], sample.fraction);
+      lanes.rgb[1][v] = Lerp(e0[1], e1[1], sample.fraction);
+      lanes.rgb[2][v] = Lerp(e0[2], e1[2], sample.fraction);
+      lanes.alpha[v] = sample.alpha;
+      lanes.fx[v] = sample.cell.f[0];
+      lanes.fy[v] = sample.cell.f[1];
+      lanes.fz[v] = sample.cell.f[2];
+    }
+    const LightModel& model = frame.lighting->model;
+    if (frame.lighting->shade)
+    {
+      const std::ptrdiff_t ox = 3 * batch[0].cell.offset[0], oy = 3 * batch[0].cell.offset[1],
+                           oz = 3 * batch[0].cell.offset[2];
+      const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
+      for (int v = first; v < last; ++v)
       {
-        for (int k = 0; k < 3; ++k)
+        const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
+        for (int c = 0; c < 8; ++c)
         {
-          lanes.gradient[k][c][v] = static_cast<float>(d[at[c] + k]);
+          for (int k = 0; k < 3; ++k)
+          {
+            lanes.gradient[k][c][v] = static_cast<float>(d[at[c] + k]);
+          }
         }
       }
-    }
-    const float(*m)[3] = frame.normalMatrix;
-    for (int v = 0; v < count; ++v)
-    {
-      const float fx = lanes.fx[v], fy = lanes.fy[v], fz = lanes.fz[v];
-      const float wy[2] = { (1 - fy), fy };
-      const float wz[2] = { (1 - fz), fz };
-      float g[3] = { 0, 0, 0 };
-      for (int c = 0; c < 8; ++c)
+      const float(*m)[3] = frame.normalMatrix;
+      for (int v = first; v < last; ++v)
       {
-        const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
-        g[0] += w * lanes.gradient[0][c][v];
-        g[1] += w * lanes.gradient[1][c][v];
-        g[2] += w * lanes.gradient[2][c][v];
-      }
-      for (int r = 0; r < 3; ++r)
-      {
-        lanes.eye[r][v] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
-      }
-    }
-    // ShadeWith's fixed-light terms (FixedLightingTerms), light by light over the lanes.
-    float normal[3][BatchSize];
-    for (int v = 0; v < count; ++v)
-    {
-      const float e0 = lanes.eye[0][v], e1 = lanes.eye[1][v], e2 = lanes.eye[2][v];
-      const float squared = e0 * e0 + e1 * e1 + e2 * e2;
-      const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
-      normal[0][v] = e0 * inverse;
-      normal[1][v] = e1 * inverse;
-      normal[2][v] = e2 * inverse;
-    }
-    float diffuse[3][BatchSize], specular[3][BatchSize];
-    float ambient[3] = { 0, 0, 0 };
-    for (int c = 0; c < 3; ++c)
-    {
-      std::fill(diffuse[c], diffuse[c] + count, 0.0f);
-      std::fill(specular[c], specular[c] + count, 0.0f);
-    }
-    const float* table = frame.specularTable;
-    const int size = frame.specularTableSize;
-    std::size_t index = 0;
-    for (const SceneLight& light : model.lights)
-    {
-      const float* l = pixel.toLight[index];
-      const float* h = pixel.half[index++];
-      float term[BatchSize], lit[BatchSize];
-      for (int v = 0; v < count; ++v)
-      {
-        const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
-        float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
-        float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
-        if (model.twoSided)
+        const float fx = lanes.fx[v], fy = lanes.fy[v], fz = lanes.fz[v];
+        const float wy[2] = { (1 - fy), fy };
+        const float wz[2] = { (1 - fz), fz };
+        float g[3] = { 0, 0, 0 };
+        for (int c = 0; c < 8; ++c)
         {
-          nDotL = std::abs(nDotL);
-          nDotH = std::abs(nDotH);
+          const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
+          g[0] += w * lanes.gradient[0][c][v];
+          g[1] += w * lanes.gradient[1][c][v];
+          g[2] += w * lanes.gradient[2][c][v];
         }
-        lit[v] = std::max(nDotL, 0.0f);
-        term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
+        for (int r = 0; r < 3; ++r)
+        {
+          lanes.eye[r][v] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
+        }
       }
-      for (int v = 0; v < count; ++v)
+      // ShadeWith's fixed-light terms (FixedLightingTerms), light by light over the lanes.
+      float normal[3][BatchSize];
+      for (int v = first; v < last; ++v)
       {
-        const float nDotH = term[v];
-        const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
-        const float u = x * static_cast<float>(size - 1);
-        const int k = std::min(static_cast<int>(u), size - 2);
-        const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-        term[v] = nDotH > 0 ? highlightTerm : 0.0f;
+        const float e0 = lanes.eye[0][v], e1 = lanes.eye[1][v], e2 = lanes.eye[2][v];
+        const float squared = e0 * e0 + e1 * e1 + e2 * e2;
+        const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
+        normal[0][v] = e0 * inverse;
+        normal[1][v] = e1 * inverse;
+        normal[2][v] = e2 * inverse;
+      }
+      float diffuse[3][BatchSize], specular[3][BatchSize];
+      float ambient[3] = { 0, 0, 0 };
+      for (int c = 0; c < 3; ++c)
+      {
+        std::fill(diffuse[c] + first, diffuse[c] + last, 0.0f);
+        std::fill(specular[c] + first, specular[c] + last, 0.0f);
+      }
+      const float* table = frame.specularTable;
+      const int size = frame.specularTableSize;
+      std::size_t index = 0;
+      for (const SceneLight& light : model.lights)
+      {
+        const float* l = pixel.toLight[index];
+        const float* h = pixel.half[index++];
+        float term[BatchSize], lit[BatchSize];
+        for (int v = first; v < last; ++v)
+        {
+          const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
+          float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
+          float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
+          if (model.twoSided)
+          {
+            nDotL = std::abs(nDotL);
+            nDotH = std::abs(nDotH);
+          }
+          lit[v] = std::max(nDotL, 0.0f);
+          term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
+        }
+        for (int v = first; v < last; ++v)
+        {
+          const float nDotH = term[v];
+          const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+          const float u = x * static_cast<float>(size - 1);
+          const int k = std::min(static_cast<int>(u), size - 2);
+          const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+          term[v] = nDotH > 0 ? highlightTerm : 0.0f;
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          ambient[c] += light.ambient[c];
+          for (int v = first; v < last; ++v)
+          {
+            diffuse[c][v] += lit[v] * light.diffuse[c];
+            specular[c][v] += term[v] * light.specular[c];
+          }
+        }
       }
       for (int c = 0; c < 3; ++c)
       {
-        ambient[c] += light.ambient[c];
-        for (int v = 0; v < count; ++v)
+        const float base = model.ambient * (model.headlightOnly ? 1.0f : ambient[c]);
+        for (int v = first; v < last; ++v)
         {
-          diffuse[c][v] += lit[v] * light.diffuse[c];
-          specular[c][v] += term[v] * light.specular[c];
+          const float factor = base + model.diffuse * diffuse[c][v];
+          const float highlight = model.specular * specular[c][v];
+          lanes.rgb[c][v] = std::min(lanes.rgb[c][v] * factor + highlight, 1.0f);
         }
       }
     }
-    for (int c = 0; c < 3; ++c)
+    for (int v = first; v < last; ++v)
     {
-      const float base = model.ambient * (model.headlightOnly ? 1.0f : ambient[c]);
-      for (int v = 0; v < count; ++v)
+      const float weight = (1.0f - state.alpha) * lanes.alpha[v];
+      state.colour[0] += weight * lanes.rgb[0][v];
+      state.colour[1] += weight * lanes.rgb[1][v];
+      state.colour[2] += weight * lanes.rgb[2][v];
+      state.alpha += weight;
+      if (terminate && state.alpha >= threshold)
       {
-        const float factor = base + model.diffuse * diffuse[c][v];
-        const float highlight = model.specular * specular[c][v];
-        lanes.rgb[c][v] = std::min(lanes.rgb[c][v] * factor + highlight, 1.0f);
+        ++this->Counters.terminatedRays;
+        this->Counters.samples += static_cast<std::uint64_t>(lanes.visible[v] + 1);
+        return false;
       }
-    }
-  }
-  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
-  const bool terminate = this->Settings.earlyTermination;
-  for (int v = 0; v < count; ++v)
-  {
-    const float weight = (1.0f - state.alpha) * lanes.alpha[v];
-    state.colour[0] += weight * lanes.rgb[0][v];
-    state.colour[1] += weight * lanes.rgb[1][v];
-    state.colour[2] += weight * lanes.rgb[2][v];
-    state.alpha += weight;
-    if (terminate && state.alpha >= threshold)
-    {
-      ++this->Counters.terminatedRays;
-      this->Counters.samples += static_cast<std::uint64_t>(lanes.visible[v] + 1);
-      return false;
     }
   }
   this->Counters.samples += static_cast<std::uint64_t>(n);
