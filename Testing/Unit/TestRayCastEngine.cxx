@@ -345,6 +345,22 @@ TEST(RayCastEngine, BatchedCompositeIgnoresThreadsAndSimdTarget)
     lighting.model.lights.emplace_back();
     lighting.model.lights.back().axis[0] = 0.6f; // a second, oblique light
     lighting.model.lights.back().axis[2] = -0.8f;
+    if (trial >= 1)
+    {
+      // A positional light: at the eye (fixed along perspective rays, not along parallel
+      // ones), or elsewhere and attenuated (never fixed).
+      SceneLight& positional = lighting.model.lights.back();
+      positional.positional = true;
+      if (trial == 1)
+      {
+        positional.position[0] = 30.0f;
+        positional.position[2] = 10.0f;
+        positional.attenuation[1] = 0.01f;
+      }
+      lighting.model.anyPositional = true;
+      // Eye space = index space shifted back along z: the eye in front of the volume.
+      lighting.indexToEyeOffset[2] = -200.0;
+    }
     lighting.model.twoSided = trial % 2 == 0;
     RayCastSettings settings = BaseSettings(dims, Blend::Composite);
     settings.leap = trial < 2 ? LeapMode::DistanceMap : LeapMode::None;

@@ -73,6 +73,11 @@ public:
       this->Channels.emplace_back(frame.volume, frame.components, c);
     }
     this->Batching = this->CanBatch();
+    // The lanes shade directional and positional lights, not spot lights.
+    for (const SceneLight& light : frame.lighting->model.lights)
+    {
+      this->LaneLights = this->LaneLights && !(light.positional && light.cosCone >= -1.0f);
+    }
     this->Avx2Lanes = !this->Settings.baselineLanes && LanesOnAvx2();
   }
 
@@ -733,6 +738,7 @@ private:
   bool LastContributed = false;         // the ray's last sample added something
   bool Batching = false;                // composite rays take CompositeBatched
   bool Avx2Lanes = false;               // the shading lanes' AVX2 build
+  bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)

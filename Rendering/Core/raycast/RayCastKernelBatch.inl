@@ -194,8 +194,7 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
   const RayCastLighting& lighting = *frame.lighting;
   // Lane by lane pays from a few samples on (its loops' set-up costs more than a short batch).
   if (n >= 4 && frame.gradientOpacity == nullptr &&
-    (!lighting.shade ||
-      (pixel.fixedLights && frame.lighting->model.lights.size() <= MaximumRayLights)))
+    (!lighting.shade || pixel.fixedLights || this->LaneLights))
   {
 #if ACCELVOLUME_AVX2_LANES
     if (this->Avx2Lanes)
@@ -367,7 +366,7 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
           lanes.eye[r][v] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
         }
       }
-      // ShadeWith's fixed-light terms (FixedLightingTerms), light by light over the lanes.
+      // ShadeWith's terms (FixedLightingTerms or LightingTerms), light by light over the lanes.
       float normal[3][BatchSize];
       for (int v = first; v < last; ++v)
       {
@@ -387,41 +386,119 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
       }
       const float* table = frame.specularTable;
       const int size = frame.specularTableSize;
-      std::size_t index = 0;
-      for (const SceneLight& light : model.lights)
+      if (pixel.fixedLights)
       {
-        const float* l = pixel.toLight[index];
-        const float* h = pixel.half[index++];
-        float term[BatchSize], lit[BatchSize];
-        for (int v = first; v < last; ++v)
+        std::size_t index = 0;
+        for (const SceneLight& light : model.lights)
         {
-          const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
-          float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
-          float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
-          if (model.twoSided)
-          {
-            nDotL = std::abs(nDotL);
-            nDotH = std::abs(nDotH);
-          }
-          lit[v] = std::max(nDotL, 0.0f);
-          term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
-        }
-        for (int v = first; v < last; ++v)
-        {
-          const float nDotH = term[v];
-          const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
-          const float u = x * static_cast<float>(size - 1);
-          const int k = std::min(static_cast<int>(u), size - 2);
-          const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-          term[v] = nDotH > 0 ? highlightTerm : 0.0f;
-        }
-        for (int c = 0; c < 3; ++c)
-        {
-          ambient[c] += light.ambient[c];
+          const float* l = pixel.toLight[index];
+          const float* h = pixel.half[index++];
+          float term[BatchSize], lit[BatchSize];
           for (int v = first; v < last; ++v)
           {
-            diffuse[c][v] += lit[v] * light.diffuse[c];
-            specular[c][v] += term[v] * light.specular[c];
+            const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
+            float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
+            float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
+            if (model.twoSided)
+            {
+              nDotL = std::abs(nDotL);
+              nDotH = std::abs(nDotH);
+            }
+            lit[v] = std::max(nDotL, 0.0f);
+            term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
+          }
+          for (int v = first; v < last; ++v)
+          {
+            const float nDotH = term[v];
+            const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+            const float u = x * static_cast<float>(size - 1);
+            const int k = std::min(static_cast<int>(u), size - 2);
+            const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+            term[v] = nDotH > 0 ? highlightTerm : 0.0f;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            ambient[c] += light.ambient[c];
+            for (int v = first; v < last; ++v)
+            {
+              diffuse[c][v] += lit[v] * light.diffuse[c];
+              specular[c][v] += term[v] * light.specular[c];
+            }
+          }
+        }
+      }
+      else
+      {
+        // LightingTerms per lane (no spot lights here): each sample's own direction to every
+        // positional light, attenuation and half vector, without branches on the data.
+        float point[3][BatchSize];
+        const RayCastLighting& l = *frame.lighting;
+        for (int v = first; v < last; ++v)
+        {
+          const double* p = batch[lanes.visible[v]].p;
+          for (int r = 0; r < 3; ++r)
+          {
+            point[r][v] = model.anyPositional
+              ? static_cast<float>(l.indexToEye[r][0] * p[0] + l.indexToEye[r][1] * p[1] +
+                  l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r])
+              : 0.0f;
+          }
+        }
+        const float* viewer = pixel.toViewer;
+        for (const SceneLight& light : model.lights)
+        {
+          float term[BatchSize], lit[BatchSize], attenuated[BatchSize];
+          for (int v = first; v < last; ++v)
+          {
+            float toLight[3] = { -light.axis[0], -light.axis[1], -light.axis[2] };
+            float attenuation = 1.0f;
+            if (light.positional)
+            {
+              const float d[3] = { light.position[0] - point[0][v],
+                light.position[1] - point[1][v], light.position[2] - point[2][v] };
+              const float distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+              for (int c = 0; c < 3; ++c)
+              {
+                toLight[c] = distance > 0 ? d[c] / distance : toLight[c];
+              }
+              const float* a = light.attenuation;
+              const float denominator = a[0] + a[1] * distance + a[2] * distance * distance;
+              attenuation = denominator > 0 ? 1.0f / denominator : 1.0f;
+            }
+            const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
+            float nDotL = n0 * toLight[0] + n1 * toLight[1] + n2 * toLight[2];
+            const float half[3] = { toLight[0] + viewer[0], toLight[1] + viewer[1],
+              toLight[2] + viewer[2] };
+            const float halfLength =
+              std::sqrt(half[0] * half[0] + half[1] * half[1] + half[2] * half[2]);
+            const float dotHalf = n0 * half[0] + n1 * half[1] + n2 * half[2];
+            float nDotH = halfLength > 0 ? dotHalf / halfLength : 0.0f;
+            if (model.twoSided)
+            {
+              nDotL = std::abs(nDotL);
+              nDotH = std::abs(nDotH);
+            }
+            lit[v] = nDotL > 0 && attenuation > 0 ? attenuation * nDotL : 0.0f;
+            term[v] = attenuation > 0 ? nDotH : 0.0f;
+            attenuated[v] = attenuation;
+          }
+          for (int v = first; v < last; ++v)
+          {
+            const float nDotH = term[v];
+            const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+            const float u = x * static_cast<float>(size - 1);
+            const int k = std::min(static_cast<int>(u), size - 2);
+            const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+            term[v] = nDotH > 0 ? attenuated[v] * highlightTerm : 0.0f;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            ambient[c] += light.ambient[c];
+            for (int v = first; v < last; ++v)
+            {
+              diffuse[c][v] += lit[v] * light.diffuse[c];
+              specular[c][v] += term[v] * light.specular[c];
+            }
           }
         }
       }
