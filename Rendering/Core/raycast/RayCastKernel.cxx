@@ -42,6 +42,16 @@ inline bool LanesOnAvx2()
 #endif
 }
 
+// A hint to start loading the cache line at `address` (no effect on results).
+inline void Prefetch(const void* address)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+
 struct Interval
 {
   double t0, t1;

@@ -41,6 +41,9 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   int flushAt = BatchSize / 2;
   // The last cell the map found non-empty: its samples need no second look.
   std::size_t filledCell = static_cast<std::size_t>(-1);
+  int skipLookUp = 0;
+  const T* voxels = this->Sampling.Voxels();
+  const bool prefetchGradients = frame.gradients != nullptr && frame.lighting->shade;
   bool going = true;
   for (const Interval& interval : this->RayIntervals)
   {
@@ -81,7 +84,10 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
       p[2] = ray.origin.z + t * ray.direction.z;
       SampleCell& cell = sample.cell;
       this->Sampling.Locate(p, cell);
-      if (cellLeap || (distance && cell.cell != filledCell))
+      // In matter, the map is read every other sample only (reading it never changes the
+      // image, only how far the ray may leap).
+      const bool lookUp = cellLeap || (distance && cell.cell != filledCell && skipLookUp-- <= 0);
+      if (lookUp)
       {
         const std::uint16_t info =
           frame.distanceOnly ? frame.distanceOnly[cell.cell] : frame.cellInfo[cell.cell];
@@ -125,6 +131,24 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
           }
         }
         filledCell = cell.cell;
+        skipLookUp = 1;
+      }
+      // The batch's loads start now: its voxels, and its gradients when shading needs them
+      // (the lines of the cell's four x-edges), arrive while the walk goes on.
+      {
+        const T* voxel = voxels + cell.base;
+        Prefetch(voxel);
+        Prefetch(voxel + cell.offset[1]);
+        Prefetch(voxel + cell.offset[2]);
+        Prefetch(voxel + cell.offset[1] + cell.offset[2]);
+        if (prefetchGradients)
+        {
+          const std::int16_t* g = frame.gradients + 3 * cell.base;
+          Prefetch(g);
+          Prefetch(g + 3 * cell.offset[1]);
+          Prefetch(g + 3 * cell.offset[2]);
+          Prefetch(g + 3 * (cell.offset[1] + cell.offset[2]));
+        }
       }
       // Batches grow along the ray and shrink near termination: a ray that stops (an opaque
       // surface after a few samples) wastes at most the rest of a small one.
