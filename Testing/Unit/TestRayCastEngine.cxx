@@ -339,6 +339,10 @@ TEST(RayCastEngine, BatchedCompositeIgnoresThreadsAndSimdTarget)
       MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::UInt8, dims, 0.15 * trial);
     RayCastTransfer transfer;
     transfer.rgba = RandomTable(random, 256, false);
+    for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+    {
+      transfer.rgba[i] *= 0.4f; // semi-transparent: the batched kernel's case
+    }
     RayCastLighting lighting;
     lighting.shade = true;
     lighting.model.lights.emplace_back();

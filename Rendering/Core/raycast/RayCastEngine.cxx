@@ -391,6 +391,9 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   frame.tableBias = static_cast<float>(-rangeMin * frame.tableScale);
   frame.rgba = transfer.rgba.data();
   frame.correctedAlpha = this->CorrectedAlpha.data();
+  frame.maximumCorrectedAlpha = this->CorrectedAlpha.empty()
+    ? 0.0f
+    : *std::max_element(this->CorrectedAlpha.begin(), this->CorrectedAlpha.end());
   frame.normalScale = static_cast<float>(1.0 / width);
   frame.normalBias = static_cast<float>(-rangeMin / width);
   frame.rangeWidth = static_cast<float>(width);

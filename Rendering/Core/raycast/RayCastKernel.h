@@ -62,6 +62,7 @@ struct KernelFrame
   int tableSize = 0;
   const float* rgba = nullptr;           // 4 * tableSize, colour + table opacity
   const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
+  float maximumCorrectedAlpha = 0;       // of correctedAlpha
   // Normalised scalar: s = value * normalScale + normalBias.
   float normalScale = 1, normalBias = 0;
   float rangeWidth = 1; // data units per normalised unit
