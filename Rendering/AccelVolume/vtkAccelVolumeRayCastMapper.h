@@ -168,8 +168,8 @@ public:
 
   ///@{
   /**
-   * Threads for the tiles (0 = vtkSMPTools' default; more than the machine's cores are capped).
-   * The image does not depend on it.
+   * Threads for the tiles and the frame's preparation: 0 = vtkSMPTools' default (all cores);
+   * N > 0 = exactly N workers (capped at the machine's cores). The image does not depend on it.
    */
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);

@@ -66,6 +66,8 @@ def build(data, ctx):
                "vtk_fixed")}
         field_of(configs, "none_off", "median_ms", where=where + " configs")
         label = f"{case.get('dataset', '?')}/{case.get('tf', '?')}"
+        if "projection" in case:  # one case per projection and thread count
+            label += f" {case.get('projection')} {case.get('threads', '?')}t"
         comparisons = {
             OCTREE: ratio(ms["none_off"], ms["octree_off"]),
             DMAP: ratio(ms["none_off"], ms["dmap_off"]),
@@ -82,7 +84,7 @@ def build(data, ctx):
         identical = case.get("identical")
         rms_ours = case.get("ours_vs_reference", {}).get("rms")
         rms_vtk = case.get("vtk_vs_reference", {}).get("rms")
-        rows.append([case.get("dataset", "?"), case.get("tf", "?"), fmt_ms(ms["none_off"]),
+        rows.append([case.get("dataset", "?"), label.split("/", 1)[1], fmt_ms(ms["none_off"]),
                      f"{fmt_ms(ms['octree_off'])} ({fmt_x(comparisons[OCTREE])})",
                      f"{fmt_ms(ms['dmap_off'])} ({fmt_x(comparisons[DMAP])})", gains,
                      fmt_ms(ms["vtk_fixed"]), fmt_x(ours_vs_vtk),
@@ -92,8 +94,10 @@ def build(data, ctx):
         for key, cid in zip(series, ("none_off", "octree_off", "dmap_off", "vtk_fixed")):
             series[key].append(number(ms[cid]))
 
+    projections = settings.get("projections", [settings.get("projection", "perspective")])
     text = (f"`accelvolume_benchmark_raycast`: shaded composite, {settings.get('size', '?')}^2 "
-            f"perspective, {settings.get('threads', '?')} threads for every mapper, sample "
+            f"{' and '.join(map(str, projections))}, {settings.get('threads', '?')} threads for "
+            "every mapper, sample "
             "distance = smallest voxel spacing, median of "
             f"{settings.get('frames', '?')} frames. Leaping speed-ups over no leaping in "
             "brackets; cell-leaping gain = time saved by turning it on within each leap mode; "
