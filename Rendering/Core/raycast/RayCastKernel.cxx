@@ -344,6 +344,8 @@ private:
   bool ShadeBatchLanes(const PixelRay& pixel, int n, BatchedRay& state);
   bool ShadeBatchLanesAvx2(const PixelRay& pixel, int n, BatchedRay& state);
   bool ShadeBatchLanesIn(const PixelRay& pixel, int n, BatchedRay& state);
+  void FixedLightLanes(const PixelRay& pixel, int first, int last, float ambient[3]);
+  void PointLightLanes(const PixelRay& pixel, int first, int last, float ambient[3]);
   // Per-lane arrays of a batch (structure of arrays: the loops over them vectorise).
   struct BatchLanes
   {
@@ -353,7 +355,8 @@ private:
     float eye[3][BatchSize];
     float rgb[3][BatchSize];
     float alpha[BatchSize];
-    float factor[3][BatchSize], highlight[3][BatchSize];
+    float normal[3][BatchSize];
+    float diffuse[3][BatchSize], specular[3][BatchSize];
     int visible[BatchSize];
   };
 
@@ -378,6 +381,47 @@ private:
   void CompositeComponents(const PixelRay& pixel, float* out);
   void ExtremeComponents(const PixelRay& pixel, float* out);
   void IntegrateComponents(const PixelRay& pixel, float* out);
+
+  // The samples [first, last) of an interval of `count` samples that may meet the box of
+  // possibly opaque cells; one sample of slack on each side keeps rounding from cutting a
+  // visible one.
+  void OpaqueSamples(const IndexRay& ray, const Interval& interval, double h, std::int64_t count,
+    std::int64_t& first, std::int64_t& last) const
+  {
+    static const std::vector<HalfSpace> noClip;
+    double enter, leave;
+    if (!IntersectRayRegion(ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
+    {
+      first = last = count;
+      return;
+    }
+    first = std::max<std::int64_t>(
+      0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
+    last = std::min<std::int64_t>(
+      count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
+    first = std::min(first, count);
+    last = std::max(last, first);
+  }
+
+  // Samples after the current one a distance-map value d > 0 lets the ray skip. Every cell
+  // within chessboard distance d - 1 is empty: from the sample's place in its cell, along axis
+  // a the ray may go d - f (forward) or d - 1 + f (backward) cells before it can reach a
+  // non-empty one. A small safety margin absorbs the float fraction; one-voxel axes never
+  // change cell.
+  static std::int64_t DistanceLeap(
+    const SampleCell& cell, int d, const double stepAlong[3], const double inverseStep[3])
+  {
+    double room = 1.0e30;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (inverseStep[a] > 0 && cell.offset[a] != 0)
+      {
+        const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
+        room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
+      }
+    }
+    return static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+  }
 
   // Walks the samples of every interval; visit(p, cell, value) returns false to stop the ray.
   // Zero-opacity leaping (octree, distance map, cell table) happens here when `leapTransparent`.
@@ -411,24 +455,7 @@ private:
       std::int64_t last = count;
       if (opaqueBox)
       {
-        // Only samples inside the box of possibly opaque cells need a visit; one sample of
-        // slack on each side keeps rounding from cutting a visible one.
-        static const std::vector<HalfSpace> noClip;
-        double enter, leave;
-        if (!IntersectRayRegion(
-              ray.origin, ray.direction, this->Frame.opaqueBox, noClip, enter, leave))
-        {
-          first = last = count;
-        }
-        else
-        {
-          first = std::max<std::int64_t>(
-            0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
-          last = std::min<std::int64_t>(
-            count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
-          first = std::min(first, count);
-          last = std::max(last, first);
-        }
+        this->OpaqueSamples(ray, interval, h, count, first, last);
         leapCounter += static_cast<std::uint64_t>(first + (count - last));
       }
       for (std::int64_t k = first; k < last; ++k)
@@ -464,20 +491,7 @@ private:
           const int d = info & 0xff;
           if (d > 0)
           {
-            // Every cell within chessboard distance d - 1 is empty: from the sample's place in
-            // its cell, along axis a the ray may go d - f (forward) or d - 1 + f (backward)
-            // cells before it can reach a non-empty one. A small safety margin absorbs the
-            // float fraction; one-voxel axes never change cell.
-            double room = 1.0e30;
-            for (int a = 0; a < 3; ++a)
-            {
-              if (inverseStep[a] > 0 && cell.offset[a] != 0)
-              {
-                const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
-                room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
-              }
-            }
-            const auto more = static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+            const std::int64_t more = DistanceLeap(cell, d, stepAlong, inverseStep);
             const std::int64_t skipped = std::min(more + 1, last - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
             ++this->Counters.distanceLeaps;

@@ -61,21 +61,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
     std::int64_t last = count;
     if (opaqueBox)
     {
-      static const std::vector<HalfSpace> noClip;
-      double enter, leave;
-      if (!IntersectRayRegion(ray.origin, ray.direction, frame.opaqueBox, noClip, enter, leave))
-      {
-        first = last = count;
-      }
-      else
-      {
-        first = std::max<std::int64_t>(
-          0, static_cast<std::int64_t>(std::floor((enter - interval.t0) / h - 0.5)));
-        last = std::min<std::int64_t>(
-          count, static_cast<std::int64_t>(std::ceil((leave - interval.t0) / h - 0.5)) + 1);
-        first = std::min(first, count);
-        last = std::max(last, first);
-      }
+      this->OpaqueSamples(ray, interval, h, count, first, last);
       this->Counters.leapedDistance += static_cast<std::uint64_t>(first + (count - last));
     }
     for (std::int64_t k = first; k < last; ++k)
@@ -98,17 +84,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
         const int d = info & 0xff;
         if (distance && d > 0)
         {
-          // Walk's leap (see there): the same room, the same margin.
-          double room = 1.0e30;
-          for (int a = 0; a < 3; ++a)
-          {
-            if (inverseStep[a] > 0 && cell.offset[a] != 0)
-            {
-              const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
-              room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
-            }
-          }
-          const auto more = static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+          const std::int64_t more = DistanceLeap(cell, d, stepAlong, inverseStep);
           const std::int64_t skipped = std::min(more + 1, last - k);
           this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
           ++this->Counters.distanceLeaps;
@@ -395,148 +371,36 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
         }
       }
       // ShadeWith's terms (FixedLightingTerms or LightingTerms), light by light over the lanes.
-      float normal[3][BatchSize];
       for (int v = first; v < last; ++v)
       {
         const float e0 = lanes.eye[0][v], e1 = lanes.eye[1][v], e2 = lanes.eye[2][v];
         const float squared = e0 * e0 + e1 * e1 + e2 * e2;
         const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
-        normal[0][v] = e0 * inverse;
-        normal[1][v] = e1 * inverse;
-        normal[2][v] = e2 * inverse;
+        lanes.normal[0][v] = e0 * inverse;
+        lanes.normal[1][v] = e1 * inverse;
+        lanes.normal[2][v] = e2 * inverse;
       }
-      float diffuse[3][BatchSize], specular[3][BatchSize];
       float ambient[3] = { 0, 0, 0 };
       for (int c = 0; c < 3; ++c)
       {
-        std::fill(diffuse[c] + first, diffuse[c] + last, 0.0f);
-        std::fill(specular[c] + first, specular[c] + last, 0.0f);
+        std::fill(lanes.diffuse[c] + first, lanes.diffuse[c] + last, 0.0f);
+        std::fill(lanes.specular[c] + first, lanes.specular[c] + last, 0.0f);
       }
-      const float* table = frame.specularTable;
-      const int size = frame.specularTableSize;
       if (pixel.fixedLights)
       {
-        std::size_t index = 0;
-        for (const SceneLight& light : model.lights)
-        {
-          const float* l = pixel.toLight[index];
-          const float* h = pixel.half[index++];
-          float term[BatchSize], lit[BatchSize];
-          for (int v = first; v < last; ++v)
-          {
-            const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
-            float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
-            float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
-            if (model.twoSided)
-            {
-              nDotL = std::abs(nDotL);
-              nDotH = std::abs(nDotH);
-            }
-            lit[v] = std::max(nDotL, 0.0f);
-            term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
-          }
-          for (int v = first; v < last; ++v)
-          {
-            const float nDotH = term[v];
-            const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
-            const float u = x * static_cast<float>(size - 1);
-            const int k = std::min(static_cast<int>(u), size - 2);
-            const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-            term[v] = nDotH > 0 ? highlightTerm : 0.0f;
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            ambient[c] += light.ambient[c];
-            for (int v = first; v < last; ++v)
-            {
-              diffuse[c][v] += lit[v] * light.diffuse[c];
-              specular[c][v] += term[v] * light.specular[c];
-            }
-          }
-        }
+        this->FixedLightLanes(pixel, first, last, ambient);
       }
       else
       {
-        // LightingTerms per lane (no spot lights here): each sample's own direction to every
-        // positional light, attenuation and half vector, without branches on the data.
-        float point[3][BatchSize];
-        const RayCastLighting& l = *frame.lighting;
-        for (int v = first; v < last; ++v)
-        {
-          const double* p = batch[lanes.visible[v]].p;
-          for (int r = 0; r < 3; ++r)
-          {
-            point[r][v] = model.anyPositional
-              ? static_cast<float>(l.indexToEye[r][0] * p[0] + l.indexToEye[r][1] * p[1] +
-                  l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r])
-              : 0.0f;
-          }
-        }
-        const float* viewer = pixel.toViewer;
-        for (const SceneLight& light : model.lights)
-        {
-          float term[BatchSize], lit[BatchSize], attenuated[BatchSize];
-          for (int v = first; v < last; ++v)
-          {
-            float toLight[3] = { -light.axis[0], -light.axis[1], -light.axis[2] };
-            float attenuation = 1.0f;
-            if (light.positional)
-            {
-              const float d[3] = { light.position[0] - point[0][v],
-                light.position[1] - point[1][v], light.position[2] - point[2][v] };
-              const float distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-              for (int c = 0; c < 3; ++c)
-              {
-                toLight[c] = distance > 0 ? d[c] / distance : toLight[c];
-              }
-              const float* a = light.attenuation;
-              const float denominator = a[0] + a[1] * distance + a[2] * distance * distance;
-              attenuation = denominator > 0 ? 1.0f / denominator : 1.0f;
-            }
-            const float n0 = normal[0][v], n1 = normal[1][v], n2 = normal[2][v];
-            float nDotL = n0 * toLight[0] + n1 * toLight[1] + n2 * toLight[2];
-            const float half[3] = { toLight[0] + viewer[0], toLight[1] + viewer[1],
-              toLight[2] + viewer[2] };
-            const float halfLength =
-              std::sqrt(half[0] * half[0] + half[1] * half[1] + half[2] * half[2]);
-            const float dotHalf = n0 * half[0] + n1 * half[1] + n2 * half[2];
-            float nDotH = halfLength > 0 ? dotHalf / halfLength : 0.0f;
-            if (model.twoSided)
-            {
-              nDotL = std::abs(nDotL);
-              nDotH = std::abs(nDotH);
-            }
-            lit[v] = nDotL > 0 && attenuation > 0 ? attenuation * nDotL : 0.0f;
-            term[v] = attenuation > 0 ? nDotH : 0.0f;
-            attenuated[v] = attenuation;
-          }
-          for (int v = first; v < last; ++v)
-          {
-            const float nDotH = term[v];
-            const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
-            const float u = x * static_cast<float>(size - 1);
-            const int k = std::min(static_cast<int>(u), size - 2);
-            const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
-            term[v] = nDotH > 0 ? attenuated[v] * highlightTerm : 0.0f;
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            ambient[c] += light.ambient[c];
-            for (int v = first; v < last; ++v)
-            {
-              diffuse[c][v] += lit[v] * light.diffuse[c];
-              specular[c][v] += term[v] * light.specular[c];
-            }
-          }
-        }
+        this->PointLightLanes(pixel, first, last, ambient);
       }
       for (int c = 0; c < 3; ++c)
       {
         const float base = model.ambient * (model.headlightOnly ? 1.0f : ambient[c]);
         for (int v = first; v < last; ++v)
         {
-          const float factor = base + model.diffuse * diffuse[c][v];
-          const float highlight = model.specular * specular[c][v];
+          const float factor = base + model.diffuse * lanes.diffuse[c][v];
+          const float highlight = model.specular * lanes.specular[c][v];
           lanes.rgb[c][v] = std::min(lanes.rgb[c][v] * factor + highlight, 1.0f);
         }
       }
@@ -558,4 +422,139 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
   }
   this->Counters.samples += static_cast<std::uint64_t>(n);
   return true;
+}
+
+// ShadeBatchLanes' lights fixed along the ray (FixedLightingTerms, lane by lane): adds every
+// light's diffuse and specular terms of lanes [first, last) and its ambient colour.
+template <typename T>
+ACCELVOLUME_INLINE_LANES void RayCasterTile<T>::FixedLightLanes(
+  const PixelRay& pixel, int first, int last, float ambient[3])
+{
+  const KernelFrame& frame = this->Frame;
+  const LightModel& model = frame.lighting->model;
+  BatchLanes& lanes = this->Lanes;
+  const float* table = frame.specularTable;
+  const int size = frame.specularTableSize;
+  std::size_t index = 0;
+  for (const SceneLight& light : model.lights)
+  {
+    const float* l = pixel.toLight[index];
+    const float* h = pixel.half[index++];
+    float term[BatchSize], lit[BatchSize];
+    for (int v = first; v < last; ++v)
+    {
+      const float n0 = lanes.normal[0][v], n1 = lanes.normal[1][v], n2 = lanes.normal[2][v];
+      float nDotL = n0 * l[0] + n1 * l[1] + n2 * l[2];
+      float nDotH = n0 * h[0] + n1 * h[1] + n2 * h[2];
+      if (model.twoSided)
+      {
+        nDotL = std::abs(nDotL);
+        nDotH = std::abs(nDotH);
+      }
+      lit[v] = std::max(nDotL, 0.0f);
+      term[v] = nDotH; // the highlight's power follows (a table lookup per lane)
+    }
+    for (int v = first; v < last; ++v)
+    {
+      const float nDotH = term[v];
+      const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+      const float u = x * static_cast<float>(size - 1);
+      const int k = std::min(static_cast<int>(u), size - 2);
+      const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+      term[v] = nDotH > 0 ? highlightTerm : 0.0f;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      ambient[c] += light.ambient[c];
+      for (int v = first; v < last; ++v)
+      {
+        lanes.diffuse[c][v] += lit[v] * light.diffuse[c];
+        lanes.specular[c][v] += term[v] * light.specular[c];
+      }
+    }
+  }
+}
+
+// The same for lights not fixed along the ray (LightingTerms, no spot lights): each sample's own
+// direction to every positional light, attenuation and half vector, without data branches.
+template <typename T>
+ACCELVOLUME_INLINE_LANES void RayCasterTile<T>::PointLightLanes(
+  const PixelRay& pixel, int first, int last, float ambient[3])
+{
+  const KernelFrame& frame = this->Frame;
+  const LightModel& model = frame.lighting->model;
+  const BatchSample* batch = this->Batch;
+  BatchLanes& lanes = this->Lanes;
+  const float* table = frame.specularTable;
+  const int size = frame.specularTableSize;
+  float point[3][BatchSize];
+  const RayCastLighting& l = *frame.lighting;
+  for (int v = first; v < last; ++v)
+  {
+    const double* p = batch[lanes.visible[v]].p;
+    for (int r = 0; r < 3; ++r)
+    {
+      point[r][v] = model.anyPositional
+        ? static_cast<float>(l.indexToEye[r][0] * p[0] + l.indexToEye[r][1] * p[1] +
+            l.indexToEye[r][2] * p[2] + l.indexToEyeOffset[r])
+        : 0.0f;
+    }
+  }
+  const float* viewer = pixel.toViewer;
+  for (const SceneLight& light : model.lights)
+  {
+    float term[BatchSize], lit[BatchSize], attenuated[BatchSize];
+    for (int v = first; v < last; ++v)
+    {
+      float toLight[3] = { -light.axis[0], -light.axis[1], -light.axis[2] };
+      float attenuation = 1.0f;
+      if (light.positional)
+      {
+        const float d[3] = { light.position[0] - point[0][v],
+          light.position[1] - point[1][v], light.position[2] - point[2][v] };
+        const float distance = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int c = 0; c < 3; ++c)
+        {
+          toLight[c] = distance > 0 ? d[c] / distance : toLight[c];
+        }
+        const float* a = light.attenuation;
+        const float denominator = a[0] + a[1] * distance + a[2] * distance * distance;
+        attenuation = denominator > 0 ? 1.0f / denominator : 1.0f;
+      }
+      const float n0 = lanes.normal[0][v], n1 = lanes.normal[1][v], n2 = lanes.normal[2][v];
+      float nDotL = n0 * toLight[0] + n1 * toLight[1] + n2 * toLight[2];
+      const float half[3] = { toLight[0] + viewer[0], toLight[1] + viewer[1],
+        toLight[2] + viewer[2] };
+      const float halfLength =
+        std::sqrt(half[0] * half[0] + half[1] * half[1] + half[2] * half[2]);
+      const float dotHalf = n0 * half[0] + n1 * half[1] + n2 * half[2];
+      float nDotH = halfLength > 0 ? dotHalf / halfLength : 0.0f;
+      if (model.twoSided)
+      {
+        nDotL = std::abs(nDotL);
+        nDotH = std::abs(nDotH);
+      }
+      lit[v] = nDotL > 0 && attenuation > 0 ? attenuation * nDotL : 0.0f;
+      term[v] = attenuation > 0 ? nDotH : 0.0f;
+      attenuated[v] = attenuation;
+    }
+    for (int v = first; v < last; ++v)
+    {
+      const float nDotH = term[v];
+      const float x = std::min(std::max(nDotH, 0.0f), 1.0f);
+      const float u = x * static_cast<float>(size - 1);
+      const int k = std::min(static_cast<int>(u), size - 2);
+      const float highlightTerm = Lerp(table[k], table[k + 1], u - static_cast<float>(k));
+      term[v] = nDotH > 0 ? attenuated[v] * highlightTerm : 0.0f;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      ambient[c] += light.ambient[c];
+      for (int v = first; v < last; ++v)
+      {
+        lanes.diffuse[c][v] += lit[v] * light.diffuse[c];
+        lanes.specular[c][v] += term[v] * light.specular[c];
+      }
+    }
+  }
 }
