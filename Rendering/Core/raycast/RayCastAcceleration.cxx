@@ -291,6 +291,16 @@ void MaskCells(const std::uint8_t* mask, const int dims[3], const int cellDims[3
     });
 }
 
+// The distance map of the classified cells, bricked (the layout the rays read) into `map`;
+// the classification's buffers serve as scratch (both are dead afterwards).
+void BuildDistanceOnly(
+  CellClassification& cells, const ParallelFor& parallel, std::vector<std::uint8_t>& map)
+{
+  ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
+  CellBricks(cells.cellDims).Reorder(cells.cellDims, cells.configuration, cells.nonEmpty, parallel);
+  map.swap(cells.nonEmpty);
+}
+
 } // namespace
 
 bool RayCaster::Internals::UpdateComponentOctree(const VolumeView& volume,
@@ -400,10 +410,7 @@ void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
   MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
   std::vector<std::uint8_t>().swap(cells.configuration);
   this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
-  ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
-  // The dead flags' buffer takes the bricked map (the layout the rays read).
-  CellBricks(cells.cellDims).Reorder(cells.cellDims, cells.configuration, cells.nonEmpty, parallel);
-  this->DistanceOnly.swap(cells.nonEmpty);
+  BuildDistanceOnly(cells, parallel, this->DistanceOnly);
   this->Packed = false;
   std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
   this->CellInfoHasDistance = true;
@@ -476,10 +483,7 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     ClassifyCells(volume, opacityRange, plan.leapThreshold, parallel, cells);
     MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
-    ComputeDistanceMap(cells.cellDims, cells.nonEmpty, parallel, cells.configuration);
-    // The dead flags' buffer takes the bricked map (the layout the rays read).
-    CellBricks(cells.cellDims).Reorder(cells.cellDims, cells.configuration, cells.nonEmpty, parallel);
-    this->DistanceOnly.swap(cells.nonEmpty);
+    BuildDistanceOnly(cells, parallel, this->DistanceOnly);
   }
   else
   {
@@ -514,22 +518,11 @@ void RayCaster::Internals::PackCellInfo(const CellClassification& cells,
   const std::uint8_t* configuration = cells.configuration.data();
   const std::uint8_t* distances = distance.empty() ? nullptr : distance.data();
   std::uint16_t* info = this->CellInfo.data();
-  const int* dims = cells.cellDims;
-  parallel(static_cast<std::size_t>(dims[2]),
-    [&](std::size_t begin, std::size_t end)
+  bricks.ForEachCell(cells.cellDims, parallel,
+    [&](std::size_t i, std::size_t brickedIndex)
     {
-      for (std::size_t z = begin; z < end; ++z)
-      {
-        std::size_t i = z * static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
-        for (int y = 0; y < dims[1]; ++y)
-        {
-          for (int x = 0; x < dims[0]; ++x, ++i)
-          {
-            info[bricks.Index(x, y, static_cast<int>(z))] = static_cast<std::uint16_t>(
-              (configuration[i] << 8) | (distances ? distances[i] : 0));
-          }
-        }
-      }
+      info[brickedIndex] =
+        static_cast<std::uint16_t>((configuration[i] << 8) | (distances ? distances[i] : 0));
     });
 }
 

@@ -6,6 +6,7 @@
 #include "skipping/DistanceMap.h"
 #include "skipping/OpacityRange.h"
 #include "raycast/RayCastKernel.h"
+#include "raycast/RayCastPixelRay.h"
 
 #include <algorithm>
 #include <chrono>
@@ -391,9 +392,7 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   frame.tableBias = static_cast<float>(-rangeMin * frame.tableScale);
   frame.rgba = transfer.rgba.data();
   frame.correctedAlpha = this->CorrectedAlpha.data();
-  frame.maximumCorrectedAlpha = this->CorrectedAlpha.empty()
-    ? 0.0f
-    : *std::max_element(this->CorrectedAlpha.begin(), this->CorrectedAlpha.end());
+  frame.maximumCorrectedAlpha = this->MaximumCorrectedAlpha;
   frame.normalScale = static_cast<float>(1.0 / width);
   frame.normalBias = static_cast<float>(-rangeMin / width);
   frame.rangeWidth = static_cast<float>(width);
@@ -599,10 +598,12 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   // The table opacities hold for the unit distance; samples stand for sampleDistance.
   const double exponent = settings.sampleDistance / transfer.opacityUnitDistance;
   impl.CorrectedAlpha.resize(tableSize);
+  impl.MaximumCorrectedAlpha = 0.0f;
   for (int i = 0; i < tableSize; ++i)
   {
     const double a = std::min(std::max(static_cast<double>(alphas[i]), 0.0), 1.0);
     impl.CorrectedAlpha[i] = static_cast<float>(1.0 - std::pow(1.0 - a, exponent));
+    impl.MaximumCorrectedAlpha = std::max(impl.MaximumCorrectedAlpha, impl.CorrectedAlpha[i]);
   }
   impl.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
@@ -614,6 +615,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   {
     impl.FillComponentFrame(transfer, lighting, settings, plan, frame);
   }
+  frame.raysThroughEye = detail::RaysPassThroughEye(frame);
   VisiblePixels(ShownBox(settings, frame), view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
 

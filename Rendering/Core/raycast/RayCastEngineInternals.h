@@ -86,6 +86,7 @@ struct RayCaster::Internals
   float GradientScale = 1;
 
   std::vector<float> CorrectedAlpha;
+  float MaximumCorrectedAlpha = 0;
   std::vector<float> SpecularTable;
 
   // Multi-component scalars: each component's octree (Octree then holds their combined

@@ -104,20 +104,7 @@ public:
     {
       return;
     }
-    // A projection's rays share one centre: three corner rays through the eye mean all do.
-    const RayCastLighting& lighting = *this->Frame.lighting;
-    bool throughEye = false;
-    if (lighting.shade && lighting.model.anyPositional)
-    {
-      const int w = this->Frame.view->width, hgt = this->Frame.view->height;
-      throughEye = true;
-      const int corners[3][2] = { { 0, 0 }, { w - 1, 0 }, { 0, hgt - 1 } };
-      for (const auto& c : corners)
-      {
-        throughEye = throughEye &&
-          PassesThroughEye(lighting, MakePixelRay(this->Frame, c[0], c[1], false).index);
-      }
-    }
+    const bool throughEye = this->Frame.raysThroughEye;
     if (!this->Frame.useOctree)
     {
       // Each ray as it is cast (only the octree's distance template needs them all first).
@@ -346,6 +333,7 @@ private:
   bool ShadeBatchLanesIn(const PixelRay& pixel, int n, BatchedRay& state);
   void FixedLightLanes(const PixelRay& pixel, int first, int last, float ambient[3]);
   void PointLightLanes(const PixelRay& pixel, int first, int last, float ambient[3]);
+  bool BlendSample(BatchedRay& state, float r, float g, float b, float a);
   // Per-lane arrays of a batch (structure of arrays: the loops over them vectorise).
   struct BatchLanes
   {
@@ -357,7 +345,8 @@ private:
     float alpha[BatchSize];
     float normal[3][BatchSize];
     float diffuse[3][BatchSize], specular[3][BatchSize];
-    int visible[BatchSize];
+    int visible[BatchSize]; // batch indices of the visible samples, in order
+    int count;              // how many
   };
 
   // MIP / MinIP and raysum / average rays (RayCastKernelProjections.inl).

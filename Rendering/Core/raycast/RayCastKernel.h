@@ -63,6 +63,7 @@ struct KernelFrame
   const float* rgba = nullptr;           // 4 * tableSize, colour + table opacity
   const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
   float maximumCorrectedAlpha = 0;       // of correctedAlpha
+  bool raysThroughEye = false;           // every ray passes through the eye (RaysPassThroughEye)
   // Normalised scalar: s = value * normalScale + normalBias.
   float normalScale = 1, normalBias = 0;
   float rangeWidth = 1; // data units per normalised unit

@@ -9,7 +9,6 @@
 // same order on every target and no FMA contraction (-ffp-contract=off), so the same bits on
 // every CPU (TestRayCastEngine compares the two). LanesOnAvx2: RayCastKernel.cxx.
 
-
 template <typename T>
 bool RayCasterTile<T>::CanBatch() const
 {
@@ -195,6 +194,14 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
       sample.fraction);
     sample.alpha = sample.value != sample.value ? 0.0f : a; // NaN samples are transparent
   }
+  // The visible samples, in order, without a branch per sample.
+  int& count = lanes.count;
+  count = 0;
+  for (int s = 0; s < n; ++s)
+  {
+    lanes.visible[count] = s;
+    count += batch[s].alpha > 0.0f ? 1 : 0;
+  }
   const RayCastLighting& lighting = *frame.lighting;
   // Lane by lane pays from a few samples on (its loops' set-up costs more than a short batch).
   if (n >= 4 && frame.gradientOpacity == nullptr &&
@@ -210,16 +217,7 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
   }
   const bool gradientOpacity = frame.gradientOpacity != nullptr;
   const bool needGradient = gradientOpacity || lighting.shade;
-  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
-  const bool terminate = this->Settings.earlyTermination;
-  // The visible samples, in order, without a branch per sample.
-  int visible[BatchSize];
-  int count = 0;
-  for (int s = 0; s < n; ++s)
-  {
-    visible[count] = s;
-    count += batch[s].alpha > 0.0f ? 1 : 0;
-  }
+  const int* visible = lanes.visible;
   // Shaded a few at a time, then composited: independent samples overlap, and a ray that
   // terminates wastes at most the rest of its group.
   constexpr int Group = 4;
@@ -262,19 +260,9 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
     for (int v = first; v < last; ++v)
     {
       const float* colour = rgba[v - first];
-      const float a = colour[3];
-      if (a <= 0.0f)
+      // A sample transparent after gradient opacity adds nothing.
+      if (colour[3] > 0.0f && this->BlendSample(state, colour[0], colour[1], colour[2], colour[3]))
       {
-        continue; // transparent after gradient opacity: adds nothing
-      }
-      const float weight = (1.0f - state.alpha) * a;
-      state.colour[0] += weight * colour[0];
-      state.colour[1] += weight * colour[1];
-      state.colour[2] += weight * colour[2];
-      state.alpha += weight;
-      if (terminate && state.alpha >= threshold)
-      {
-        ++this->Counters.terminatedRays;
         this->Counters.samples += static_cast<std::uint64_t>(visible[v] + 1);
         return false;
       }
@@ -308,14 +296,7 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
   const KernelFrame& frame = this->Frame;
   const BatchSample* batch = this->Batch;
   BatchLanes& lanes = this->Lanes;
-  int count = 0;
-  for (int s = 0; s < n; ++s)
-  {
-    lanes.visible[count] = s;
-    count += batch[s].alpha > 0.0f ? 1 : 0;
-  }
-  const float threshold = static_cast<float>(this->Settings.terminationThreshold);
-  const bool terminate = this->Settings.earlyTermination;
+  const int count = lanes.count; // the visible samples (CompositeBatch)
   // A few lanes at a time, composited before the next: a ray that terminates early shades
   // (and fetches the gradients of) few samples it does not need.
   for (int first = 0, group = 4; first < count; first += group, group = BatchSize)
@@ -407,14 +388,8 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
     }
     for (int v = first; v < last; ++v)
     {
-      const float weight = (1.0f - state.alpha) * lanes.alpha[v];
-      state.colour[0] += weight * lanes.rgb[0][v];
-      state.colour[1] += weight * lanes.rgb[1][v];
-      state.colour[2] += weight * lanes.rgb[2][v];
-      state.alpha += weight;
-      if (terminate && state.alpha >= threshold)
+      if (this->BlendSample(state, lanes.rgb[0][v], lanes.rgb[1][v], lanes.rgb[2][v], lanes.alpha[v]))
       {
-        ++this->Counters.terminatedRays;
         this->Counters.samples += static_cast<std::uint64_t>(lanes.visible[v] + 1);
         return false;
       }
@@ -557,4 +532,22 @@ ACCELVOLUME_INLINE_LANES void RayCasterTile<T>::PointLightLanes(
       }
     }
   }
+}
+
+// Composites one visible sample front to back; true when the ray terminates on it (counted).
+template <typename T>
+inline bool RayCasterTile<T>::BlendSample(BatchedRay& state, float r, float g, float b, float a)
+{
+  const float weight = (1.0f - state.alpha) * a;
+  state.colour[0] += weight * r;
+  state.colour[1] += weight * g;
+  state.colour[2] += weight * b;
+  state.alpha += weight;
+  if (this->Settings.earlyTermination &&
+    state.alpha >= static_cast<float>(this->Settings.terminationThreshold))
+  {
+    ++this->Counters.terminatedRays;
+    return true;
+  }
+  return false;
 }

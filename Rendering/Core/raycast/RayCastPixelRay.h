@@ -159,6 +159,27 @@ inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j, bool throug
   return ray;
 }
 
+// Whether every ray of the frame passes through the eye (only asked with shading and a
+// positional light): a projection's rays share one centre, so three corner rays decide.
+inline bool RaysPassThroughEye(const KernelFrame& frame)
+{
+  const RayCastLighting& lighting = *frame.lighting;
+  if (!lighting.shade || !lighting.model.anyPositional)
+  {
+    return false;
+  }
+  const int w = frame.view->width, h = frame.view->height;
+  const int corners[3][2] = { { 0, 0 }, { w - 1, 0 }, { 0, h - 1 } };
+  for (const auto& c : corners)
+  {
+    if (!PassesThroughEye(lighting, MakePixelRay(frame, c[0], c[1], false).index))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 } // namespace detail
 } // namespace accelvolume
 

@@ -45,6 +45,28 @@ public:
         (x & (Size - 1)));
   }
 
+  // Calls visit(rowMajorIndex, brickedIndex) for every cell of a cellDims grid, z-slices in
+  // parallel.
+  template <typename Visit>
+  void ForEachCell(const int cellDims[3], const ParallelFor& parallel, Visit&& visit) const
+  {
+    parallel(static_cast<std::size_t>(cellDims[2]),
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t z = begin; z < end; ++z)
+        {
+          std::size_t i = z * static_cast<std::size_t>(cellDims[0]) * static_cast<std::size_t>(cellDims[1]);
+          for (int y = 0; y < cellDims[1]; ++y)
+          {
+            for (int x = 0; x < cellDims[0]; ++x, ++i)
+            {
+              visit(i, this->Index(x, y, static_cast<int>(z)));
+            }
+          }
+        }
+      });
+  }
+
   // The bricked copy of a row-major array of cellDims[0] x cellDims[1] x cellDims[2] entries
   // (padding entries are zero).
   template <typename Entry>
@@ -54,23 +76,8 @@ public:
     bricked.assign(this->Entries(), Entry(0));
     Entry* out = bricked.data();
     const Entry* in = rowMajor.data();
-    parallel(static_cast<std::size_t>(cellDims[2]),
-      [&](std::size_t begin, std::size_t end)
-      {
-        for (std::size_t z = begin; z < end; ++z)
-        {
-          for (int y = 0; y < cellDims[1]; ++y)
-          {
-            const Entry* row =
-              in + (z * static_cast<std::size_t>(cellDims[1]) + static_cast<std::size_t>(y)) *
-                static_cast<std::size_t>(cellDims[0]);
-            for (int x = 0; x < cellDims[0]; ++x)
-            {
-              out[this->Index(x, y, static_cast<int>(z))] = row[x];
-            }
-          }
-        }
-      });
+    this->ForEachCell(cellDims, parallel,
+      [out, in](std::size_t i, std::size_t brickedIndex) { out[brickedIndex] = in[i]; });
   }
 
 private:
