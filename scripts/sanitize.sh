@@ -28,8 +28,8 @@
 #         the GoogleTests that start threads: ray caster engine, shear-warp engine, run-length
 #         encoding, partition, min-max octree parallel build and classification, distance map,
 #         cell classification, reference renderers, progress, phantoms (2-7 threads each)
-#     ctest -L '^image$' -LE '^mpi$' -R "$tsan_image_regex"
-#         the image tests whose vtkSMPTools loops vary the thread count or cover a loop no
+#     ACCELVOLUME_TEST_SUBSET=sanitizer ctest -L '^image$' -LE '^mpi$' -R "$tsan_image_regex"
+#         (RayCastExact then checks every third multi-component case, for time) the image tests whose vtkSMPTools loops vary the thread count or cover a loop no
 #         other test does: ray caster (exact, modes, sample distances), shear-warp (exact,
 #         modes), min-max octree, progress, shaded slice composite (gradients); 1-3 threads
 #         asked, as many as cores used. Left to the ASan run, for time: the agreement, smart
@@ -152,7 +152,8 @@ run_tsan() {
   pushd "$build" >/dev/null
   run_ctest "tsan: self-tests" -L '^sanitizer$'
   run_ctest "tsan: unit tests" -L '^unit$' -R "$tsan_unit_regex" -E "$timing_tests"
-  run_ctest "tsan: image tests" -L '^image$' -LE '^mpi$' -R "$tsan_image_regex"
+  ACCELVOLUME_TEST_SUBSET=sanitizer run_ctest "tsan: image tests" -L '^image$' -LE '^mpi$' \
+    -R "$tsan_image_regex"
   popd >/dev/null
   echo "tsan: tests $((SECONDS - tt)) s, total $((SECONDS - t)) s"
 }
