@@ -541,7 +541,9 @@ bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64
   {
     // |central difference| <= the range width, so this step keeps every value in int16.
     this->GradientScale = static_cast<float>(width / 32767.0);
-    ResizeWithHugePages(this->Gradients, 3 * voxels);
+    // One spare element: the shading lanes load each voxel's gradient as four int16.
+    ResizeWithHugePages(this->Gradients, 3 * voxels + 1);
+    this->Gradients.back() = 0;
     DispatchScalarType(volume,
       [&](const auto* data) {
         ComputeGradients(data, volume.dims, this->GradientScale, this->Gradients.data(), parallel);

@@ -321,34 +321,26 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
       const std::ptrdiff_t ox = 3 * batch[0].cell.offset[0], oy = 3 * batch[0].cell.offset[1],
                            oz = 3 * batch[0].cell.offset[2];
       const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
-      for (int v = first; v < last; ++v)
-      {
-        const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
-        for (int c = 0; c < 8; ++c)
-        {
-          for (int k = 0; k < 3; ++k)
-          {
-            lanes.gradient[k][c][v] = static_cast<float>(d[at[c] + k]);
-          }
-        }
-      }
       const float(*m)[3] = frame.normalMatrix;
       for (int v = first; v < last; ++v)
       {
+        const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
         const float fx = lanes.fx[v], fy = lanes.fy[v], fz = lanes.fz[v];
         const float wy[2] = { (1 - fy), fy };
         const float wz[2] = { (1 - fz), fz };
-        float g[3] = { 0, 0, 0 };
-        for (int c = 0; c < 8; ++c)
-        {
-          const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
-          g[0] += w * lanes.gradient[0][c][v];
-          g[1] += w * lanes.gradient[1][c][v];
-          g[2] += w * lanes.gradient[2][c][v];
-        }
+        float g[3];
+        InterpolateGradient(d, at, fx, wy, wz, g);
+        lanes.interpolated[0][v] = g[0];
+        lanes.interpolated[1][v] = g[1];
+        lanes.interpolated[2][v] = g[2];
+      }
+      for (int v = first; v < last; ++v)
+      {
+        const float g0 = lanes.interpolated[0][v], g1 = lanes.interpolated[1][v],
+                    g2 = lanes.interpolated[2][v];
         for (int r = 0; r < 3; ++r)
         {
-          lanes.eye[r][v] = m[r][0] * g[0] + m[r][1] * g[1] + m[r][2] * g[2];
+          lanes.eye[r][v] = m[r][0] * g0 + m[r][1] * g1 + m[r][2] * g2;
         }
       }
       // ShadeWith's terms (FixedLightingTerms or LightingTerms), light by light over the lanes.
@@ -356,7 +348,9 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
       {
         const float e0 = lanes.eye[0][v], e1 = lanes.eye[1][v], e2 = lanes.eye[2][v];
         const float squared = e0 * e0 + e1 * e1 + e2 * e2;
-        const float inverse = squared > 1.0e-16f ? -1.0f / std::sqrt(squared) : 0.0f;
+        // Both arms computed (no branch: the loop vectorises); equal to ShadeWith's where used.
+        const float candidate = -1.0f / std::sqrt(std::max(squared, 1.0e-16f));
+        const float inverse = squared > 1.0e-16f ? candidate : 0.0f;
         lanes.normal[0][v] = e0 * inverse;
         lanes.normal[1][v] = e1 * inverse;
         lanes.normal[2][v] = e2 * inverse;
