@@ -348,8 +348,9 @@ private:
     }
   }
 
-  // Composite rays of the common case in batches (RayCastKernelBatch.inl).
-  static constexpr int BatchSize = 16;
+  // Composite rays of the common case in batches (RayCastKernelBatch.inl). 32 rather than 16:
+  // longer lane loops pay for their set-up (measured 0-10 % faster on semi-transparent TFs).
+  static constexpr int BatchSize = 32;
   struct BatchSample
   {
     SampleCell cell;

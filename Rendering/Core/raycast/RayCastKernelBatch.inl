@@ -299,7 +299,7 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
   const int count = lanes.count; // the visible samples (CompositeBatch)
   // A few lanes at a time, composited before the next: a ray that terminates early shades
   // (and fetches the gradients of) few samples it does not need.
-  for (int first = 0, group = 4; first < count; first += group, group = BatchSize)
+  for (int first = 0, group = 8; first < count; first += group, group = BatchSize)
   {
     const int last = std::min(first + group, count);
     for (int v = first; v < last; ++v)
