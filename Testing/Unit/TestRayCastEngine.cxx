@@ -3,6 +3,7 @@
 // reference oracles; bad arguments fail cleanly.
 #include "reference/Phantoms.h"
 #include "raycast/RayCastEngine.h"
+#include "raycast/RayCastSampler.h"
 #include "reference/ReferenceComposite.h"
 
 #include "ShearWarpTestSupport.h"
@@ -524,4 +525,66 @@ TEST(RayCastEngine, BadArgumentsFail)
   settings.octreeLeafSize = 4;
   EXPECT_FALSE(caster.Render(scene.view, 0, 255, 1, transfer, 1, RayCastLighting(), view, settings,
     SerialFor, rgba, counters, error));
+}
+
+// The walks place samples in 32.32 fixed point (FixedSteps) and locate them with integer
+// operations: the cells and fractions must be Locate's for the same point, bit for bit, inside,
+// on the faces, outside (clamped) and on one-voxel axes.
+TEST(RayCastEngine, LocateFixedMatchesLocate)
+{
+  using detail::FixedSteps;
+  using detail::SampleCell;
+  std::vector<std::uint16_t> voxels(7 * 5 * 9);
+  for (const auto& dims : { std::array<int, 3>{ 7, 5, 9 }, std::array<int, 3>{ 1, 5, 9 },
+         std::array<int, 3>{ 7, 1, 1 } })
+  {
+    VolumeView volume;
+    volume.data = voxels.data();
+    volume.type = ScalarType::UInt16;
+    volume.dims[0] = dims[0];
+    volume.dims[1] = dims[1];
+    volume.dims[2] = dims[2];
+    const detail::Sampler<std::uint16_t> sampler(volume);
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> position(-2.0, 11.0);
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i)
+    {
+      std::int64_t q[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        // Random points, and exact voxel faces now and then.
+        const double x = i % 5 == 0 ? std::floor(position(random)) : position(random);
+        q[a] = FixedSteps::ToFixed(x) + (i % 7 == 0 ? -1 : 0);
+      }
+      double p[3];
+      FixedSteps::ToPoint(q, p);
+      SampleCell fromDouble, fromFixed;
+      sampler.Locate(p, fromDouble);
+      sampler.LocateFixed(q, fromFixed);
+      ASSERT_EQ(fromDouble.base, fromFixed.base);
+      ASSERT_EQ(fromDouble.cell, fromFixed.cell);
+      for (int a = 0; a < 3; ++a)
+      {
+        ASSERT_EQ(fromDouble.offset[a], fromFixed.offset[a]);
+        ASSERT_EQ(fromDouble.f[a], fromFixed.f[a]) << "axis " << a << " at " << p[a];
+      }
+      ++checked;
+    }
+    EXPECT_EQ(checked, 20000);
+  }
+  // Sample k is start + k * step exactly, however it is reached.
+  detail::IndexRay ray{ Vec3{ 0.25, -1.0, 3.5 }, Normalize(Vec3{ 0.3, 0.9, -0.2 }), 100.0 };
+  const FixedSteps steps(ray, 0.75, 0.37);
+  std::int64_t walked[3] = { steps.start[0], steps.start[1], steps.start[2] };
+  for (std::int64_t k = 0; k < 300; ++k)
+  {
+    std::int64_t q[3];
+    steps.At(k, q);
+    for (int a = 0; a < 3; ++a)
+    {
+      ASSERT_EQ(q[a], walked[a]);
+      walked[a] += steps.step[a];
+    }
+  }
 }

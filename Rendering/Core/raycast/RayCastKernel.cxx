@@ -354,7 +354,7 @@ private:
   struct BatchSample
   {
     SampleCell cell;
-    double p[3];
+    std::int64_t q[3]; // its place (FixedSteps)
     float value, alpha, fraction;
     int entry; // table entry below the value
   };
@@ -486,11 +486,13 @@ private:
         this->OpaqueSamples(ray, interval, h, count, first, last);
         leapCounter += static_cast<std::uint64_t>(first + (count - last));
       }
+      const FixedSteps steps(ray, interval.t0, h);
       for (std::int64_t k = first; k < last; ++k)
       {
-        const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
-        const double p[3] = { ray.origin.x + t * ray.direction.x,
-          ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+        std::int64_t q[3];
+        steps.At(k, q);
+        double p[3];
+        FixedSteps::ToPoint(q, p);
         if (octree)
         {
           const std::int64_t more = this->OctreeLeap(p, step,
@@ -505,7 +507,7 @@ private:
             continue;
           }
         }
-        this->Sampling.Locate(p, cell);
+        this->Sampling.LocateFixed(q, cell);
         // Right after a sample that contributed, the next one most likely does too: without
         // cell leaping the distance map is not read there (sampling an empty cell adds
         // nothing, so this is exact and saves a cache miss per sample in dense matter).

@@ -63,16 +63,14 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
       this->OpaqueSamples(ray, interval, h, count, first, last);
       this->Counters.leapedDistance += static_cast<std::uint64_t>(first + (count - last));
     }
+    const FixedSteps steps(ray, interval.t0, h);
     for (std::int64_t k = first; k < last; ++k)
     {
-      const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
       BatchSample& sample = this->Batch[n];
-      double* p = sample.p;
-      p[0] = ray.origin.x + t * ray.direction.x;
-      p[1] = ray.origin.y + t * ray.direction.y;
-      p[2] = ray.origin.z + t * ray.direction.z;
+      std::int64_t* q = sample.q;
+      steps.At(k, q);
       SampleCell& cell = sample.cell;
-      this->Sampling.Locate(p, cell);
+      this->Sampling.LocateFixed(q, cell);
       // In matter, the map is read every other sample only (reading it never changes the
       // image, only how far the ray may leap).
       const bool lookUp = cellLeap || (distance && cell.cell != filledCell && skipLookUp-- <= 0);
@@ -240,7 +238,9 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
       {
         float eyeGradient[3];
         float indexGradient[3];
-        this->Gradient(sample.p, sample.cell, eyeGradient, indexGradient);
+        double p[3];
+        FixedSteps::ToPoint(sample.q, p);
+        this->Gradient(p, sample.cell, eyeGradient, indexGradient);
         if (gradientOpacity)
         {
           const float* scale = frame.gradientAxisScale;
@@ -252,7 +252,7 @@ bool RayCasterTile<T>::CompositeBatch(const PixelRay& pixel, int n, BatchedRay& 
         }
         if (lighting.shade)
         {
-          this->Shade(pixel, sample.p, eyeGradient, colour);
+          this->Shade(pixel, p, eyeGradient, colour);
         }
       }
       colour[3] = a;
@@ -460,7 +460,8 @@ ACCELVOLUME_INLINE_LANES void RayCasterTile<T>::PointLightLanes(
   const RayCastLighting& l = *frame.lighting;
   for (int v = first; v < last; ++v)
   {
-    const double* p = batch[lanes.visible[v]].p;
+    double p[3];
+    FixedSteps::ToPoint(batch[lanes.visible[v]].q, p);
     for (int r = 0; r < 3; ++r)
     {
       point[r][v] = model.anyPositional

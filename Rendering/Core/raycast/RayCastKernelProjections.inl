@@ -18,11 +18,13 @@ void RayCasterTile<T>::Extreme(const PixelRay& pixel, float* out)
   {
     const std::int64_t count =
       static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+    const FixedSteps steps(ray, interval.t0, h);
     for (std::int64_t k = 0; k < count; ++k)
     {
-      const double t = interval.t0 + (static_cast<double>(k) + 0.5) * h;
-      const double p[3] = { ray.origin.x + t * ray.direction.x, ray.origin.y + t * ray.direction.y,
-        ray.origin.z + t * ray.direction.z };
+      std::int64_t q[3];
+      steps.At(k, q);
+      double p[3];
+      FixedSteps::ToPoint(q, p);
       if (tree && hit)
       {
         // A node whose whole range cannot beat the current extreme adds nothing. The leaf

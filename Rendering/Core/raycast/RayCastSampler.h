@@ -4,12 +4,14 @@
 #ifndef accelvolume_RayCastSampler_h
 #define accelvolume_RayCastSampler_h
 
+#include "common/IndexRay.h"
 #include "common/VolumeView.h"
 #include "skipping/CellBricks.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 namespace accelvolume
 {
@@ -30,6 +32,55 @@ struct SampleCell
   std::ptrdiff_t offset[3] = { 0, 0, 0 };
   float f[3] = { 0, 0, 0 };
   std::size_t cell = 0; // index into the CellBricks layout of per-cell arrays
+};
+
+// The samples of one ray interval in 32.32 fixed point: sample k (at t0 + (k + 0.5) h) lies at
+// start + k * step, exactly, whether the walk reaches it sample by sample or after a leap, and
+// its cell comes from integer shifts (Sampler::LocateFixed) instead of a chain of double / int
+// conversions. Every walk of the ray caster places its samples here.
+struct FixedSteps
+{
+  static constexpr double Scale = 4294967296.0; // 2^32
+  std::int64_t start[3] = { 0, 0, 0 };
+  std::int64_t step[3] = { 0, 0, 0 };
+
+  FixedSteps(const IndexRay& ray, double t0, double h)
+  {
+    const double t = t0 + 0.5 * h;
+    const double first[3] = { ray.origin.x + t * ray.direction.x,
+      ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+    const double along[3] = { ray.direction.x * h, ray.direction.y * h, ray.direction.z * h };
+    for (int a = 0; a < 3; ++a)
+    {
+      this->start[a] = ToFixed(first[a]);
+      this->step[a] = ToFixed(along[a]);
+    }
+  }
+
+  // Beyond +-2^30 voxels (and NaN) the value is clamped: such samples are outside any volume.
+  static std::int64_t ToFixed(double x)
+  {
+    constexpr double Limit = 1073741824.0;
+    const double c = x > -Limit ? (x < Limit ? x : Limit) : -Limit;
+    return static_cast<std::int64_t>(std::floor(c * Scale + 0.5));
+  }
+
+  void At(std::int64_t k, std::int64_t q[3]) const
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      q[a] = this->start[a] + k * this->step[a];
+    }
+  }
+
+  // The same point in doubles (exact while |q| < 2^53, i.e. within 2^21 voxels).
+  static void ToPoint(const std::int64_t q[3], double p[3])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = static_cast<double>(q[a]) * (1.0 / Scale);
+    }
+  }
 };
 
 template <typename T>
@@ -67,6 +118,38 @@ public:
         const double q = p[a] > 0 ? (p[a] < n - 1 ? p[a] : n - 1.0) : 0.0;
         i = std::min(static_cast<int>(q), n - 2);
         f = static_cast<float>(q - i);
+        s.offset[a] = this->Stride[a];
+      }
+      else
+      {
+        s.offset[a] = 0;
+      }
+      s.f[a] = f;
+      base += i * this->Stride[a];
+      c[a] = i;
+    }
+    s.base = base;
+    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
+  }
+
+  // Locate for a fixed-point position (FixedSteps): the same cell, fractions included, as
+  // Locate(FixedSteps::ToPoint(q)) (the unit tests compare them), from integer operations.
+  void LocateFixed(const std::int64_t q[3], SampleCell& s) const
+  {
+    std::ptrdiff_t base = 0;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = this->Dims[a];
+      int i = 0;
+      float f = 0;
+      if (n > 1)
+      {
+        const std::int64_t top = static_cast<std::int64_t>(n - 1) << 32;
+        const std::int64_t clamped = q[a] > 0 ? (q[a] < top ? q[a] : top) : 0;
+        i = std::min(static_cast<int>(clamped >> 32), n - 2);
+        f = static_cast<float>(clamped - (static_cast<std::int64_t>(i) << 32)) *
+          (1.0f / 4294967296.0f);
         s.offset[a] = this->Stride[a];
       }
       else
