@@ -588,3 +588,86 @@ TEST(RayCastEngine, LocateFixedMatchesLocate)
     }
   }
 }
+
+// A light at the eye on rays that do not pass through it (parallel projection) shines along
+// each ray from one direction, taken at the ray's entry into the volume (as
+// vtkGPUVolumeRayCastMapper does): the picture equals a directional light from the eye towards
+// that entry point, and differs from one aimed at the exit point. One pixel, one ray along -x
+// through the volume's centre; the eye (the light) off that ray, so a per-sample direction
+// would vary along it. Batched and per-sample paths both.
+TEST(RayCastEngine, EyeLightOnParallelRaysIsTakenAtTheEntryPoint)
+{
+  const int dims[3] = { 34, 29, 23 };
+  const Scene scene = MakeScene(ScalarType::UInt16, dims, 0.3);
+  RayCastTransfer transfer;
+  transfer.rgba.resize(4 * 256);
+  for (int i = 0; i < 256; ++i)
+  {
+    const float s = i / 255.0f;
+    const float rgba[4] = { 0.9f, 0.5f + 0.5f * s, 0.3f, i > 40 ? 0.15f : 0.0f };
+    std::copy(rgba, rgba + 4, transfer.rgba.begin() + 4 * i);
+  }
+  const Vec3 centre{ (dims[0] - 1) / 2.0, (dims[1] - 1) / 2.0, (dims[2] - 1) / 2.0 };
+  Camera camera;
+  camera.focalPoint = centre;
+  camera.position = centre + Vec3{ 100.0, 0.0, 0.0 };
+  camera.viewUp = { 0, 0, 1 };
+  camera.parallel = true;
+  camera.parallelScale = 20.0;
+  const RayCastView view = MakeView(camera, 1, 1, 1.0, 500.0);
+  // Eye space: index space translated so that the eye sits at `eye`, off the ray.
+  const double eye[3] = { 45.0, centre.y + 25.0, centre.z - 12.0 };
+  RayCastLighting lighting;
+  lighting.shade = true;
+  lighting.model.specular = 0.5f;
+  lighting.model.anyPositional = true;
+  for (int r = 0; r < 3; ++r)
+  {
+    lighting.indexToEyeOffset[r] = -eye[r];
+  }
+  SceneLight atEye;
+  atEye.positional = true; // at the eye origin, unattenuated, no cone: VTK's headlight
+  // A directional light from the eye towards `target` (eye space).
+  auto towards = [&](const double target[3])
+  {
+    double d[3];
+    for (int r = 0; r < 3; ++r)
+    {
+      d[r] = target[r] - eye[r];
+    }
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    SceneLight light;
+    for (int r = 0; r < 3; ++r)
+    {
+      light.axis[r] = static_cast<float>(d[r] / length);
+    }
+    return light;
+  };
+  const double entry[3] = { dims[0] - 1.0, centre.y, centre.z };
+  const double exit[3] = { 0.0, centre.y, centre.z };
+  for (const LeapMode leap : { LeapMode::DistanceMap, LeapMode::Octree })
+  {
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = leap; // batched lanes, and the generic per-sample walk
+    auto render = [&](const SceneLight& light)
+    {
+      RayCastLighting l = lighting;
+      l.model.lights = { light };
+      const Result result = Cast(scene, transfer, l, view, settings);
+      EXPECT_GT(result.counters.samples, 10u);
+      return std::array<float, 3>{ result.rgba[0], result.rgba[1], result.rgba[2] };
+    };
+    const std::array<float, 3> headlight = render(atEye);
+    const std::array<float, 3> fromEntry = render(towards(entry));
+    const std::array<float, 3> fromExit = render(towards(exit));
+    double entryDifference = 0, exitDifference = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      entryDifference = std::max(entryDifference, std::abs(double(headlight[c]) - fromEntry[c]));
+      exitDifference = std::max(exitDifference, std::abs(double(headlight[c]) - fromExit[c]));
+    }
+    EXPECT_GT(headlight[0], 0.05f);
+    EXPECT_LT(entryDifference, 1.0e-5) << "leap " << static_cast<int>(leap);
+    EXPECT_GT(exitDifference, 1.0e-2) << "leap " << static_cast<int>(leap);
+  }
+}

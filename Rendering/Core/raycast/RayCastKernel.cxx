@@ -127,6 +127,7 @@ public:
       this->LaneLights = this->LaneLights && !(light.positional && light.cosCone >= -1.0f);
     }
     this->Avx2Lanes = !this->Settings.baselineLanes && LanesOnAvx2();
+    this->EyeLightAtEntry = EyeLightsAtEntry(frame);
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -151,7 +152,8 @@ public:
         for (int i = x0; i < x1; ++i)
         {
           float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
-          this->CastRay(MakePixelRay(this->Frame, i, j, throughEye), out);
+          PixelRay pixel = MakePixelRay(this->Frame, i, j, throughEye);
+          this->CastRay(pixel, out);
         }
       }
       return;
@@ -306,12 +308,20 @@ private:
     this->RejectedLeaf[0] = this->RejectedLeaf[1] = this->RejectedLeaf[2] = -1;
   }
 
-  void CastRay(const PixelRay& pixel, float* out)
+  void CastRay(PixelRay& pixel, float* out)
   {
     out[0] = out[1] = out[2] = out[3] = 0.0f;
     if (!this->Intervals(pixel.index, this->RayIntervals))
     {
       return;
+    }
+    if (this->EyeLightAtEntry)
+    {
+      const IndexRay& ray = pixel.index;
+      const double t = this->RayIntervals.front().t0;
+      const double entry[3] = { ray.origin.x + t * ray.direction.x,
+        ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
+      FixLightsAtEntry(*this->Frame.lighting, entry, pixel);
     }
     ++this->Counters.rays;
     if (this->Frame.components > 1)
@@ -784,6 +794,7 @@ private:
   bool LastContributed = false;         // the ray's last sample added something
   bool Batching = false;                // composite rays take CompositeBatched
   bool Avx2Lanes = false;               // the shading lanes' AVX2 build
+  bool EyeLightAtEntry = false;         // lights at the eye fixed per ray from its entry point
   bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;

@@ -69,9 +69,21 @@ inline bool PassesThroughEye(const RayCastLighting& l, const IndexRay& ray)
     Dot(eyeOrigin, eyeDirection) > 0;
 }
 
+// VTK's headlight: at the eye, unattenuated, no cone.
+inline bool IsEyeLight(const SceneLight& light)
+{
+  return light.positional && light.position[0] == 0 && light.position[1] == 0 &&
+    light.position[2] == 0 && light.attenuation[0] == 1 && light.attenuation[1] == 0 &&
+    light.attenuation[2] == 0 && light.cosCone < -1.0f;
+}
+
 // PixelRay's fixed lights, when every light is fixed along this ray (throughEye: the ray
-// passes through the eye).
-inline void FixLights(const RayCastLighting& l, bool throughEye, PixelRay& ray)
+// passes through the eye). A light at the eye is fixed along any ray: on rays through the eye
+// it lies ahead of every sample; on other rays (parallel projection) its direction is taken
+// once, from the point where the ray enters the volume (entryEye, eye space), as
+// vtkGPUVolumeRayCastMapper does; without entryEye such rays light per sample.
+inline void FixLights(
+  const RayCastLighting& l, bool throughEye, PixelRay& ray, const double* entryEye = nullptr)
 {
   const std::vector<SceneLight>& lights = l.model.lights;
   ray.fixedLights = lights.size() <= MaximumRayLights;
@@ -90,13 +102,20 @@ inline void FixLights(const RayCastLighting& l, bool throughEye, PixelRay& ray)
         toLight[c] = -light.axis[c];
       }
     }
-    else if (throughEye && light.position[0] == 0 && light.position[1] == 0 &&
-      light.position[2] == 0 && light.attenuation[0] == 1 && light.attenuation[1] == 0 &&
-      light.attenuation[2] == 0 && light.cosCone < -1.0f)
+    else if (throughEye && IsEyeLight(light))
     {
       // Every sample of the ray lies ahead on the line from the eye: towards the light is
       // towards the viewer, unattenuated.
       std::copy(ray.toViewer, ray.toViewer + 3, toLight);
+    }
+    else if (entryEye != nullptr && IsEyeLight(light))
+    {
+      const double length = std::sqrt(
+        entryEye[0] * entryEye[0] + entryEye[1] * entryEye[1] + entryEye[2] * entryEye[2]);
+      for (int c = 0; c < 3; ++c)
+      {
+        toLight[c] = static_cast<float>(length > 0 ? -entryEye[c] / length : 0.0);
+      }
     }
     else
     {
@@ -157,6 +176,28 @@ inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j, bool throug
   }
   FixLights(l, throughEye, ray);
   return ray;
+}
+
+// Whether the frame's rays light a light at the eye from their entry points (FixLights): shaded,
+// rays not through the eye, at least one such light and few enough lights to fix.
+inline bool EyeLightsAtEntry(const KernelFrame& frame)
+{
+  const RayCastLighting& lighting = *frame.lighting;
+  const std::vector<SceneLight>& lights = lighting.model.lights;
+  return lighting.shade && !frame.raysThroughEye && lights.size() <= MaximumRayLights &&
+    std::any_of(lights.begin(), lights.end(), IsEyeLight);
+}
+
+// FixLights for a ray that enters the volume at index-space point `entry`.
+inline void FixLightsAtEntry(const RayCastLighting& l, const double entry[3], PixelRay& ray)
+{
+  double eye[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    eye[r] = l.indexToEye[r][0] * entry[0] + l.indexToEye[r][1] * entry[1] +
+      l.indexToEye[r][2] * entry[2] + l.indexToEyeOffset[r];
+  }
+  FixLights(l, false, ray, eye);
 }
 
 // Whether every ray of the frame passes through the eye (only asked with shading and a
