@@ -143,7 +143,6 @@ public:
     {
       return;
     }
-    const bool throughEye = this->Frame.raysThroughEye;
     if (!this->Frame.useOctree)
     {
       // Each ray as it is cast (only the octree's distance template needs them all first).
@@ -152,7 +151,7 @@ public:
         for (int i = x0; i < x1; ++i)
         {
           float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
-          PixelRay pixel = MakePixelRay(this->Frame, i, j, throughEye);
+          PixelRay pixel = MakePixelRay(this->Frame, i, j);
           this->CastRay(pixel, out);
         }
       }
@@ -166,7 +165,7 @@ public:
     {
       for (int i = x0; i < x1; ++i)
       {
-        rays.push_back(MakePixelRay(this->Frame, i, j, throughEye));
+        rays.push_back(MakePixelRay(this->Frame, i, j));
         const Vec3& d = rays.back().index.direction;
         maximumStep[0] = std::max(maximumStep[0], std::abs(d.x * h));
         maximumStep[1] = std::max(maximumStep[1], std::abs(d.y * h));
@@ -315,13 +314,18 @@ private:
     {
       return;
     }
+    const RayCastLighting& lighting = *this->Frame.lighting;
     if (this->EyeLightAtEntry)
     {
       const IndexRay& ray = pixel.index;
       const double t = this->RayIntervals.front().t0;
       const double entry[3] = { ray.origin.x + t * ray.direction.x,
         ray.origin.y + t * ray.direction.y, ray.origin.z + t * ray.direction.z };
-      FixLightsAtEntry(*this->Frame.lighting, entry, pixel);
+      LightPixelRayAtEntry(lighting, entry, pixel);
+    }
+    else if (lighting.shade)
+    {
+      LightPixelRay(lighting, this->Frame.raysThroughEye, pixel);
     }
     ++this->Counters.rays;
     if (this->Frame.components > 1)

@@ -43,9 +43,10 @@ inline void Unproject(const double m[4][4], double x, double y, double z, double
   {
     h[r] = m[r][0] * x + m[r][1] * y + m[r][2] * z + m[r][3];
   }
+  const double inverse = 1.0 / h[3];
   for (int r = 0; r < 3; ++r)
   {
-    out[r] = h[r] / h[3];
+    out[r] = h[r] * inverse;
   }
 }
 
@@ -134,7 +135,9 @@ inline void FixLights(
   }
 }
 
-inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j, bool throughEye)
+// A pixel's ray in index space (its lighting: LightPixelRay, once the ray is known to meet the
+// volume).
+inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
 {
   const RayCastView& view = *frame.view;
   const double x = 2.0 * (i + 0.5) / view.width - 1.0;
@@ -158,11 +161,14 @@ inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j, bool throug
   }
   PixelRay ray;
   ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
-  const RayCastLighting& l = *frame.lighting;
-  if (!l.shade)
-  {
-    return ray; // the eye-space direction only serves specular lighting
-  }
+  return ray;
+}
+
+// The ray's direction to the viewer and its fixed lights (FixLights; entryEye: see there).
+// Only shading needs them.
+inline void LightPixelRay(
+  const RayCastLighting& l, bool throughEye, PixelRay& ray, const double* entryEye = nullptr)
+{
   const Vec3& d = ray.index.direction;
   double eye[3];
   for (int r = 0; r < 3; ++r)
@@ -170,12 +176,12 @@ inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j, bool throug
     eye[r] = l.indexToEye[r][0] * d.x + l.indexToEye[r][1] * d.y + l.indexToEye[r][2] * d.z;
   }
   const double length = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
+  const double inverse = length > 0 ? 1.0 / length : 0.0;
   for (int r = 0; r < 3; ++r)
   {
-    ray.toViewer[r] = static_cast<float>(length > 0 ? -eye[r] / length : 0.0);
+    ray.toViewer[r] = static_cast<float>(-eye[r] * inverse);
   }
-  FixLights(l, throughEye, ray);
-  return ray;
+  FixLights(l, throughEye, ray, entryEye);
 }
 
 // Whether the frame's rays light a light at the eye from their entry points (FixLights): shaded,
@@ -188,8 +194,8 @@ inline bool EyeLightsAtEntry(const KernelFrame& frame)
     std::any_of(lights.begin(), lights.end(), IsEyeLight);
 }
 
-// FixLights for a ray that enters the volume at index-space point `entry`.
-inline void FixLightsAtEntry(const RayCastLighting& l, const double entry[3], PixelRay& ray)
+// LightPixelRay for a ray that enters the volume at index-space point `entry`.
+inline void LightPixelRayAtEntry(const RayCastLighting& l, const double entry[3], PixelRay& ray)
 {
   double eye[3];
   for (int r = 0; r < 3; ++r)
@@ -197,7 +203,7 @@ inline void FixLightsAtEntry(const RayCastLighting& l, const double entry[3], Pi
     eye[r] = l.indexToEye[r][0] * entry[0] + l.indexToEye[r][1] * entry[1] +
       l.indexToEye[r][2] * entry[2] + l.indexToEyeOffset[r];
   }
-  FixLights(l, false, ray, eye);
+  LightPixelRay(l, false, ray, eye);
 }
 
 // Whether every ray of the frame passes through the eye (only asked with shading and a
@@ -213,7 +219,7 @@ inline bool RaysPassThroughEye(const KernelFrame& frame)
   const int corners[3][2] = { { 0, 0 }, { w - 1, 0 }, { 0, h - 1 } };
   for (const auto& c : corners)
   {
-    if (!PassesThroughEye(lighting, MakePixelRay(frame, c[0], c[1], false).index))
+    if (!PassesThroughEye(lighting, MakePixelRay(frame, c[0], c[1]).index))
     {
       return false;
     }
