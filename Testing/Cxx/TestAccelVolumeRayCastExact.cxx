@@ -12,6 +12,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPointData.h"
+#include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <cmath>
@@ -153,6 +154,34 @@ int TestAccelVolumeRayCastExact(int, char*[])
     scene.Mapper->SetAutoAdjustSampleDistances(0);
     scene.Mapper->SetSampleDistance(0.5);
     ok = CheckScene("shaded composite", scene, true) && ok;
+  }
+  {
+    // VTK's mappers create a constant-1 gradient opacity function when they ask a property for
+    // it: that function changes nothing (vtkFixedPointVolumeRayCastMapper skips it too), so the
+    // ray caster must not take its gradient-opacity path for it. Unshaded, only that path needs
+    // per-voxel gradients: the acceleration bytes show which path ran.
+    RayCastScene scene("blobs", vtkVolumeMapper::COMPOSITE_BLEND);
+    vtkVolumeProperty* property = scene.Volume->GetProperty();
+    property->SetShade(0);
+    const Frame without = Render(scene, vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP, false, 0);
+    const vtkTypeInt64 bytesWithout = scene.Mapper->GetAccelerationBytes();
+    property->GetGradientOpacity(); // VTK's default: 1 everywhere
+    const Frame constant = Render(scene, vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP, false, 0);
+    const vtkTypeInt64 bytesConstant = scene.Mapper->GetAccelerationBytes();
+    vtkNew<vtkPiecewiseFunction> ramp;
+    ramp->AddPoint(0.0, 0.2);
+    ramp->AddPoint(100.0, 1.0);
+    property->SetGradientOpacity(ramp);
+    const Frame real = Render(scene, vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP, false, 0);
+    const vtkTypeInt64 bytesReal = scene.Mapper->GetAccelerationBytes();
+    std::cout << "gradient opacity: acceleration bytes without " << bytesWithout
+              << ", constant 1 " << bytesConstant << ", ramp " << bytesReal << "\n";
+    if (constant.Pixels != without.Pixels || bytesConstant != bytesWithout ||
+      real.Pixels == without.Pixels || bytesReal <= bytesWithout)
+    {
+      std::cout << "a constant-1 gradient opacity must change nothing, a ramp must  FAILED\n";
+      ok = false;
+    }
   }
   {
     RayCastScene scene("blobs", vtkVolumeMapper::ADDITIVE_BLEND);

@@ -611,6 +611,15 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
     transfer.gradientOpacity.resize(TableSize);
     property->GetGradientOpacity(0)->GetTable(
       0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
+    // A function that is 1 everywhere changes nothing: VTK's own mappers create that default
+    // when they ask the property for it (a property shared with them then "has" one), and
+    // vtkFixedPointVolumeRayCastMapper skips it too. Without it the ray caster keeps its
+    // fast paths (opacity through the corrected table, no per-sample power).
+    if (std::all_of(transfer.gradientOpacity.begin(), transfer.gradientOpacity.end(),
+          [](float value) { return value == 1.0f; }))
+    {
+      transfer.gradientOpacity.clear();
+    }
   }
   if (transfer.rgba != this->Table || transfer.gradientOpacity != this->GradientTable ||
     range[0] != this->TableRange[0] || high != this->TableRange[1])
