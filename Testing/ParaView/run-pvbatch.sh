@@ -6,7 +6,9 @@
 # Exits 125 (ctest: skipped) with the reason when something it needs is missing. Debian's
 # pvbatch aborts without an X display, hence xvfb-run; concurrent xvfb-run calls can race for
 # a display number ("bad X server connection", "Xvfb failed to start"), so such a start is
-# retried.
+# retried. A run without a result after 120 s (pvbatch's two busy-polling MPI ranks have hung
+# now and then, alone or beside other tests; a run takes 5-15 s) is killed and tried once more,
+# saying so.
 set -u
 root=$1 pvbatch=$2 xvfb_run=$3
 shift 3
@@ -28,10 +30,15 @@ attempt=1
 while :; do
   # A display number of our own (from the process id) makes collisions unlikely to begin with.
   PYTHONPATH="$python_dir${PYTHONPATH:+:$PYTHONPATH}" \
-    "$xvfb_run" -a -n $((100 + $$ % 800)) -s "-screen 0 1024x768x24" \
+    timeout -k 5 120 "$xvfb_run" -a -n $((100 + $$ % 800)) -s "-screen 0 1024x768x24" \
     "$pvbatch" "$@" >"$log" 2>&1
   status=$?
   cat "$log"
+  if [ "$status" -eq 124 ] && [ "$attempt" -lt 2 ]; then
+    echo "run-pvbatch.sh: no result after 120 s (hung); trying again"
+    attempt=$((attempt + 1))
+    continue
+  fi
   if [ "$status" -ne 0 ] && [ "$attempt" -lt 3 ] &&
     grep -q -e "bad X server connection" -e "Xvfb failed to start" "$log"; then
     echo "run-pvbatch.sh: the X server could not be reached; trying again"
