@@ -386,10 +386,18 @@ TEST(RayCastEngine, BatchedCompositeIgnoresThreadsAndSimdTarget)
     settings.baselineLanes = true;
     const Result baseline = Cast(scene, transfer, lighting, view, settings);
     EXPECT_TRUE(Identical(serial.rgba, baseline.rgba)) << "trial " << trial << ": SIMD targets";
-    // And the generic per-sample path (octree leaping) agrees with the batched one.
+    // And the generic per-sample walk agrees with the batched one, with octree leaping in
+    // either (the batched walk leaps the octree too).
     settings.leap = LeapMode::Octree;
+    const Result octree = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(serial.rgba, octree.rgba)) << "trial " << trial << ": octree";
+    EXPECT_GT(octree.counters.octreeLeaps, 0u) << "trial " << trial;
+    settings.batchedComposite = false;
     const Result generic = Cast(scene, transfer, lighting, view, settings);
-    EXPECT_TRUE(Identical(serial.rgba, generic.rgba)) << "trial " << trial << ": octree";
+    EXPECT_TRUE(Identical(serial.rgba, generic.rgba)) << "trial " << trial << ": per sample";
+    settings.leap = LeapMode::DistanceMap;
+    const Result genericDistance = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(serial.rgba, genericDistance.rgba)) << "trial " << trial;
   }
 }
 

@@ -146,6 +146,9 @@ struct RayCastSettings
   // The composite kernel's lane loops take AVX2 where the CPU has it; true forces the x86-64
   // baseline (SSE2) build of them (tests: both give the same bits).
   bool baselineLanes = false;
+  // Composite rays of the common case run in batches (RayCastKernelBatch.inl); false forces
+  // the per-sample walk (tests: both give the same bits).
+  bool batchedComposite = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).
