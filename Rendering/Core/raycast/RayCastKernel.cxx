@@ -14,9 +14,6 @@
 #include <limits>
 #include <type_traits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace accelvolume
 {
@@ -34,40 +31,6 @@ namespace
 #define ACCELVOLUME_AVX2_LANES 0
 #define ACCELVOLUME_INLINE_LANES inline
 #endif
-
-// Gradient's trilinear interpolation of one sample's int16 gradients (`at`: the corners'
-// offsets), corner by corner in Gradient's order, x, y and z side by side in one vector
-// register where SSE2 is there (each component sees the same multiplies and adds: same bits).
-// Reads one int16 past a corner's three (Gradients has a spare element at its end).
-ACCELVOLUME_INLINE_LANES void InterpolateGradient(const std::int16_t* d, const std::ptrdiff_t at[8],
-  float fx, const float wy[2], const float wz[2], float g[3])
-{
-#if defined(__SSE2__)
-  __m128 sum = _mm_setzero_ps();
-  for (int c = 0; c < 8; ++c)
-  {
-    const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
-    const __m128i four = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(d + at[c]));
-    const __m128i wide = _mm_srai_epi32(_mm_unpacklo_epi16(four, four), 16);
-    sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(w), _mm_cvtepi32_ps(wide)));
-  }
-  alignas(16) float out[4];
-  _mm_store_ps(out, sum);
-  g[0] = out[0];
-  g[1] = out[1];
-  g[2] = out[2];
-#else
-  g[0] = g[1] = g[2] = 0;
-  for (int c = 0; c < 8; ++c)
-  {
-    const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
-    for (int k = 0; k < 3; ++k)
-    {
-      g[k] += w * static_cast<float>(d[at[c] + k]);
-    }
-  }
-#endif
-}
 
 // Whether this CPU runs the AVX2 build of the lane loops.
 inline bool LanesOnAvx2()
