@@ -174,8 +174,8 @@ int TestAccelVolumeRayCastExact(int, char*[])
     property->SetGradientOpacity(ramp);
     const Frame real = Render(scene, vtkAccelVolumeRayCastMapper::LEAP_DISTANCE_MAP, false, 0);
     const vtkTypeInt64 bytesReal = scene.Mapper->GetAccelerationBytes();
-    std::cout << "gradient opacity: acceleration bytes without " << bytesWithout
-              << ", constant 1 " << bytesConstant << ", ramp " << bytesReal << "\n";
+    std::cout << "gradient opacity: acceleration bytes without " << bytesWithout << ", constant 1 "
+              << bytesConstant << ", ramp " << bytesReal << "\n";
     if (constant.Pixels != without.Pixels || bytesConstant != bytesWithout ||
       real.Pixels == without.Pixels || bytesReal <= bytesWithout)
     {

@@ -1,9 +1,9 @@
 // RayCastEngine: every leaping mode gives bit-identical images to plain ray casting, on random
 // volumes and transfer functions; results ignore the thread count; images agree with the CPU
 // reference oracles; bad arguments fail cleanly.
-#include "reference/Phantoms.h"
 #include "raycast/RayCastEngine.h"
 #include "raycast/RayCastSampler.h"
+#include "reference/Phantoms.h"
 #include "reference/ReferenceComposite.h"
 
 #include "ShearWarpTestSupport.h"
@@ -543,8 +543,8 @@ TEST(RayCastEngine, LocateFixedMatchesLocate)
   using detail::FixedSteps;
   using detail::SampleCell;
   std::vector<std::uint16_t> voxels(7 * 5 * 9);
-  for (const auto& dims : { std::array<int, 3>{ 7, 5, 9 }, std::array<int, 3>{ 1, 5, 9 },
-         std::array<int, 3>{ 7, 1, 1 } })
+  for (const auto& dims :
+    { std::array<int, 3>{ 7, 5, 9 }, std::array<int, 3>{ 1, 5, 9 }, std::array<int, 3>{ 7, 1, 1 } })
   {
     VolumeView volume;
     volume.data = voxels.data();

@@ -14,7 +14,6 @@
 #include <limits>
 #include <type_traits>
 
-
 namespace accelvolume
 {
 namespace detail

@@ -49,8 +49,8 @@ struct SampleCell
 // offsets), corner by corner in Gradient's order, x, y and z side by side in one vector
 // register where SSE2 is there (each component sees the same multiplies and adds: same bits).
 // Reads one int16 past a corner's three (Gradients has a spare element at its end).
-ACCELVOLUME_ALWAYS_INLINE void InterpolateGradient(const std::int16_t* d, const std::ptrdiff_t at[8],
-  float fx, const float wy[2], const float wz[2], float g[3])
+ACCELVOLUME_ALWAYS_INLINE void InterpolateGradient(const std::int16_t* d,
+  const std::ptrdiff_t at[8], float fx, const float wy[2], const float wz[2], float g[3])
 {
 #if defined(__SSE2__)
   __m128 sum = _mm_setzero_ps();
