@@ -150,63 +150,29 @@ public:
 
   void Locate(const double p[3], SampleCell& s) const
   {
-    std::ptrdiff_t base = 0;
-    int c[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      const int n = this->Dims[a];
-      int i = 0;
-      float f = 0;
-      if (n > 1)
+    this->LocateWith(s,
+      [p](int a, int n, int& i, float& f)
       {
         // Clamp like GL_CLAMP_TO_EDGE; the comparisons also turn NaN into 0.
         const double q = p[a] > 0 ? (p[a] < n - 1 ? p[a] : n - 1.0) : 0.0;
         i = std::min(static_cast<int>(q), n - 2);
         f = static_cast<float>(q - i);
-        s.offset[a] = this->Stride[a];
-      }
-      else
-      {
-        s.offset[a] = 0;
-      }
-      s.f[a] = f;
-      base += i * this->Stride[a];
-      c[a] = i;
-    }
-    s.base = base;
-    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
+      });
   }
 
   // Locate for a fixed-point position (FixedSteps): the same cell, fractions included, as
   // Locate(FixedSteps::ToPoint(q)) (the unit tests compare them), from integer operations.
   void LocateFixed(const std::int64_t q[3], SampleCell& s) const
   {
-    std::ptrdiff_t base = 0;
-    int c[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      const int n = this->Dims[a];
-      int i = 0;
-      float f = 0;
-      if (n > 1)
+    this->LocateWith(s,
+      [q](int a, int n, int& i, float& f)
       {
         const std::int64_t top = static_cast<std::int64_t>(n - 1) << 32;
         const std::int64_t clamped = q[a] > 0 ? (q[a] < top ? q[a] : top) : 0;
         i = std::min(static_cast<int>(clamped >> 32), n - 2);
         f = static_cast<float>(clamped - (static_cast<std::int64_t>(i) << 32)) *
           (1.0f / 4294967296.0f);
-        s.offset[a] = this->Stride[a];
-      }
-      else
-      {
-        s.offset[a] = 0;
-      }
-      s.f[a] = f;
-      base += i * this->Stride[a];
-      c[a] = i;
-    }
-    s.base = base;
-    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
+      });
   }
 
   const T* Voxels() const { return this->Data; }
@@ -255,6 +221,35 @@ public:
   }
 
 private:
+  // Locate's and LocateFixed's common part: axis(a, n, i, f) finds the cell index i and the
+  // fraction f along axis a, which has n > 1 voxels; one-voxel axes keep cell 0.
+  template <typename Axis>
+  void LocateWith(SampleCell& s, Axis&& axis) const
+  {
+    std::ptrdiff_t base = 0;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const int n = this->Dims[a];
+      int i = 0;
+      float f = 0;
+      if (n > 1)
+      {
+        axis(a, n, i, f);
+        s.offset[a] = this->Stride[a];
+      }
+      else
+      {
+        s.offset[a] = 0;
+      }
+      s.f[a] = f;
+      base += i * this->Stride[a];
+      c[a] = i;
+    }
+    s.base = base;
+    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
+  }
+
   const T* Data;
   int Dims[3];
   int CellDims[3];
