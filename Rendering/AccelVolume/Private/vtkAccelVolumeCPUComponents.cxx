@@ -147,9 +147,7 @@ void vtkAccelVolumeCPUInputs::UpdateComponents(vtkVolumeProperty* property, vtkD
       {
         // Over [0, a quarter of the component's range], VTK's units (as the slice mapper).
         const double maximum = 0.25 * (components.ranges[t][1] - components.ranges[t][0]);
-        table.gradientOpacity.resize(TableSize);
-        property->GetGradientOpacity(t)->GetTable(
-          0.0, maximum, TableSize, table.gradientOpacity.data());
+        vtkAccelVolumeGradientOpacityTable(property, t, maximum, TableSize, table.gradientOpacity);
       }
       table.opacityUnitDistance =
         std::max(1.0e-6, property->GetScalarOpacityUnitDistance(opacityComponent));

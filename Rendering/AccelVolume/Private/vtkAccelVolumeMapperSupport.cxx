@@ -596,6 +596,17 @@ void vtkAccelVolumeGradientAxisScale(vtkImageData* input, double scale[3])
   }
 }
 
+void vtkAccelVolumeGradientOpacityTable(
+  vtkVolumeProperty* property, int index, double maximum, int size, std::vector<float>& table)
+{
+  table.resize(static_cast<std::size_t>(size));
+  property->GetGradientOpacity(index)->GetTable(0.0, maximum, size, table.data());
+  if (std::all_of(table.begin(), table.end(), [](float value) { return value == 1.0f; }))
+  {
+    table.clear();
+  }
+}
+
 void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const double range[2],
   bool composite, vtkImageData* input, accelvolume::RayCastTransfer& transfer, double& high)
 {
@@ -608,18 +619,8 @@ void vtkAccelVolumeCPUInputs::UpdateTransfer(vtkVolumeProperty* property, const 
   {
     // VTK's GPU mapper's table: [0, a quarter of the data range] (SCALAR range type).
     transfer.gradientOpacityMaximum = 0.25 * (high - range[0]);
-    transfer.gradientOpacity.resize(TableSize);
-    property->GetGradientOpacity(0)->GetTable(
-      0.0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity.data());
-    // A function that is 1 everywhere changes nothing: VTK's own mappers create that default
-    // when they ask the property for it (a property shared with them then "has" one), and
-    // vtkFixedPointVolumeRayCastMapper skips it too. Without it the ray caster keeps its
-    // fast paths (opacity through the corrected table, no per-sample power).
-    if (std::all_of(transfer.gradientOpacity.begin(), transfer.gradientOpacity.end(),
-          [](float value) { return value == 1.0f; }))
-    {
-      transfer.gradientOpacity.clear();
-    }
+    vtkAccelVolumeGradientOpacityTable(
+      property, 0, transfer.gradientOpacityMaximum, TableSize, transfer.gradientOpacity);
   }
   if (transfer.rgba != this->Table || transfer.gradientOpacity != this->GradientTable ||
     range[0] != this->TableRange[0] || high != this->TableRange[1])

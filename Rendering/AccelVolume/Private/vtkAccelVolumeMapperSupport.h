@@ -164,6 +164,13 @@ double vtkAccelVolumeColourComponentScale(int dataType);
 // value's central difference per index step to VTK's (mean spacing / spacing of that axis).
 void vtkAccelVolumeGradientAxisScale(vtkImageData* input, double scale[3]);
 
+// Component `index`'s gradient opacity table over [0, maximum], `size` entries, into `table`;
+// empty when the function is 1 everywhere (VTK's mappers create that default when they ask a
+// property for it, and vtkFixedPointVolumeRayCastMapper skips it too): the CPU mappers then keep
+// their fast paths.
+void vtkAccelVolumeGradientOpacityTable(
+  vtkVolumeProperty* property, int index, double maximum, int size, std::vector<float>& table);
+
 // What a vtkHardwareSelector pass asks of a volume (as VTK's GPU mapper): 0 = no selection,
 // render; 1 = the actor / process pass: `colour` (the selector's prop colour) where the volume is
 // seen; 2 = an attribute-id pass: nothing (voxel ids are not reported).
