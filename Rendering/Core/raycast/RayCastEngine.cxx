@@ -616,6 +616,7 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     impl.FillComponentFrame(transfer, lighting, settings, plan, frame);
   }
   frame.raysThroughEye = detail::RaysPassThroughEye(frame);
+  frame.eyeLightsAtEntry = detail::EyeLightsAtEntry(frame);
   VisiblePixels(ShownBox(settings, frame), view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
 

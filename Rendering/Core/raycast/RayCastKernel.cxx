@@ -89,7 +89,6 @@ public:
       this->LaneLights = this->LaneLights && !(light.positional && light.cosCone >= -1.0f);
     }
     this->Avx2Lanes = !this->Settings.baselineLanes && LanesOnAvx2();
-    this->EyeLightAtEntry = EyeLightsAtEntry(frame);
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -277,7 +276,7 @@ private:
       return;
     }
     const RayCastLighting& lighting = *this->Frame.lighting;
-    if (this->EyeLightAtEntry)
+    if (this->Frame.eyeLightsAtEntry)
     {
       const IndexRay& ray = pixel.index;
       const double t = this->RayIntervals.front().t0;
@@ -760,7 +759,6 @@ private:
   bool LastContributed = false;         // the ray's last sample added something
   bool Batching = false;                // composite rays take CompositeBatched
   bool Avx2Lanes = false;               // the shading lanes' AVX2 build
-  bool EyeLightAtEntry = false;         // lights at the eye fixed per ray from its entry point
   bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;

@@ -64,6 +64,7 @@ struct KernelFrame
   const float* correctedAlpha = nullptr; // tableSize, opacity corrected to the sample distance
   float maximumCorrectedAlpha = 0;       // of correctedAlpha
   bool raysThroughEye = false;           // every ray passes through the eye (RaysPassThroughEye)
+  bool eyeLightsAtEntry = false;         // lights at the eye fixed per ray at its entry point
   // Normalised scalar: s = value * normalScale + normalBias.
   float normalScale = 1, normalBias = 0;
   float rangeWidth = 1; // data units per normalised unit

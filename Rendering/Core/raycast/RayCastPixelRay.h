@@ -185,7 +185,8 @@ inline void LightPixelRay(
 }
 
 // Whether the frame's rays light a light at the eye from their entry points (FixLights): shaded,
-// rays not through the eye, at least one such light and few enough lights to fix.
+// rays not through the eye (frame.raysThroughEye set first), at least one such light and few
+// enough lights to fix.
 inline bool EyeLightsAtEntry(const KernelFrame& frame)
 {
   const RayCastLighting& lighting = *frame.lighting;
