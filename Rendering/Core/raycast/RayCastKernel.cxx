@@ -406,24 +406,49 @@ private:
     last = std::max(last, first);
   }
 
+  // A ray's step per sample along each axis and its inverse |1 / step| (0 for axes the ray
+  // does not move along), for the distance-map leaps.
+  struct LeapSteps
+  {
+    double along[3];
+    double inverse[3];
+
+    explicit LeapSteps(const Vec3& step)
+      : along{ step.x, step.y, step.z }
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        this->inverse[a] = this->along[a] != 0 ? 1.0 / std::abs(this->along[a]) : 0.0;
+      }
+    }
+  };
+
   // Samples after the current one a distance-map value d > 0 lets the ray skip. Every cell
   // within chessboard distance d - 1 is empty: from the sample's place in its cell, along axis
   // a the ray may go d - f (forward) or d - 1 + f (backward) cells before it can reach a
   // non-empty one. A small safety margin absorbs the float fraction; one-voxel axes never
   // change cell.
-  static std::int64_t DistanceLeap(
-    const SampleCell& cell, int d, const double stepAlong[3], const double inverseStep[3])
+  static std::int64_t DistanceLeap(const SampleCell& cell, int d, const LeapSteps& steps)
   {
     double room = 1.0e30;
     for (int a = 0; a < 3; ++a)
     {
-      if (inverseStep[a] > 0 && cell.offset[a] != 0)
+      if (steps.inverse[a] > 0 && cell.offset[a] != 0)
       {
-        const double along = stepAlong[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
-        room = std::min(room, (along - 1.0e-4) * inverseStep[a]);
+        const double along = steps.along[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
+        room = std::min(room, (along - 1.0e-4) * steps.inverse[a]);
       }
     }
     return static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
+  }
+
+  // OctreeLeap over the octree's transparent nodes (the composite walks' zero-opacity leap).
+  std::int64_t TransparentOctreeLeap(const double p[3], const Vec3& step)
+  {
+    const MinMaxOctree* tree = this->Frame.octree;
+    return this->OctreeLeap(p, step,
+      [tree](int level, std::uint64_t index)
+      { return tree->GetTransparentFlags(level)[index] != 0; });
   }
 
   // Walks the samples of every interval; visit(p, cell, value) returns false to stop the ray.
@@ -434,17 +459,10 @@ private:
     const IndexRay& ray = pixel.index;
     const double h = this->Settings.sampleDistance;
     const Vec3 step = ray.direction * h;
-    // Distance-map leaps: per axis, 1 / |step| (0 for axes the ray does not move along).
-    const double stepAlong[3] = { step.x, step.y, step.z };
-    double inverseStep[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
-    }
+    const LeapSteps leapSteps(step);
     const bool octree = leapTransparent && this->Frame.useOctree;
     const bool distance = leapTransparent && this->Frame.useDistance;
     const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
-    const MinMaxOctree* tree = this->Frame.octree;
     this->ForgetRejectedLeaf();
     SampleCell cell;
     std::uint64_t& leapCounter =
@@ -470,9 +488,7 @@ private:
         FixedSteps::ToPoint(q, p);
         if (octree)
         {
-          const std::int64_t more = this->OctreeLeap(p, step,
-            [tree](int level, std::uint64_t index)
-            { return tree->GetTransparentFlags(level)[index] != 0; });
+          const std::int64_t more = this->TransparentOctreeLeap(p, step);
           if (more >= 0)
           {
             const std::int64_t skipped = std::min(more + 1, last - k);
@@ -496,7 +512,7 @@ private:
           const int d = info & 0xff;
           if (d > 0)
           {
-            const std::int64_t more = DistanceLeap(cell, d, stepAlong, inverseStep);
+            const std::int64_t more = DistanceLeap(cell, d, leapSteps);
             const std::int64_t skipped = std::min(more + 1, last - k);
             this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
             ++this->Counters.distanceLeaps;

@@ -1,5 +1,5 @@
 // RayCastKernelBatch.inl: composite rays of the common case (one component, trilinear, no
-// mask, distance-map or no leaping, with or without cell leaping) in batches, included inside
+// mask, any leaping, semi-transparent transfer functions) in batches, included inside
 // RayCasterTile. The walk, leaps included, first collects up to BatchSize samples to visit;
 // their trilinear values and opacities then come from tight loops over independent samples,
 // and only then are the visible ones shaded and composited in order. Each sample's arithmetic
@@ -30,17 +30,11 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   const IndexRay& ray = pixel.index;
   const double h = this->Settings.sampleDistance;
   const Vec3 step = ray.direction * h;
-  const double stepAlong[3] = { step.x, step.y, step.z };
-  double inverseStep[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    inverseStep[a] = stepAlong[a] != 0 ? 1.0 / std::abs(stepAlong[a]) : 0.0;
-  }
+  const LeapSteps leapSteps(step);
   const bool octree = frame.useOctree;
   const bool distance = frame.useDistance;
   const bool cellLeap = frame.useCellLeap;
   const bool opaqueBox = frame.useOpaqueBox && (distance || octree);
-  const MinMaxOctree* tree = frame.octree;
   this->ForgetRejectedLeaf();
   BatchedRay state;
   int n = 0;
@@ -78,9 +72,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
         // Walk's octree leap: the largest transparent node around the sample.
         double p[3];
         FixedSteps::ToPoint(q, p);
-        const std::int64_t more = this->OctreeLeap(p, step,
-          [tree](int level, std::uint64_t index)
-          { return tree->GetTransparentFlags(level)[index] != 0; });
+        const std::int64_t more = this->TransparentOctreeLeap(p, step);
         if (more >= 0)
         {
           const std::int64_t skipped = std::min(more + 1, last - k);
@@ -102,7 +94,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
         const int d = info & 0xff;
         if (distance && d > 0)
         {
-          const std::int64_t more = DistanceLeap(cell, d, stepAlong, inverseStep);
+          const std::int64_t more = DistanceLeap(cell, d, leapSteps);
           const std::int64_t skipped = std::min(more + 1, last - k);
           this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
           ++this->Counters.distanceLeaps;
