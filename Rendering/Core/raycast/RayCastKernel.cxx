@@ -406,42 +406,6 @@ private:
     last = std::max(last, first);
   }
 
-  // A ray's step per sample along each axis and its inverse |1 / step| (0 for axes the ray
-  // does not move along), for the distance-map leaps.
-  struct LeapSteps
-  {
-    double along[3];
-    double inverse[3];
-
-    explicit LeapSteps(const Vec3& step)
-      : along{ step.x, step.y, step.z }
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        this->inverse[a] = this->along[a] != 0 ? 1.0 / std::abs(this->along[a]) : 0.0;
-      }
-    }
-  };
-
-  // Samples after the current one a distance-map value d > 0 lets the ray skip. Every cell
-  // within chessboard distance d - 1 is empty: from the sample's place in its cell, along axis
-  // a the ray may go d - f (forward) or d - 1 + f (backward) cells before it can reach a
-  // non-empty one. A small safety margin absorbs the float fraction; one-voxel axes never
-  // change cell.
-  static std::int64_t DistanceLeap(const SampleCell& cell, int d, const LeapSteps& steps)
-  {
-    double room = 1.0e30;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (steps.inverse[a] > 0 && cell.offset[a] != 0)
-      {
-        const double along = steps.along[a] > 0 ? d - cell.f[a] : d - 1 + cell.f[a];
-        room = std::min(room, (along - 1.0e-4) * steps.inverse[a]);
-      }
-    }
-    return static_cast<std::int64_t>(std::max(0.0, std::min(room, 1.0e18)));
-  }
-
   // OctreeLeap over the octree's transparent nodes (the composite walks' zero-opacity leap).
   std::int64_t TransparentOctreeLeap(const double p[3], const Vec3& step)
   {
