@@ -401,6 +401,62 @@ TEST(RayCastEngine, BatchedCompositeIgnoresThreadsAndSimdTarget)
   }
 }
 
+// Composite rays leap the empty space before their first non-empty cell a group at a time
+// (approachTogether); each ray then resumes its own walk where it would have arrived alone:
+// the same bits as rays cast one by one and as no leaping, on both walks (batched for
+// semi-transparent tables, per sample for opaque ones), with cell leaping, with two crop
+// regions (rays of several intervals) and on perspective and parallel views.
+TEST(RayCastEngine, RaysApproachingTogetherLeapAsAlone)
+{
+  std::mt19937 random(29);
+  const int dims[3] = { 41, 27, 33 };
+  for (int trial = 0; trial < 8; ++trial)
+  {
+    const Scene scene =
+      MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::Float32, dims, 0.1 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    const bool opaque = trial % 4 >= 2;
+    for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+    {
+      transfer.rgba[i] = opaque ? std::min(1.0f, 4.0f * transfer.rgba[i]) : 0.3f * transfer.rgba[i];
+    }
+    RayCastLighting lighting;
+    lighting.shade = trial % 3 != 0;
+    lighting.model.lights.emplace_back();
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = trial == 5;
+    if (trial >= 4)
+    {
+      // Two crop regions side by side along x: rays meet one or two intervals.
+      settings.regions = { { { 0, 0, 0 }, { 15, dims[1] - 1.0, dims[2] - 1.0 } },
+        { { 25, 2, 3 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 } } };
+    }
+    const RayCastView view =
+      MakeView(RandomCamera(random, dims, trial % 2 == 1), 47, 39, 1.0, 500.0);
+    const Result together = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_GT(together.counters.distanceLeaps, 100u) << "trial " << trial;
+    EXPECT_GT(together.counters.samples, 20u) << "trial " << trial;
+    settings.approachTogether = false;
+    const Result alone = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(together.rgba, alone.rgba)) << "trial " << trial;
+    EXPECT_EQ(together.counters.rays, alone.counters.rays) << "trial " << trial;
+    settings.leap = LeapMode::None;
+    settings.cellLeap = false;
+    const Result unleaped = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(together.rgba, unleaped.rgba)) << "trial " << trial;
+    if (!opaque)
+    {
+      settings.leap = LeapMode::DistanceMap;
+      settings.approachTogether = true;
+      settings.batchedComposite = false;
+      const Result perSample = Cast(scene, transfer, lighting, view, settings);
+      EXPECT_TRUE(Identical(together.rgba, perSample.rgba)) << "trial " << trial << ": per sample";
+    }
+  }
+}
+
 TEST(RayCastEngine, FixedThreadsParallelForCoversEveryItemOnce)
 {
   for (int threads : { 1, 2, 5 })

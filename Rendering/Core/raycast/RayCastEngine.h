@@ -149,6 +149,10 @@ struct RayCastSettings
   // Composite rays of the common case run in batches (RayCastKernelBatch.inl); false forces
   // the per-sample walk (tests: both give the same bits).
   bool batchedComposite = true;
+  // Composite rays leap the empty space before their first non-empty cell a few neighbours at
+  // a time, the leaps' dependent chains overlapping (RayCastKernelApproach.inl); false: one
+  // ray at a time (tests: both give the same bits).
+  bool approachTogether = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).

@@ -83,6 +83,7 @@ public:
       this->Channels.emplace_back(frame.volume, frame.components, c);
     }
     this->Batching = this->CanBatch();
+    this->ApproachTogether = this->CanApproachTogether();
     // The lanes shade directional and positional lights, not spot lights.
     for (const SceneLight& light : frame.lighting->model.lights)
     {
@@ -102,6 +103,14 @@ public:
     y1 = std::min(y1, visible[3] + 1);
     if (x0 >= x1 || y0 >= y1)
     {
+      return;
+    }
+    if (this->ApproachTogether)
+    {
+      for (int j = y0; j < y1; ++j)
+      {
+        this->CastRowTogether(j, x0, x1, rgba + 4 * static_cast<std::size_t>(j) * width);
+      }
       return;
     }
     if (!this->Frame.useOctree)
@@ -275,6 +284,59 @@ private:
     {
       return;
     }
+    this->RayStart = WalkStart();
+    this->CastFromStart(pixel, out);
+  }
+
+  // Where the current ray's walk begins: sample `sample` of RayIntervals[interval], or the
+  // first sample of the first interval (sample -1). The grouped approach sets it past the empty
+  // space it has leaped already (RayCastKernelApproach.inl).
+  struct WalkStart
+  {
+    std::size_t interval = 0;
+    std::int64_t sample = -1;
+  };
+
+  // The samples [first, last) of `interval` a walk visits; the opaque box's cut is added to
+  // `leaped`.
+  void IntervalSamples(const IndexRay& ray, const Interval& interval, double h, bool opaqueBox,
+    std::int64_t& first, std::int64_t& last, std::uint64_t& leaped) const
+  {
+    const std::int64_t count =
+      static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
+    first = 0;
+    last = count;
+    if (opaqueBox)
+    {
+      this->OpaqueSamples(ray, interval, h, count, first, last);
+      leaped += static_cast<std::uint64_t>(first + (count - last));
+    }
+  }
+
+  // IntervalSamples of RayIntervals[at] for the current ray's walk, which resumes at RayStart
+  // (its interval was counted by the approach).
+  void WalkSamples(const IndexRay& ray, std::size_t at, double h, bool opaqueBox,
+    std::int64_t& first, std::int64_t& last, std::uint64_t& leaped) const
+  {
+    const bool resumed = at == this->RayStart.interval && this->RayStart.sample >= 0;
+    std::uint64_t counted = 0;
+    this->IntervalSamples(
+      ray, this->RayIntervals[at], h, opaqueBox, first, last, resumed ? counted : leaped);
+    if (resumed)
+    {
+      first = this->RayStart.sample;
+    }
+  }
+
+  // CastRay once the ray's intervals and RayStart are set.
+  void CastFromStart(PixelRay& pixel, float* out)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    if (this->RayStart.interval >= this->RayIntervals.size())
+    {
+      ++this->Counters.rays; // leaped through by the grouped approach: adds nothing
+      return;
+    }
     const RayCastLighting& lighting = *this->Frame.lighting;
     if (this->Frame.eyeLightsAtEntry)
     {
@@ -338,6 +400,20 @@ private:
     float colour[3] = { 0, 0, 0 };
     float alpha = 0;
   };
+  // Composite rays a few neighbours at a time (RayCastKernelApproach.inl).
+  static constexpr int ApproachGroup = 4;
+  struct ApproachLane
+  {
+    FixedSteps steps;
+    LeapSteps leap;
+    std::int64_t sample = 0, last = 0;
+    std::size_t interval = 0;
+    bool going = false;
+  };
+  bool CanApproachTogether() const;
+  void CastRowTogether(int j, int x0, int x1, float* row);
+  void Approach(int n);
+  bool ApproachInterval(int g);
   bool CanBatch() const;
   void CompositeBatched(const PixelRay& pixel, float* out);
   bool CompositeBatch(const PixelRay& pixel, int n, BatchedRay& state);
@@ -428,21 +504,16 @@ private:
     const bool distance = leapTransparent && this->Frame.useDistance;
     const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
     this->ForgetRejectedLeaf();
+    this->LastContributed = false;
     SampleCell cell;
     std::uint64_t& leapCounter =
       octree ? this->Counters.leapedOctree : this->Counters.leapedDistance;
     const bool opaqueBox = leapTransparent && this->Frame.useOpaqueBox && (octree || distance);
-    for (const Interval& interval : this->RayIntervals)
+    for (std::size_t at = this->RayStart.interval; at < this->RayIntervals.size(); ++at)
     {
-      const std::int64_t count =
-        static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
-      std::int64_t first = 0;
-      std::int64_t last = count;
-      if (opaqueBox)
-      {
-        this->OpaqueSamples(ray, interval, h, count, first, last);
-        leapCounter += static_cast<std::uint64_t>(first + (count - last));
-      }
+      const Interval& interval = this->RayIntervals[at];
+      std::int64_t first, last;
+      this->WalkSamples(ray, at, h, opaqueBox, first, last, leapCounter);
       const FixedSteps steps(ray, interval.t0, h);
       for (std::int64_t k = first; k < last; ++k)
       {
@@ -733,6 +804,13 @@ private:
   const std::array<CellLeapCase, 256>& Table;
   DistanceTemplate Template;
   std::vector<Interval> RayIntervals;
+  WalkStart RayStart;
+  bool ApproachTogether = false; // composite rays approach their first non-empty cell together
+  PixelRay GroupPixels[ApproachGroup];
+  std::vector<Interval> GroupIntervals[ApproachGroup];
+  bool GroupHits[ApproachGroup];
+  WalkStart GroupStarts[ApproachGroup];
+  ApproachLane GroupLanes[ApproachGroup];
   std::vector<PixelRay> Rays;
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
@@ -745,6 +823,7 @@ private:
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };
 
+#include "raycast/RayCastKernelApproach.inl"
 #include "raycast/RayCastKernelBatch.inl"
 #include "raycast/RayCastKernelComponents.inl"
 #include "raycast/RayCastKernelPlanes.inl"

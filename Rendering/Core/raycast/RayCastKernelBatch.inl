@@ -45,22 +45,12 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   const T* voxels = this->Sampling.Voxels();
   const bool prefetchGradients = frame.gradients != nullptr && frame.lighting->shade;
   bool going = true;
-  for (const Interval& interval : this->RayIntervals)
+  for (std::size_t at = this->RayStart.interval; going && at < this->RayIntervals.size(); ++at)
   {
-    if (!going)
-    {
-      break;
-    }
-    const std::int64_t count =
-      static_cast<std::int64_t>(std::floor((interval.t1 - interval.t0) / h + 0.5));
-    std::int64_t first = 0;
-    std::int64_t last = count;
-    if (opaqueBox)
-    {
-      this->OpaqueSamples(ray, interval, h, count, first, last);
-      (octree ? this->Counters.leapedOctree : this->Counters.leapedDistance) +=
-        static_cast<std::uint64_t>(first + (count - last));
-    }
+    const Interval& interval = this->RayIntervals[at];
+    std::int64_t first, last;
+    this->WalkSamples(ray, at, h, opaqueBox, first, last,
+      octree ? this->Counters.leapedOctree : this->Counters.leapedDistance);
     const FixedSteps steps(ray, interval.t0, h);
     for (std::int64_t k = first; k < last; ++k)
     {

@@ -83,9 +83,10 @@ ACCELVOLUME_ALWAYS_INLINE void InterpolateGradient(const std::int16_t* d,
 // does not move along), for the distance-map leaps.
 struct LeapSteps
 {
-  double along[3];
-  double inverse[3];
+  double along[3] = { 0, 0, 0 };
+  double inverse[3] = { 0, 0, 0 };
 
+  LeapSteps() = default;
   explicit LeapSteps(const Vec3& step)
     : along{ step.x, step.y, step.z }
   {
@@ -125,6 +126,7 @@ struct FixedSteps
   std::int64_t start[3] = { 0, 0, 0 };
   std::int64_t step[3] = { 0, 0, 0 };
 
+  FixedSteps() = default;
   FixedSteps(const IndexRay& ray, double t0, double h)
   {
     const double t = t0 + 0.5 * h;
