@@ -295,6 +295,7 @@ private:
   {
     std::size_t interval = 0;
     std::int64_t sample = -1;
+    std::int64_t last = 0; // the end of that interval's samples, when sample >= 0
   };
 
   // The samples [first, last) of `interval` a walk visits; the opaque box's cut is added to
@@ -314,18 +315,17 @@ private:
   }
 
   // IntervalSamples of RayIntervals[at] for the current ray's walk, which resumes at RayStart
-  // (its interval was counted by the approach).
+  // (the approach has found that interval's samples and counted its cut).
   void WalkSamples(const IndexRay& ray, std::size_t at, double h, bool opaqueBox,
     std::int64_t& first, std::int64_t& last, std::uint64_t& leaped) const
   {
-    const bool resumed = at == this->RayStart.interval && this->RayStart.sample >= 0;
-    std::uint64_t counted = 0;
-    this->IntervalSamples(
-      ray, this->RayIntervals[at], h, opaqueBox, first, last, resumed ? counted : leaped);
-    if (resumed)
+    if (at == this->RayStart.interval && this->RayStart.sample >= 0)
     {
       first = this->RayStart.sample;
+      last = this->RayStart.last;
+      return;
     }
+    this->IntervalSamples(ray, this->RayIntervals[at], h, opaqueBox, first, last, leaped);
   }
 
   // CastRay once the ray's intervals and RayStart are set.

@@ -112,6 +112,7 @@ void RayCasterTile<T>::Approach(int n)
       {
         start.interval = lane.interval;
         start.sample = lane.sample;
+        start.last = lane.last;
         lane.going = false;
         --pending;
         continue;
