@@ -102,7 +102,8 @@ struct LeapSteps
 // a the ray may go d - f (forward) or d - 1 + f (backward) cells before it can reach a
 // non-empty one. A small safety margin absorbs the float fraction; one-voxel axes never
 // change cell.
-ACCELVOLUME_ALWAYS_INLINE std::int64_t DistanceLeap(const SampleCell& cell, int d, const LeapSteps& steps)
+ACCELVOLUME_ALWAYS_INLINE std::int64_t DistanceLeap(
+  const SampleCell& cell, int d, const LeapSteps& steps)
 {
   double room = 1.0e30;
   for (int a = 0; a < 3; ++a)
