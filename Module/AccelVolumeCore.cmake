@@ -58,11 +58,13 @@ if (NOT TARGET AccelVolumeCore)
       CXX_STANDARD_REQUIRED ON
       CXX_EXTENSIONS OFF)
   endforeach ()
-  # The ray caster's lane loops vectorise square roots only without errno (results unchanged:
-  # IEEE square roots either way), and never contract a * b + c into FMA, so that every SIMD
-  # target (RayCastKernelBatch.inl's clones) gives the same bits.
+  # The ray caster's lane loops vectorise square roots only without errno, and selects between
+  # two computed values (a division or square root in the unused arm) only without trapping
+  # maths (results unchanged either way: IEEE operations, only errno and exception traps go);
+  # they never contract a * b + c into FMA, so that every SIMD target (RayCastKernelBatch.inl's
+  # clones) gives the same bits.
   if (CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     set_source_files_properties("${_av_core_root}/raycast/RayCastKernel.cxx"
-      PROPERTIES COMPILE_OPTIONS "-fno-math-errno;-ffp-contract=off")
+      PROPERTIES COMPILE_OPTIONS "-fno-math-errno;-fno-trapping-math;-ffp-contract=off")
   endif ()
 endif ()
