@@ -585,4 +585,40 @@ TEST(Geometry, RayRegionMatchesBruteForce)
     IntersectRayRegion({ 0.5, 0.5, 0.5 }, { 1, 0, 0 }, { { 1, 1, 1 }, { 0, 0, 0 } }, {}, t0, t1));
 }
 
+// The box's faces are narrowed with their dot products written out (IntersectRayRegion runs
+// per ray): the same bits as the same faces passed as general half-spaces of a box that does
+// not bound the ray, axis-parallel rays and rays starting on a face included.
+TEST(Geometry, RayBoxFacesMatchTheirHalfSpacesExactly)
+{
+  std::mt19937 random(17);
+  const Box everywhere{ { -1e30, -1e30, -1e30 }, { 1e30, 1e30, 1e30 } };
+  int hits = 0;
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    const Box box = RandomBox(random);
+    Vec3 origin = RandomPoint(random, { { -10, -10, -10 }, { 10, 10, 10 } });
+    Vec3 direction = Normalize(RandomPoint(random, box) + 0.3 * RandomUnit(random) - origin);
+    if (trial % 5 == 1)
+    {
+      direction = { trial % 3 == 0 ? 1.0 : 0.0, trial % 3 == 1 ? -1.0 : 0.0,
+        trial % 3 == 2 ? 1.0 : 0.0 };
+    }
+    if (trial % 7 == 2)
+    {
+      origin.x = box.lower.x; // on a face
+    }
+    double t0 = 0, t1 = 0, u0 = 0, u1 = 0;
+    const bool hit = IntersectRayRegion(origin, direction, box, {}, t0, t1);
+    const bool same = IntersectRayRegion(origin, direction, everywhere, BoxHalfSpaces(box), u0, u1);
+    ASSERT_EQ(hit, same) << "trial " << trial;
+    if (hit)
+    {
+      ++hits;
+      EXPECT_EQ(t0, u0) << "trial " << trial;
+      EXPECT_EQ(t1, u1) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(hits, 500);
+}
+
 } // namespace

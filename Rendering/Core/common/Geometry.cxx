@@ -468,11 +468,9 @@ bool IntersectRayRegion(const Vec3& origin, const Vec3& direction, const Box& bo
   }
   double enter = -std::numeric_limits<double>::infinity();
   double leave = std::numeric_limits<double>::infinity();
-  auto narrow = [&](const HalfSpace& halfSpace)
+  // rate * t + value >= 0 bounds t from one side.
+  auto narrowBy = [&](double rate, double value)
   {
-    // Dot(n, origin + t * direction) + offset >= 0 bounds t from one side.
-    const double rate = Dot(halfSpace.normal, direction);
-    const double value = Dot(halfSpace.normal, origin) + halfSpace.offset;
     if (rate > 0)
     {
       enter = std::max(enter, -value / rate);
@@ -487,13 +485,20 @@ bool IntersectRayRegion(const Vec3& origin, const Vec3& direction, const Box& bo
     }
     return enter <= leave;
   };
-  // The box's six half-spaces (BoxHalfSpaces' order), without allocating: this runs per ray.
-  const HalfSpace faces[6] = { { { 1, 0, 0 }, -box.lower.x }, { { -1, 0, 0 }, box.upper.x },
-    { { 0, 1, 0 }, -box.lower.y }, { { 0, -1, 0 }, box.upper.y },
-    { { 0, 0, 1 }, -box.lower.z }, { { 0, 0, -1 }, box.upper.z } };
-  for (const HalfSpace& halfSpace : faces)
+  auto narrow = [&](const HalfSpace& halfSpace)
   {
-    if (!narrow(halfSpace))
+    return narrowBy(
+      Dot(halfSpace.normal, direction), Dot(halfSpace.normal, origin) + halfSpace.offset);
+  };
+  // The box's six half-spaces (BoxHalfSpaces' order) with their unit normals' dot products
+  // written out (the same values: this runs per ray).
+  const double o[3] = { origin.x, origin.y, origin.z };
+  const double d[3] = { direction.x, direction.y, direction.z };
+  const double lower[3] = { box.lower.x, box.lower.y, box.lower.z };
+  const double upper[3] = { box.upper.x, box.upper.y, box.upper.z };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!narrowBy(d[a], o[a] + -lower[a]) || !narrowBy(-d[a], -o[a] + upper[a]))
     {
       return false;
     }
