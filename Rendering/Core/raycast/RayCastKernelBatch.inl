@@ -39,8 +39,8 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   BatchedRay state;
   int n = 0;
   int flushAt = BatchSize / 2;
-  // The last cell the map found non-empty: its samples need no second look.
-  std::size_t filledCell = static_cast<std::size_t>(-1);
+  // The last cell the map found non-empty (its voxel offset): its samples need no second look.
+  std::ptrdiff_t filledCell = -1;
   int skipLookUp = 0;
   const T* voxels = this->Sampling.Voxels();
   const bool prefetchGradients = frame.gradients != nullptr && frame.lighting->shade;
@@ -73,12 +73,14 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
         }
       }
       SampleCell& cell = sample.cell;
-      this->Sampling.LocateFixed(q, cell);
+      int coordinates[3];
+      this->Sampling.LocateFixedCell(q, cell, coordinates);
       // In matter, the map is read every other sample only (reading it never changes the
-      // image, only how far the ray may leap).
-      const bool lookUp = cellLeap || (distance && cell.cell != filledCell && skipLookUp-- <= 0);
+      // image, only how far the ray may leap); the cell's index is needed only then.
+      const bool lookUp = cellLeap || (distance && cell.base != filledCell && skipLookUp-- <= 0);
       if (lookUp)
       {
+        cell.cell = this->Sampling.CellIndex(coordinates);
         const std::uint16_t info =
           frame.distanceOnly ? frame.distanceOnly[cell.cell] : frame.cellInfo[cell.cell];
         const int d = info & 0xff;
@@ -110,7 +112,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
             continue;
           }
         }
-        filledCell = cell.cell;
+        filledCell = cell.base;
         skipLookUp = 1;
       }
       // The batch's loads start now: its voxels, and its gradients when shading needs them

@@ -189,6 +189,7 @@ public:
 
   void Locate(const double p[3], SampleCell& s) const
   {
+    int c[3];
     this->LocateWith(s,
       [p](int a, int n, int& i, float& f)
       {
@@ -196,12 +197,23 @@ public:
         const double q = p[a] > 0 ? (p[a] < n - 1 ? p[a] : n - 1.0) : 0.0;
         i = std::min(static_cast<int>(q), n - 2);
         f = static_cast<float>(q - i);
-      });
+      },
+      c);
+    s.cell = this->CellIndex(c);
   }
 
   // Locate for a fixed-point position (FixedSteps): the same cell, fractions included, as
   // Locate(FixedSteps::ToPoint(q)) (the unit tests compare them), from integer operations.
   void LocateFixed(const std::int64_t q[3], SampleCell& s) const
+  {
+    int c[3];
+    this->LocateFixedCell(q, s, c);
+    s.cell = this->CellIndex(c);
+  }
+
+  // LocateFixed without SampleCell::cell, which is left as it was: the cell's coordinates go
+  // to `c`, for CellIndex when the caller needs the index (it costs more than the rest).
+  void LocateFixedCell(const std::int64_t q[3], SampleCell& s, int c[3]) const
   {
     this->LocateWith(s,
       [q](int a, int n, int& i, float& f)
@@ -211,8 +223,12 @@ public:
         i = std::min(static_cast<int>(clamped >> 32), n - 2);
         f = static_cast<float>(clamped - (static_cast<std::int64_t>(i) << 32)) *
           (1.0f / 4294967296.0f);
-      });
+      },
+      c);
   }
+
+  // SampleCell::cell of the cell with coordinates c.
+  std::size_t CellIndex(const int c[3]) const { return this->Bricks.Index(c[0], c[1], c[2]); }
 
   const T* Voxels() const { return this->Data; }
 
@@ -261,12 +277,12 @@ public:
 
 private:
   // Locate's and LocateFixed's common part: axis(a, n, i, f) finds the cell index i and the
-  // fraction f along axis a, which has n > 1 voxels; one-voxel axes keep cell 0.
+  // fraction f along axis a, which has n > 1 voxels; one-voxel axes keep cell 0. The cell's
+  // coordinates go to c.
   template <typename Axis>
-  void LocateWith(SampleCell& s, Axis&& axis) const
+  void LocateWith(SampleCell& s, Axis&& axis, int c[3]) const
   {
     std::ptrdiff_t base = 0;
-    int c[3];
     for (int a = 0; a < 3; ++a)
     {
       const int n = this->Dims[a];
@@ -286,7 +302,6 @@ private:
       c[a] = i;
     }
     s.base = base;
-    s.cell = this->Bricks.Index(c[0], c[1], c[2]);
   }
 
   const T* Data;
