@@ -190,7 +190,8 @@ public:
   void Locate(const double p[3], SampleCell& s) const
   {
     int c[3];
-    this->LocateWith(s,
+    this->LocateWith(
+      s,
       [p](int a, int n, int& i, float& f)
       {
         // Clamp like GL_CLAMP_TO_EDGE; the comparisons also turn NaN into 0.
@@ -215,7 +216,8 @@ public:
   // to `c`, for CellIndex when the caller needs the index (it costs more than the rest).
   void LocateFixedCell(const std::int64_t q[3], SampleCell& s, int c[3]) const
   {
-    this->LocateWith(s,
+    this->LocateWith(
+      s,
       [q](int a, int n, int& i, float& f)
       {
         const std::int64_t top = static_cast<std::int64_t>(n - 1) << 32;
