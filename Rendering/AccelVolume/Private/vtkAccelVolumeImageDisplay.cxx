@@ -48,11 +48,17 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   state->Push();
   this->Image->SetContext(window);
   state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-  bool ok = this->Image->GetHandle() &&
-      this->Image->GetWidth() == static_cast<unsigned>(rectangleWidth) &&
-      this->Image->GetHeight() == static_cast<unsigned>(rectangleHeight)
-    ? true
-    : this->Image->Create2D(rectangleWidth, rectangleHeight, 4, VTK_UNSIGNED_SHORT, false);
+  // With one ray per pixel the shader fetches texels by index, so a texture of the whole image
+  // serves every rectangle: it is made once, not anew whenever the rectangle's size changes
+  // (every frame of a turning camera). Filtered lookups (fewer rays than pixels) clamp at the
+  // rectangle's edges and need a texture of its exact size.
+  const bool texelPerPixel = imageWidth == width && imageHeight == height;
+  const unsigned textureWidth = static_cast<unsigned>(texelPerPixel ? imageWidth : rectangleWidth);
+  const unsigned textureHeight =
+    static_cast<unsigned>(texelPerPixel ? imageHeight : rectangleHeight);
+  bool ok = (this->Image->GetHandle() && this->Image->GetWidth() == textureWidth &&
+              this->Image->GetHeight() == textureHeight) ||
+    this->Image->Create2D(textureWidth, textureHeight, 4, VTK_UNSIGNED_SHORT, false);
   if (ok)
   {
     this->Image->Activate();
