@@ -72,7 +72,6 @@ bool RayCasterTile<T>::ApproachInterval(int g)
 template <typename T>
 void RayCasterTile<T>::Approach(int n)
 {
-  const KernelFrame& frame = this->Frame;
   const double h = this->Settings.sampleDistance;
   int pending = 0;
   for (int g = 0; g < n; ++g)
@@ -105,8 +104,7 @@ void RayCasterTile<T>::Approach(int n)
       lane.steps.At(lane.sample, q);
       SampleCell cell;
       this->Sampling.LocateFixed(q, cell);
-      const int d =
-        (frame.distanceOnly ? frame.distanceOnly[cell.cell] : frame.cellInfo[cell.cell]) & 0xff;
+      const int d = this->LeapEntry(cell) & 0xff;
       WalkStart& start = this->GroupStarts[g];
       if (d == 0)
       {
@@ -117,11 +115,7 @@ void RayCasterTile<T>::Approach(int n)
         --pending;
         continue;
       }
-      const std::int64_t skipped =
-        std::min(DistanceLeap(cell, d, lane.leap) + 1, lane.last - lane.sample);
-      this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
-      ++this->Counters.distanceLeaps;
-      lane.sample += skipped;
+      lane.sample += this->CountedDistanceLeap(cell, d, lane.leap, lane.last - lane.sample);
       if (lane.sample >= lane.last)
       {
         ++lane.interval;

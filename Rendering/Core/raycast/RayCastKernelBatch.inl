@@ -81,16 +81,11 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
       if (lookUp)
       {
         cell.cell = this->Sampling.CellIndex(coordinates);
-        const std::uint16_t info =
-          frame.distanceOnly ? frame.distanceOnly[cell.cell] : frame.cellInfo[cell.cell];
+        const std::uint16_t info = this->LeapEntry(cell);
         const int d = info & 0xff;
         if (distance && d > 0)
         {
-          const std::int64_t more = DistanceLeap(cell, d, leapSteps);
-          const std::int64_t skipped = std::min(more + 1, last - k);
-          this->Counters.leapedDistance += static_cast<std::uint64_t>(skipped);
-          ++this->Counters.distanceLeaps;
-          k += skipped - 1;
+          k += this->CountedDistanceLeap(cell, d, leapSteps, last - k) - 1;
           continue;
         }
         if (cellLeap)
