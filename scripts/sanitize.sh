@@ -29,10 +29,11 @@
 #         encoding, partition, min-max octree parallel build and classification, distance map,
 #         cell classification, reference renderers, progress, phantoms (2-7 threads each)
 #     ACCELVOLUME_TEST_SUBSET=sanitizer ctest -L '^image$' -LE '^mpi$' -R "$tsan_image_regex"
-#         (RayCastExact then checks every third multi-component case, for time) the image tests whose vtkSMPTools loops vary the thread count or cover a loop no
-#         other test does: ray caster (exact, modes, sample distances), shear-warp (exact,
-#         modes), min-max octree, progress, shaded slice composite (gradients); 1-3 threads
-#         asked, as many as cores used. Left to the ASan run, for time: the agreement, smart
+#         (for time, RayCastExact then checks every third multi-component case and
+#         ShearWarpExact 2 threads only) the image tests whose vtkSMPTools loops vary the
+#         thread count or cover a loop no other test does: ray caster (exact, modes, sample
+#         distances), shear-warp (exact, modes), min-max octree, progress, shaded slice
+#         composite (gradients); 1-3 threads asked, as many as cores used. Left to the ASan run, for time: the agreement, smart
 #         mapper and mixed-geometry tests (the same loops as the tests above).
 #   In this build vtkSMPTools runs on its STDThread backend (Debian's default, TBB, is not
 #   instrumented: every loop would be reported) and llvmpipe on the calling thread
