@@ -15,6 +15,7 @@ set(_av_core_sources
   skipping/DistanceTemplate
   skipping/MinMaxOctree
   skipping/MinMaxOctreeQueries
+  skipping/OctantDistanceMap
   skipping/OpacityRange
   slicing/Bricking
   slicing/CompositeSlices

@@ -1,6 +1,9 @@
-// TestDistanceMap: the chessboard distance map of non-empty cells vs a brute-force oracle.
+// TestDistanceMap: the chessboard distance map of non-empty cells, and the per-octant maps, vs
+// brute-force oracles.
 #include "MinMaxOctreeTestSupport.h"
+#include "skipping/CellBricks.h"
 #include "skipping/DistanceMap.h"
+#include "skipping/OctantDistanceMap.h"
 
 #include <gtest/gtest.h>
 
@@ -189,6 +192,134 @@ TEST(DistanceMap, ReusesTheOutputBuffer)
   const int bad[3] = { 0, 1, 1 };
   ComputeDistanceMap(bad, {}, SerialFor, distance);
   EXPECT_TRUE(distance.empty());
+}
+
+// Per octant: the largest empty cube with its corner at the cell, extending along the octant's
+// signs (cells outside the grid empty), capped; searched side by side.
+std::vector<std::uint8_t> OctantBruteForce(
+  const int dims[3], const std::vector<std::uint8_t>& flags, int octant)
+{
+  const int sign[3] = { octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1 };
+  auto filled = [&](int x, int y, int z)
+  {
+    return x >= 0 && y >= 0 && z >= 0 && x < dims[0] && y < dims[1] && z < dims[2] &&
+      flags[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x] != 0;
+  };
+  std::vector<std::uint8_t> result(flags.size());
+  for (int z = 0; z < dims[2]; ++z)
+  {
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        // Cells inside the grid ahead of (x, y, z) along each axis: past them the cube only
+        // grows over empty outside cells.
+        const int ahead[3] = { sign[0] > 0 ? dims[0] - x : x + 1, sign[1] > 0 ? dims[1] - y : y + 1,
+          sign[2] > 0 ? dims[2] - z : z + 1 };
+        const int reach = std::max({ ahead[0], ahead[1], ahead[2] });
+        int side = 0;
+        // Grow the cube by its new shell while the shell is empty.
+        while (side < DistanceMapSaturation)
+        {
+          if (side >= reach)
+          {
+            side = DistanceMapSaturation;
+            break;
+          }
+          bool empty = true;
+          for (int k = 0; k <= std::min(side, ahead[2] - 1) && empty; ++k)
+          {
+            for (int j = 0; j <= std::min(side, ahead[1] - 1) && empty; ++j)
+            {
+              for (int i = 0; i <= std::min(side, ahead[0] - 1) && empty; ++i)
+              {
+                if (std::max({ i, j, k }) == side &&
+                  filled(x + sign[0] * i, y + sign[1] * j, z + sign[2] * k))
+                {
+                  empty = false;
+                }
+              }
+            }
+          }
+          if (!empty)
+          {
+            break;
+          }
+          ++side;
+        }
+        result[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x] =
+          static_cast<std::uint8_t>(side);
+      }
+    }
+  }
+  return result;
+}
+
+// ComputeOctantDistanceMap's result in row-major order (its input and output are bricked).
+std::vector<std::uint8_t> OctantMap(
+  const int dims[3], const std::vector<std::uint8_t>& flags, int octant)
+{
+  const CellBricks bricks(dims);
+  std::vector<std::uint8_t> bricked;
+  bricks.Reorder(dims, ComputeDistanceMap(dims, flags, SerialFor), bricked, SerialFor);
+  std::vector<std::uint8_t> map;
+  ComputeOctantDistanceMap(dims, bricked.data(), octant, map);
+  EXPECT_EQ(map.size(), bricks.Entries());
+  std::vector<std::uint8_t> rowMajor(flags.size());
+  bricks.ForEachCell(dims, SerialFor,
+    [&](std::size_t i, std::size_t brickedIndex) { rowMajor[i] = map[brickedIndex]; });
+  return rowMajor;
+}
+
+TEST(OctantDistanceMap, MatchesBruteForceInEveryOctant)
+{
+  std::mt19937 random(17);
+  const int shapes[][3] = { { 1, 1, 1 }, { 1, 7, 1 }, { 13, 1, 1 }, { 5, 1, 9 }, { 7, 6, 5 },
+    { 3, 17, 4 }, { 16, 15, 14 }, { 21, 9, 10 } };
+  for (const auto& dims : shapes)
+  {
+    for (double density : { 0.0, 0.01, 0.05, 0.3, 1.0 })
+    {
+      const std::vector<std::uint8_t> flags = RandomFlags(dims, density, random);
+      const std::vector<std::uint8_t> chessboard = BruteForce(dims, flags);
+      for (int octant = 0; octant < 8; ++octant)
+      {
+        const std::vector<std::uint8_t> map = OctantMap(dims, flags, octant);
+        ASSERT_EQ(map, OctantBruteForce(dims, flags, octant))
+          << dims[0] << "x" << dims[1] << "x" << dims[2] << " density " << density << " octant "
+          << octant;
+        // Never shorter than the chessboard map's leap: its cube holds the octant's.
+        for (std::size_t i = 0; i < map.size(); ++i)
+        {
+          ASSERT_GE(map[i], chessboard[i]) << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(OctantDistanceMap, SaturatesAndLooksOnlyAhead)
+{
+  // 300 cells along one axis with one non-empty cell at 10: ahead of it (towards it) the side
+  // is the distance to it, behind it the cap; capped at 255.
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    int dims[3] = { 1, 1, 1 };
+    dims[axis] = 300;
+    std::vector<std::uint8_t> flags(300, 0);
+    flags[10] = 1;
+    for (int octant : { 0, 1 << axis })
+    {
+      const std::vector<std::uint8_t> map = OctantMap(dims, flags, octant);
+      const bool forward = octant == 0;
+      for (int i = 0; i < 300; ++i)
+      {
+        const int towards = forward ? (i <= 10 ? 10 - i : DistanceMapSaturation)
+                                    : (i >= 10 ? i - 10 : DistanceMapSaturation);
+        ASSERT_EQ(map[i], std::min(towards, DistanceMapSaturation)) << axis << " " << i;
+      }
+    }
+  }
 }
 
 TEST(DistanceMap, RejectsBadInput)

@@ -457,6 +457,123 @@ TEST(RayCastEngine, RaysApproachingTogetherLeapAsAlone)
   }
 }
 
+// Distance-map leaping reads per ray its direction octant's map (octantDistanceMaps): the same
+// bits as the chessboard map alone and as no leaping, with fewer leaps, on views whose rays head
+// into one octant (parallel), four (straight down the z axis) and more (the eye inside the
+// volume, a wide view), on both walks; the frame builds the maps of exactly those octants.
+TEST(RayCastEngine, OctantDistanceMapsLeapFartherWithTheSameImage)
+{
+  std::mt19937 random(41);
+  const int dims[3] = { 41, 27, 33 };
+  const Vec3 centre{ 20, 13, 16 };
+  // One octant's map in CellBricks layout: 10 x 7 x 8 bricks of 64 cells.
+  const std::size_t octantBytes = 10 * 7 * 8 * 64;
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    const Scene scene =
+      MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::UInt8, dims, 0.1 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    const bool opaque = trial % 2 == 1;
+    for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+    {
+      transfer.rgba[i] = opaque ? std::min(1.0f, 4.0f * transfer.rgba[i]) : 0.3f * transfer.rgba[i];
+    }
+    RayCastLighting lighting;
+    lighting.shade = true;
+    lighting.model.lights.emplace_back();
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = false; // the octant maps replace the chessboard map read alone
+    Camera camera = RandomCamera(random, dims, true);
+    std::size_t octants = 1;
+    if (trial >= 2)
+    {
+      camera.parallel = false;
+      camera.focalPoint = centre;
+      camera.position = centre + Vec3{ 0, 0, 70 };
+      camera.viewUp = { 0, 1, 0 };
+      camera.viewAngleDegrees = 50;
+      octants = 4;
+    }
+    if (trial >= 4)
+    {
+      camera.position = centre + Vec3{ -4, -3, -2 };
+      camera.focalPoint = centre + Vec3{ 6, 6, 6 };
+      camera.viewUp = { 0, 0, 1 };
+      camera.viewAngleDegrees = 120;
+      octants = 0; // counted below: more than four
+    }
+    const RayCastView view = MakeView(camera, 45, 37, 0.5, 500.0);
+    RayCaster caster;
+    Result withOctants;
+    std::string error;
+    ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+      view, settings, SerialFor, withOctants.rgba, withOctants.counters, error))
+      << error;
+    const std::size_t bytesWithOctants = caster.GetAccelerationBytes();
+    settings.octantDistanceMaps = false;
+    Result chessboard;
+    RayCaster alone;
+    ASSERT_TRUE(alone.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+      view, settings, SerialFor, chessboard.rgba, chessboard.counters, error))
+      << error;
+    const std::size_t built = (bytesWithOctants - alone.GetAccelerationBytes()) / octantBytes;
+    if (octants > 0)
+    {
+      EXPECT_EQ(built, octants) << "trial " << trial;
+    }
+    else
+    {
+      EXPECT_GT(built, 4u) << "trial " << trial;
+    }
+    EXPECT_TRUE(Identical(withOctants.rgba, chessboard.rgba)) << "trial " << trial;
+    EXPECT_GT(chessboard.counters.distanceLeaps, 100u) << "trial " << trial;
+    EXPECT_LT(withOctants.counters.distanceLeaps, chessboard.counters.distanceLeaps)
+      << "trial " << trial;
+    EXPECT_GT(withOctants.counters.samples, 20u) << "trial " << trial;
+    settings.octantDistanceMaps = true;
+    settings.batchedComposite = false;
+    const Result perSample = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(withOctants.rgba, perSample.rgba)) << "trial " << trial << ": per sample";
+    settings.leap = LeapMode::None;
+    const Result unleaped = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(withOctants.rgba, unleaped.rgba)) << "trial " << trial;
+  }
+  // One caster, the view from inside (more than four maps), then a parallel view: at most four
+  // maps stay, the new view's among them, and its image is a fresh caster's.
+  const Scene scene = MakeScene(ScalarType::UInt8, dims, 0.2);
+  RayCastTransfer transfer;
+  transfer.rgba = RandomTable(random, 256, false);
+  RayCastLighting lighting;
+  RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+  settings.leap = LeapMode::DistanceMap;
+  settings.cellLeap = false;
+  Camera inside = RandomCamera(random, dims, false);
+  inside.position = centre + Vec3{ -4, -3, -2 };
+  inside.focalPoint = centre + Vec3{ 6, 6, 6 };
+  inside.viewAngleDegrees = 120;
+  RayCaster caster;
+  Result first, second;
+  std::string error;
+  ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+    MakeView(inside, 45, 37, 0.5, 500.0), settings, SerialFor, first.rgba, first.counters, error));
+  const std::size_t insideBytes = caster.GetAccelerationBytes();
+  const RayCastView parallelView = MakeView(RandomCamera(random, dims, true), 45, 37, 0.5, 500.0);
+  ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+    parallelView, settings, SerialFor, second.rgba, second.counters, error));
+  const std::size_t held = caster.GetAccelerationBytes();
+  EXPECT_LT(held, insideBytes);
+  settings.octantDistanceMaps = false;
+  RayCaster alone;
+  Result chessboard;
+  ASSERT_TRUE(alone.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
+    parallelView, settings, SerialFor, chessboard.rgba, chessboard.counters, error));
+  EXPECT_LE(held - alone.GetAccelerationBytes(), 4 * octantBytes);
+  EXPECT_TRUE(Identical(second.rgba, chessboard.rgba));
+  EXPECT_LT(second.counters.distanceLeaps, chessboard.counters.distanceLeaps);
+}
+
 TEST(RayCastEngine, FixedThreadsParallelForCoversEveryItemOnce)
 {
   for (int threads : { 1, 2, 5 })

@@ -411,6 +411,7 @@ void RayCaster::Internals::UpdateComponentCells(const VolumeView& volume,
   std::vector<std::uint8_t>().swap(cells.configuration);
   this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
   BuildDistanceOnly(cells, parallel, this->DistanceOnly);
+  ++this->DistanceBuilds;
   this->Packed = false;
   std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
   this->CellInfoHasDistance = true;
@@ -484,6 +485,7 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
     BuildDistanceOnly(cells, parallel, this->DistanceOnly);
+    ++this->DistanceBuilds;
   }
   else
   {

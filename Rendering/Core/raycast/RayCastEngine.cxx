@@ -2,11 +2,12 @@
 #include "raycast/RayCastEngine.h"
 #include "raycast/RayCastEngineInternals.h"
 
-#include "skipping/CellClassification.h"
-#include "skipping/DistanceMap.h"
-#include "skipping/OpacityRange.h"
 #include "raycast/RayCastKernel.h"
 #include "raycast/RayCastPixelRay.h"
+#include "skipping/CellClassification.h"
+#include "skipping/DistanceMap.h"
+#include "skipping/OctantDistanceMap.h"
+#include "skipping/OpacityRange.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,11 +48,88 @@ std::size_t RayCaster::GetAccelerationBytes() const
   const Internals& impl = *this->Impl;
   std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) + impl.DistanceOnly.size() +
     impl.Gradients.size() * sizeof(std::int16_t);
+  for (const std::vector<std::uint8_t>& map : impl.OctantDistance)
+  {
+    bytes += map.size();
+  }
   if (impl.OctreeBuilt)
   {
     bytes += impl.Octree.GetNumberOfNodes() * (2 * sizeof(float) + 1);
   }
   return bytes;
+}
+
+void RayCaster::Internals::UpdateOctantMaps(detail::KernelFrame& frame, const ParallelFor& parallel)
+{
+  // A ray direction's components are linear over the image plane before normalising, so the
+  // corner pixels' rays show every sign the rays between them take.
+  bool needed[8] = { false, false, false, false, false, false, false, false };
+  if (frame.distanceOnly != nullptr && frame.visible[0] <= frame.visible[1] &&
+    frame.visible[2] <= frame.visible[3])
+  {
+    bool negative[3] = { false, false, false }, positive[3] = { false, false, false };
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      const Vec3 d =
+        detail::MakePixelRay(frame, frame.visible[corner & 1], frame.visible[2 + (corner >> 1)])
+          .index.direction;
+      const double components[3] = { d.x, d.y, d.z };
+      for (int a = 0; a < 3; ++a)
+      {
+        (components[a] < 0 ? negative : positive)[a] = true;
+      }
+    }
+    for (int octant = 0; octant < 8; ++octant)
+    {
+      needed[octant] = true;
+      for (int a = 0; a < 3; ++a)
+      {
+        needed[octant] = needed[octant] && ((octant >> a) & 1 ? negative[a] : positive[a]);
+      }
+    }
+  }
+  // Maps another view needed stay while current, up to MaximumHeld in all (a camera turning
+  // back and forth does not rebuild them; memory stays at most that many bytes per cell, or
+  // the eight of a view from inside the volume).
+  constexpr int MaximumHeld = 4;
+  std::vector<int> build;
+  bool current[8];
+  int held = 0;
+  for (int octant = 0; octant < 8; ++octant)
+  {
+    current[octant] = this->OctantDistanceBuild[octant] == this->DistanceBuilds &&
+      !this->OctantDistance[octant].empty();
+    if (needed[octant] && !current[octant])
+    {
+      build.push_back(octant);
+    }
+    held += needed[octant] || current[octant] ? 1 : 0;
+  }
+  for (int octant = 0; octant < 8; ++octant)
+  {
+    if (!needed[octant] && (!current[octant] || held > MaximumHeld))
+    {
+      held -= current[octant] ? 1 : 0;
+      std::vector<std::uint8_t>().swap(this->OctantDistance[octant]);
+    }
+  }
+  parallel(build.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t b = begin; b < end; ++b)
+      {
+        ComputeOctantDistanceMap(
+          this->CellDims, this->DistanceOnly.data(), build[b], this->OctantDistance[build[b]]);
+      }
+    });
+  for (int octant : build)
+  {
+    this->OctantDistanceBuild[octant] = this->DistanceBuilds;
+  }
+  for (int octant = 0; octant < 8; ++octant)
+  {
+    frame.octantDistance[octant] = needed[octant] ? this->OctantDistance[octant].data() : nullptr;
+  }
 }
 
 namespace
@@ -619,6 +697,12 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   frame.eyeLightsAtEntry = detail::EyeLightsAtEntry(frame);
   VisiblePixels(ShownBox(settings, frame), view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
+  if (settings.octantDistanceMaps)
+  {
+    impl.UpdateOctantMaps(frame, parallel);
+    impl.PrepareSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
+  }
 
   // With progress: the tiles as they finish, reported by this thread.
   const ParallelFor tiles = ReportingParallelFor(

@@ -153,6 +153,10 @@ struct RayCastSettings
   // a time, the leaps' dependent chains overlapping (RayCastKernelApproach.inl); false: one
   // ray at a time (tests: both give the same bits).
   bool approachTogether = true;
+  // Distance-map leaping reads, per ray, a map of its direction's octant (OctantDistanceMap.h:
+  // longer leaps, one byte per cell per octant the frame's rays take); false: the chessboard
+  // map alone (tests: both give the same bits).
+  bool octantDistanceMaps = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).

@@ -79,6 +79,11 @@ struct RayCaster::Internals
   // the rays pull through the caches.
   std::vector<std::uint8_t> DistanceOnly;
   bool Packed = false; // which of the two layouts is built
+  // DistanceOnly's rebuilds, and per ray octant (OctantDistanceMap.h) the map built from the
+  // DistanceOnly of that build, made when a frame's rays first head that way.
+  std::uint64_t DistanceBuilds = 0;
+  std::vector<std::uint8_t> OctantDistance[8];
+  std::uint64_t OctantDistanceBuild[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 
   std::vector<std::int16_t> Gradients;
   bool GradientsBuilt = false;
@@ -124,6 +129,9 @@ struct RayCaster::Internals
   bool UpdateGradients(const VolumeView& volume, std::uint64_t volumeVersion, double width,
     const RayCastTransfer& transfer, const RayCastLighting& lighting,
     const RayCastSettings& settings, const ParallelFor& parallel, detail::PrepareProgress& progress);
+  // The octant maps of the directions the frame's rays take (built when missing, stale ones
+  // freed) into frame.octantDistance; needs frame.visible.
+  void UpdateOctantMaps(detail::KernelFrame& frame, const ParallelFor& parallel);
   void FillKernelFrame(const VolumeView& volume, double rangeMin, double rangeMax,
     const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
     const RayCastSettings& settings, const detail::LeapPlan& plan, bool useGradients, double exponent,

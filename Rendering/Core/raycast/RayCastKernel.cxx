@@ -7,6 +7,7 @@
 #include "common/IndexRay.h"
 #include "skipping/CellLeapTable.h"
 #include "skipping/DistanceTemplate.h"
+#include "skipping/OctantDistanceMap.h"
 
 #include <algorithm>
 #include <cmath>
@@ -408,6 +409,7 @@ private:
     LeapSteps leap;
     std::int64_t sample = 0, last = 0;
     std::size_t interval = 0;
+    const std::uint8_t* distance = nullptr; // DistanceMapOf the lane's ray
     bool going = false;
   };
   bool CanApproachTogether() const;
@@ -495,8 +497,24 @@ private:
   // configuration above (the distance map alone when cell leaping is off).
   std::uint16_t LeapEntry(const SampleCell& cell) const
   {
-    return this->Frame.distanceOnly ? this->Frame.distanceOnly[cell.cell]
-                                    : this->Frame.cellInfo[cell.cell];
+    return LeapEntryIn(this->RayDistance, cell);
+  }
+  std::uint16_t LeapEntryIn(const std::uint8_t* distance, const SampleCell& cell) const
+  {
+    return distance ? distance[cell.cell] : this->Frame.cellInfo[cell.cell];
+  }
+  // The distance map a ray reads without cell leaping: its octant's where built, else the
+  // chessboard map (nullptr with cell leaping: the packed table).
+  const std::uint8_t* DistanceMapOf(const IndexRay& ray) const
+  {
+    const KernelFrame& frame = this->Frame;
+    if (frame.distanceOnly == nullptr)
+    {
+      return nullptr;
+    }
+    const std::uint8_t* octant =
+      frame.octantDistance[DirectionOctant(ray.direction.x, ray.direction.y, ray.direction.z)];
+    return octant ? octant : frame.distanceOnly;
   }
 
   // The samples a distance-map value d > 0 moves the ray on by (the current one included, at
@@ -646,6 +664,7 @@ private:
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
   bool LastContributed = false;         // the ray's last sample added something
+  const std::uint8_t* RayDistance = nullptr; // DistanceMapOf the ray being walked
   bool Batching = false;                // composite rays take CompositeBatched
   bool Avx2Lanes = false;               // the shading lanes' AVX2 build
   bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed

@@ -84,6 +84,7 @@ void RayCasterTile<T>::Approach(int n)
     if (lane.going)
     {
       lane.leap = LeapSteps(this->GroupPixels[g].index.direction * h);
+      lane.distance = this->DistanceMapOf(this->GroupPixels[g].index);
       ++pending;
     }
     else
@@ -104,7 +105,7 @@ void RayCasterTile<T>::Approach(int n)
       lane.steps.At(lane.sample, q);
       SampleCell cell;
       this->Sampling.LocateFixed(q, cell);
-      const int d = this->LeapEntry(cell) & 0xff;
+      const int d = this->LeapEntryIn(lane.distance, cell) & 0xff;
       WalkStart& start = this->GroupStarts[g];
       if (d == 0)
       {
