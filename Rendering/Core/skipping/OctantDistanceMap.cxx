@@ -41,6 +41,7 @@ void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distanc
   std::vector<std::uint8_t> next(plane, Cap), current(plane, Cap);
   std::vector<std::uint8_t> around(static_cast<std::size_t>(nx) + 1, Cap);
   std::vector<std::size_t> columns(static_cast<std::size_t>(nx));
+  std::uint8_t* const map = octantMap.data(); // not reloaded after every store
   for (int w = nz - 1; w >= 0; --w)
   {
     const int z = flip[2] ? nz - 1 - w : w;
@@ -69,7 +70,7 @@ void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distanc
         const std::uint8_t side =
           distance[at] == 0 ? 0 : static_cast<std::uint8_t>(smallest + (smallest != Cap ? 1 : 0));
         out[u] = side;
-        octantMap[at] = side;
+        map[at] = side;
         last = side;
       }
     }
