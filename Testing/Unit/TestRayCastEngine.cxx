@@ -184,17 +184,22 @@ struct Result
 {
   std::vector<float> rgba;
   RayCastCounters counters;
+  std::size_t accelerationBytes = 0; // the caster's after the frame
 };
 
+// One frame of `reused`, or of a fresh caster.
 Result Cast(const Scene& scene, const RayCastTransfer& transfer, const RayCastLighting& lighting,
-  const RayCastView& view, const RayCastSettings& settings, const ParallelFor& parallel = SerialFor)
+  const RayCastView& view, const RayCastSettings& settings, const ParallelFor& parallel = SerialFor,
+  RayCaster* reused = nullptr)
 {
-  RayCaster caster;
+  RayCaster fresh;
+  RayCaster& caster = reused ? *reused : fresh;
   Result result;
   std::string error;
   EXPECT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
     view, settings, parallel, result.rgba, result.counters, error))
     << error;
+  result.accelerationBytes = caster.GetAccelerationBytes();
   return result;
 }
 
@@ -505,20 +510,11 @@ TEST(RayCastEngine, OctantDistanceMapsLeapFartherWithTheSameImage)
       octants = 0; // counted below: more than four
     }
     const RayCastView view = MakeView(camera, 45, 37, 0.5, 500.0);
-    RayCaster caster;
-    Result withOctants;
-    std::string error;
-    ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
-      view, settings, SerialFor, withOctants.rgba, withOctants.counters, error))
-      << error;
-    const std::size_t bytesWithOctants = caster.GetAccelerationBytes();
+    const Result withOctants = Cast(scene, transfer, lighting, view, settings);
     settings.octantDistanceMaps = false;
-    Result chessboard;
-    RayCaster alone;
-    ASSERT_TRUE(alone.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
-      view, settings, SerialFor, chessboard.rgba, chessboard.counters, error))
-      << error;
-    const std::size_t built = (bytesWithOctants - alone.GetAccelerationBytes()) / octantBytes;
+    const Result chessboard = Cast(scene, transfer, lighting, view, settings);
+    const std::size_t built =
+      (withOctants.accelerationBytes - chessboard.accelerationBytes) / octantBytes;
     if (octants > 0)
     {
       EXPECT_EQ(built, octants) << "trial " << trial;
@@ -554,22 +550,14 @@ TEST(RayCastEngine, OctantDistanceMapsLeapFartherWithTheSameImage)
   inside.focalPoint = centre + Vec3{ 6, 6, 6 };
   inside.viewAngleDegrees = 120;
   RayCaster caster;
-  Result first, second;
-  std::string error;
-  ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
-    MakeView(inside, 45, 37, 0.5, 500.0), settings, SerialFor, first.rgba, first.counters, error));
-  const std::size_t insideBytes = caster.GetAccelerationBytes();
+  const Result first = Cast(
+    scene, transfer, lighting, MakeView(inside, 45, 37, 0.5, 500.0), settings, SerialFor, &caster);
   const RayCastView parallelView = MakeView(RandomCamera(random, dims, true), 45, 37, 0.5, 500.0);
-  ASSERT_TRUE(caster.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
-    parallelView, settings, SerialFor, second.rgba, second.counters, error));
-  const std::size_t held = caster.GetAccelerationBytes();
-  EXPECT_LT(held, insideBytes);
+  const Result second = Cast(scene, transfer, lighting, parallelView, settings, SerialFor, &caster);
+  EXPECT_LT(second.accelerationBytes, first.accelerationBytes);
   settings.octantDistanceMaps = false;
-  RayCaster alone;
-  Result chessboard;
-  ASSERT_TRUE(alone.Render(scene.view, scene.range[0], scene.range[1], 1, transfer, 1, lighting,
-    parallelView, settings, SerialFor, chessboard.rgba, chessboard.counters, error));
-  EXPECT_LE(held - alone.GetAccelerationBytes(), 4 * octantBytes);
+  const Result chessboard = Cast(scene, transfer, lighting, parallelView, settings);
+  EXPECT_LE(second.accelerationBytes - chessboard.accelerationBytes, 4 * octantBytes);
   EXPECT_TRUE(Identical(second.rgba, chessboard.rgba));
   EXPECT_LT(second.counters.distanceLeaps, chessboard.counters.distanceLeaps);
 }
