@@ -528,7 +528,15 @@ TEST(RayCastEngine, OctantDistanceMapsLeapFartherWithTheSameImage)
     EXPECT_LT(withOctants.counters.distanceLeaps, chessboard.counters.distanceLeaps)
       << "trial " << trial;
     EXPECT_GT(withOctants.counters.samples, 20u) << "trial " << trial;
+    // With cell leaping the distance comes from the octant maps too.
+    settings.cellLeap = true;
+    const Result cellLeapAlone = Cast(scene, transfer, lighting, view, settings);
     settings.octantDistanceMaps = true;
+    const Result cellLeap = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(withOctants.rgba, cellLeap.rgba)) << "trial " << trial;
+    EXPECT_LT(cellLeap.counters.distanceLeaps, cellLeapAlone.counters.distanceLeaps)
+      << "trial " << trial;
+    settings.cellLeap = false;
     settings.batchedComposite = false;
     const Result perSample = Cast(scene, transfer, lighting, view, settings);
     EXPECT_TRUE(Identical(withOctants.rgba, perSample.rgba)) << "trial " << trial << ": per sample";

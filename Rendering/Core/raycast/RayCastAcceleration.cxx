@@ -500,6 +500,7 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     }
     std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
     this->PackCellInfo(cells, distance, parallel);
+    this->DistanceBuilds += useDistance ? 1 : 0;
   }
   this->Packed = useCellLeap;
   std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);

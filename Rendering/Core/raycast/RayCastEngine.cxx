@@ -64,7 +64,8 @@ void RayCaster::Internals::UpdateOctantMaps(detail::KernelFrame& frame, const Pa
   // A ray direction's components are linear over the image plane before normalising, so the
   // corner pixels' rays show every sign the rays between them take.
   bool needed[8] = { false, false, false, false, false, false, false, false };
-  if (frame.distanceOnly != nullptr && frame.visible[0] <= frame.visible[1] &&
+  const bool cellTable = frame.distanceOnly == nullptr && frame.cellInfo != nullptr;
+  if (frame.useDistance && frame.visible[0] <= frame.visible[1] &&
     frame.visible[2] <= frame.visible[3])
   {
     bool negative[3] = { false, false, false }, positive[3] = { false, false, false };
@@ -118,8 +119,15 @@ void RayCaster::Internals::UpdateOctantMaps(detail::KernelFrame& frame, const Pa
     {
       for (std::size_t b = begin; b < end; ++b)
       {
-        ComputeOctantDistanceMap(
-          this->CellDims, this->DistanceOnly.data(), build[b], this->OctantDistance[build[b]]);
+        std::vector<std::uint8_t>& map = this->OctantDistance[build[b]];
+        if (cellTable)
+        {
+          ComputeOctantDistanceMap(this->CellDims, this->CellInfo.data(), build[b], map);
+        }
+        else
+        {
+          ComputeOctantDistanceMap(this->CellDims, this->DistanceOnly.data(), build[b], map);
+        }
       }
     });
   for (int octant : build)

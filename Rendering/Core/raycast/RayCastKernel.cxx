@@ -499,16 +499,23 @@ private:
   {
     return LeapEntryIn(this->RayDistance, cell);
   }
+  // With cell leaping the configuration comes from the packed table, the distance from the
+  // ray's octant map where there is one.
   std::uint16_t LeapEntryIn(const std::uint8_t* distance, const SampleCell& cell) const
   {
-    return distance ? distance[cell.cell] : this->Frame.cellInfo[cell.cell];
+    if (const std::uint16_t* info = this->Frame.cellInfo)
+    {
+      const std::uint16_t entry = info[cell.cell];
+      return distance ? static_cast<std::uint16_t>((entry & 0xff00) | distance[cell.cell]) : entry;
+    }
+    return distance[cell.cell];
   }
-  // The distance map a ray reads without cell leaping: its octant's where built, else the
-  // chessboard map (nullptr with cell leaping: the packed table).
+  // The distance map a ray reads: its octant's where built, else the chessboard map alone
+  // (nullptr with cell leaping: the packed table's own byte, or without distance leaping).
   const std::uint8_t* DistanceMapOf(const IndexRay& ray) const
   {
     const KernelFrame& frame = this->Frame;
-    if (frame.distanceOnly == nullptr)
+    if (!frame.useDistance)
     {
       return nullptr;
     }

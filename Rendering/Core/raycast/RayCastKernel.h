@@ -91,8 +91,8 @@ struct KernelFrame
   // Per cell: distance map (low byte) and Marching Cubes configuration (high byte).
   const std::uint16_t* cellInfo = nullptr;    // with cell leaping
   const std::uint8_t* distanceOnly = nullptr; // distance map alone, without cell leaping
-  // With distanceOnly: per ray octant (DirectionOctant) its map where the frame built it
-  // (OctantDistanceMap.h: longer leaps), else nullptr and the rays read distanceOnly.
+  // With distance-map leaping: per ray octant (DirectionOctant) its map where the frame built it
+  // (OctantDistanceMap.h: longer leaps), else nullptr and the rays read the chessboard map.
   const std::uint8_t* octantDistance[8] = {};
   float leapThreshold = 0; // cell-leap threshold (raw value, a rounding margin below the true one)
   bool useOctree = false, useDistance = false, useCellLeap = false;

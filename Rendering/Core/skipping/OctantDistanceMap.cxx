@@ -21,10 +21,10 @@ inline std::uint8_t Min(std::uint8_t a, std::uint8_t b)
 {
   return a < b ? a : b;
 }
-}
 
-void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distance, int octant,
-  std::vector<std::uint8_t>& octantMap)
+template <typename Entry>
+void ComputeOctantMap(
+  const int cellDims[3], const Entry* distance, int octant, std::vector<std::uint8_t>& octantMap)
 {
   const CellBricks bricks(cellDims);
   const int nx = cellDims[0], ny = cellDims[1], nz = cellDims[2];
@@ -67,8 +67,9 @@ void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distanc
       {
         const std::size_t at = columns[u];
         const std::uint8_t smallest = Min(around[u], last);
-        const std::uint8_t side =
-          distance[at] == 0 ? 0 : static_cast<std::uint8_t>(smallest + (smallest != Cap ? 1 : 0));
+        const std::uint8_t side = (distance[at] & 0xff) == 0
+          ? 0
+          : static_cast<std::uint8_t>(smallest + (smallest != Cap ? 1 : 0));
         out[u] = side;
         map[at] = side;
         last = side;
@@ -78,4 +79,17 @@ void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distanc
   }
 }
 
+} // namespace
+
+void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distance, int octant,
+  std::vector<std::uint8_t>& octantMap)
+{
+  ComputeOctantMap(cellDims, distance, octant, octantMap);
+}
+
+void ComputeOctantDistanceMap(const int cellDims[3], const std::uint16_t* distance, int octant,
+  std::vector<std::uint8_t>& octantMap)
+{
+  ComputeOctantMap(cellDims, distance, octant, octantMap);
+}
 }

@@ -23,14 +23,16 @@ inline int DirectionOctant(double x, double y, double z)
 }
 
 // distance: the chessboard map in CellBricks layout for cellDims cells (0 marks non-empty cells,
-// the only thing read). Result, in the same layout: per cell 0 when non-empty, else
-// min(side of the largest empty cube of cells {c + s * e : 0 <= e_a < side}, s the octant's signs,
-// DistanceMapSaturation); cells outside the grid count as empty (rays never sample there).
-// Exact: side(c) = 1 + min over the 7 neighbours c + s * e, e in {0, 1}^3 \ {0}, swept from the
-// octant's far corner with two planes of state. Padding entries of the layout are left 0.
+// the only thing read; of 16-bit entries, the packed cell table's, the low byte). Result, in the
+// same layout: per cell 0 when non-empty, else min(side of the largest empty cube of cells {c + s *
+// e : 0 <= e_a < side}, s the octant's signs, DistanceMapSaturation); cells outside the grid count
+// as empty (rays never sample there). Exact: side(c) = 1 + min over the 7 neighbours c + s * e, e
+// in {0, 1}^3 \ {0}, swept from the octant's far corner with two planes of state. Padding entries
+// of the layout are left 0.
 void ComputeOctantDistanceMap(const int cellDims[3], const std::uint8_t* distance, int octant,
   std::vector<std::uint8_t>& octantMap);
-
+void ComputeOctantDistanceMap(const int cellDims[3], const std::uint16_t* distance, int octant,
+  std::vector<std::uint8_t>& octantMap);
 }
 
 #endif
