@@ -485,7 +485,6 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     MaskCells(mask, volume.dims, cells.cellDims, cells.nonEmpty, parallel);
     this->CellsOpaqueBox = NonEmptyCellBox(cells, volume.dims, parallel);
     BuildDistanceOnly(cells, parallel, this->DistanceOnly);
-    ++this->DistanceBuilds;
   }
   else
   {
@@ -500,8 +499,8 @@ void RayCaster::Internals::UpdateCells(const VolumeView& volume, std::uint64_t v
     }
     std::vector<std::uint8_t>().swap(cells.nonEmpty); // dead before the packed table grows
     this->PackCellInfo(cells, distance, parallel);
-    this->DistanceBuilds += useDistance ? 1 : 0;
   }
+  this->DistanceBuilds += useDistance ? 1 : 0; // the octant maps are stale then
   this->Packed = useCellLeap;
   std::copy(cells.cellDims, cells.cellDims + 3, this->CellDims);
   this->CellInfoHasDistance = useDistance;

@@ -691,8 +691,6 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
     impl.CorrectedAlpha[i] = static_cast<float>(1.0 - std::pow(1.0 - a, exponent));
     impl.MaximumCorrectedAlpha = std::max(impl.MaximumCorrectedAlpha, impl.CorrectedAlpha[i]);
   }
-  impl.PrepareSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
 
   detail::KernelFrame frame;
   impl.FillKernelFrame(volume, rangeMin, rangeMax, transfer, lighting, view, settings, plan,
@@ -708,9 +706,9 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   if (settings.octantDistanceMaps)
   {
     impl.UpdateOctantMaps(frame, parallel);
-    impl.PrepareSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
   }
+  impl.PrepareSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
 
   // With progress: the tiles as they finish, reported by this thread.
   const ParallelFor tiles = ReportingParallelFor(

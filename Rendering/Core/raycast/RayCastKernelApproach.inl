@@ -111,19 +111,7 @@ void RayCasterTile<T>::Approach(int n)
       {
         // The ray's walk starts here once the group has arrived: its first voxels (and
         // gradients) load meanwhile instead of stalling the walk's first sample.
-        const T* voxel = this->Sampling.Voxels() + cell.base;
-        Prefetch(voxel);
-        Prefetch(voxel + cell.offset[1]);
-        Prefetch(voxel + cell.offset[2]);
-        Prefetch(voxel + cell.offset[1] + cell.offset[2]);
-        if (const std::int16_t* gradients = this->Frame.gradients)
-        {
-          const std::int16_t* g = gradients + 3 * cell.base;
-          Prefetch(g);
-          Prefetch(g + 3 * cell.offset[1]);
-          Prefetch(g + 3 * cell.offset[2]);
-          Prefetch(g + 3 * (cell.offset[1] + cell.offset[2]));
-        }
+        this->PrefetchCell(cell, this->Frame.gradients != nullptr);
         start.interval = lane.interval;
         start.sample = lane.sample;
         start.last = lane.last;

@@ -43,7 +43,6 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   // The last cell the map found non-empty (its voxel offset): its samples need no second look.
   std::ptrdiff_t filledCell = -1;
   int skipLookUp = 0;
-  const T* voxels = this->Sampling.Voxels();
   const bool prefetchGradients = frame.gradients != nullptr && frame.lighting->shade;
   bool going = true;
   for (std::size_t at = this->RayStart.interval; going && at < this->RayIntervals.size(); ++at)
@@ -111,23 +110,9 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
         filledCell = cell.base;
         skipLookUp = 1;
       }
-      // The batch's loads start now: its voxels, and its gradients when shading needs them
-      // (the lines of the cell's four x-edges), arrive while the walk goes on.
-      {
-        const T* voxel = voxels + cell.base;
-        Prefetch(voxel);
-        Prefetch(voxel + cell.offset[1]);
-        Prefetch(voxel + cell.offset[2]);
-        Prefetch(voxel + cell.offset[1] + cell.offset[2]);
-        if (prefetchGradients)
-        {
-          const std::int16_t* g = frame.gradients + 3 * cell.base;
-          Prefetch(g);
-          Prefetch(g + 3 * cell.offset[1]);
-          Prefetch(g + 3 * cell.offset[2]);
-          Prefetch(g + 3 * (cell.offset[1] + cell.offset[2]));
-        }
-      }
+      // The batch's loads start now: its voxels, and its gradients when shading needs them,
+      // arrive while the walk goes on.
+      this->PrefetchCell(cell, prefetchGradients);
       // Batches grow along the ray and shrink near termination: a ray that stops (an opaque
       // surface after a few samples) wastes at most the rest of a small one.
       if (++n == flushAt)
