@@ -108,6 +108,11 @@ public:
     }
     if (this->ApproachTogether)
     {
+      this->ColumnCentres.resize(static_cast<std::size_t>(x1 - x0));
+      for (int i = x0; i < x1; ++i)
+      {
+        this->ColumnCentres[static_cast<std::size_t>(i - x0)] = PixelCentre(i, width);
+      }
       for (int j = y0; j < y1; ++j)
       {
         this->CastRowTogether(j, x0, x1, rgba + 4 * static_cast<std::size_t>(j) * width);
@@ -687,6 +692,7 @@ private:
   WalkStart GroupStarts[ApproachGroup];
   ApproachLane GroupLanes[ApproachGroup];
   std::vector<PixelRay> Rays;
+  std::vector<double> ColumnCentres;    // PixelCentre of the tile's columns (CastRowTogether)
   int RejectedLeaf[3] = { -1, -1, -1 }; // the last leaf found non-empty (per ray)
   int LeafShift = 0;                    // log2 of the octree leaf size
   bool LastContributed = false;         // the ray's last sample added something

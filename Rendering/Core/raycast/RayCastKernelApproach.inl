@@ -17,12 +17,13 @@ bool RayCasterTile<T>::CanApproachTogether() const
 template <typename T>
 void RayCasterTile<T>::CastRowTogether(int j, int x0, int x1, float* row)
 {
+  const double y = PixelCentre(j, this->Frame.view->height);
   for (int i = x0; i < x1; i += ApproachGroup)
   {
     const int n = std::min(ApproachGroup, x1 - i);
     for (int g = 0; g < n; ++g)
     {
-      this->GroupPixels[g] = MakePixelRay(this->Frame, i + g, j);
+      SetPixelRay(this->Frame, i + g, j, this->ColumnCentres[i + g - x0], y, this->GroupPixels[g]);
       this->GroupHits[g] = this->Intervals(this->GroupPixels[g].index, this->GroupIntervals[g]);
     }
     this->Approach(n);

@@ -136,12 +136,13 @@ inline void FixLights(
 }
 
 // A pixel's ray in index space (its lighting: LightPixelRay, once the ray is known to meet the
-// volume).
-inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
+// volume), set in place: a PixelRay is a few hundred bytes (its lights), and copying one per
+// pixel cost more than a percent of an opaque frame.
+// x and y: the pixel centre's normalised device coordinates (PixelCentre), which a caller
+// casting rows of pixels computes once per column and row.
+inline void SetPixelRay(const KernelFrame& frame, int i, int j, double x, double y, PixelRay& ray)
 {
   const RayCastView& view = *frame.view;
-  const double x = 2.0 * (i + 0.5) / view.width - 1.0;
-  const double y = 2.0 * (j + 0.5) / view.height - 1.0;
   double nearPoint[3], farPoint[3];
   Unproject(view.clipToWorld, x, y, -1.0, nearPoint);
   Unproject(view.clipToWorld, x, y, 1.0, farPoint);
@@ -159,8 +160,21 @@ inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
       end = Dot(Vec3{ hit[0], hit[1], hit[2] } - origin, direction);
     }
   }
-  PixelRay ray;
   ray.index = { view.worldToIndex.Apply(origin), view.worldToIndex.ApplyLinear(direction), end };
+  ray.fixedLights = false;
+}
+
+// Pixel i's centre of a row (or column) of `size` pixels in normalised device coordinates.
+inline double PixelCentre(int i, int size)
+{
+  return 2.0 * (i + 0.5) / size - 1.0;
+}
+
+inline PixelRay MakePixelRay(const KernelFrame& frame, int i, int j)
+{
+  PixelRay ray;
+  SetPixelRay(
+    frame, i, j, PixelCentre(i, frame.view->width), PixelCentre(j, frame.view->height), ray);
   return ray;
 }
 
