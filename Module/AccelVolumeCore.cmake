@@ -16,6 +16,7 @@ set(_av_core_sources
   skipping/MinMaxOctree
   skipping/MinMaxOctreeQueries
   skipping/OctantDistanceMap
+  skipping/ScreenFootprint
   skipping/OpacityRange
   slicing/Bricking
   slicing/CompositeSlices

@@ -112,6 +112,7 @@ void ReadRayCastResult(vtkAccelVolumeRayCastMapper* mapper, RenderResult& result
   out.terminatedRays = mapper->GetLastNumberOfTerminatedRays();
   out.octreeLeaps = mapper->GetLastNumberOfOctreeLeaps();
   out.distanceMapLeaps = mapper->GetLastNumberOfDistanceMapLeaps();
+  out.culledPixels = mapper->GetLastNumberOfCulledPixels();
   out.accelerationBytes = mapper->GetAccelerationBytes();
   out.renderMs = 1000 * mapper->GetLastRenderTime();
   out.castMs = 1000 * mapper->GetLastCastTime();

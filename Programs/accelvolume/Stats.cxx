@@ -91,6 +91,7 @@ JsonDocument RayCastObject(const RenderResult& result)
   o["terminated_rays"] = r.terminatedRays;
   o["octree_leaps"] = r.octreeLeaps;
   o["distance_map_leaps"] = r.distanceMapLeaps;
+  o["culled_pixels"] = r.culledPixels;
   o["acceleration_bytes"] = r.accelerationBytes;
   o["render_ms"] = JsonNumber(r.renderMs);
   o["cast_ms"] = JsonNumber(r.castMs);

@@ -181,6 +181,7 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfSamples: " << this->LastNumberOfSamples << "\n";
   os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
   os << indent << "LastNumberOfDistanceMapLeaps: " << this->LastNumberOfDistanceMapLeaps << "\n";
+  os << indent << "LastNumberOfCulledPixels: " << this->LastNumberOfCulledPixels << "\n";
   os << indent << "AccelerationBytes: " << this->AccelerationBytes << "\n";
 }
 
@@ -459,6 +460,7 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::RecordCounters(vtkAccelVolumeRay
   self->LastNumberOfTerminatedRays = static_cast<vtkTypeInt64>(counters.terminatedRays);
   self->LastNumberOfOctreeLeaps = static_cast<vtkTypeInt64>(counters.octreeLeaps);
   self->LastNumberOfDistanceMapLeaps = static_cast<vtkTypeInt64>(counters.distanceLeaps);
+  self->LastNumberOfCulledPixels = static_cast<vtkTypeInt64>(counters.culledPixels);
   self->AccelerationBytes = static_cast<vtkTypeInt64>(this->Caster.GetAccelerationBytes());
 }
 

@@ -227,6 +227,9 @@ public:
   /** Last frame: leaps taken over octree nodes / by the distance map (each skips >= 1 sample). */
   vtkGetMacro(LastNumberOfOctreeLeaps, vtkTypeInt64);
   vtkGetMacro(LastNumberOfDistanceMapLeaps, vtkTypeInt64);
+  /** Last frame: pixels left empty without a ray, their rays unable to meet a non-empty cell
+   * (the screen footprint of the non-empty cells; composite with distance-map leaping). */
+  vtkGetMacro(LastNumberOfCulledPixels, vtkTypeInt64);
   /** Bytes the acceleration structures (octree, cell table / distance map, gradients) hold. */
   vtkGetMacro(AccelerationBytes, vtkTypeInt64);
   /** Wall-clock seconds: the ray casting alone, the structure rebuild (GetLastRenderTime: the
@@ -275,6 +278,7 @@ protected:
   vtkTypeInt64 LastNumberOfTerminatedRays = 0;
   vtkTypeInt64 LastNumberOfOctreeLeaps = 0;
   vtkTypeInt64 LastNumberOfDistanceMapLeaps = 0;
+  vtkTypeInt64 LastNumberOfCulledPixels = 0;
   vtkTypeInt64 AccelerationBytes = 0;
   double LastCastTime = 0.0;
   double LastPrepareTime = 0.0;

@@ -117,6 +117,9 @@ TEST(RayCastEngine, RaysApproachingTogetherLeapAsAlone)
     RayCastSettings settings = BaseSettings(dims, Blend::Composite);
     settings.leap = LeapMode::DistanceMap;
     settings.cellLeap = trial == 5;
+    // Every pixel casts its ray, so the rays counted compare (the footprint that leaves some
+    // without one: ScreenFootprintCullsRaysWithTheSameImage).
+    settings.screenFootprint = false;
     if (trial >= 4)
     {
       // Two crop regions side by side along x: rays meet one or two intervals.
@@ -253,4 +256,76 @@ TEST(RayCastEngine, OctantDistanceMapsLeapFartherWithTheSameImage)
   EXPECT_LE(second.accelerationBytes - chessboard.accelerationBytes, 4 * octantBytes);
   EXPECT_TRUE(Identical(second.rgba, chessboard.rgba));
   EXPECT_LT(second.counters.distanceLeaps, chessboard.counters.distanceLeaps);
+}
+
+// Pixels outside the screen footprint of the non-empty cells get no ray, with the same image as
+// casting every ray (any thread count, both walks, with and without cell leaping); a view from
+// inside the volume has no footprint (every ray is cast).
+TEST(RayCastEngine, ScreenFootprintCullsRaysWithTheSameImage)
+{
+  std::mt19937 random(43);
+  const int dims[3] = { 57, 43, 49 };
+  const Vec3 centre{ 28, 21, 24 };
+  std::uint64_t culled = 0;
+  for (int trial = 0; trial < 10; ++trial)
+  {
+    const Scene scene =
+      MakeScene(trial % 2 ? ScalarType::UInt16 : ScalarType::UInt8, dims, 0.1 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    if (trial % 2 == 1)
+    {
+      for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+      {
+        transfer.rgba[i] = std::min(1.0f, 6.0f * transfer.rgba[i]);
+      }
+    }
+    RayCastLighting lighting;
+    lighting.shade = trial % 3 != 2;
+    lighting.model.lights.emplace_back();
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = trial % 4 == 3;
+    if (trial == 4 || trial == 5)
+    {
+      // Two crop regions: rays meet one or two intervals.
+      settings.regions = { { { 0, 0, 0 }, { 20, dims[1] - 1.0, dims[2] - 1.0 } },
+        { { 33, 2, 3 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 } } };
+    }
+    Camera camera = RandomCamera(random, dims, trial % 2 == 0);
+    const bool inside = trial == 9;
+    if (trial >= 6)
+    {
+      // Close perspective views (wide angles: the projection distorts most), one from inside.
+      camera.parallel = false;
+      camera.focalPoint = centre;
+      camera.position = centre + Vec3{ 45.0 - 15 * (trial - 6), 38.0, -18.0 + 6 * (trial - 6) };
+      camera.viewAngleDegrees = 60 + 10 * (trial - 6);
+      if (inside)
+      {
+        camera.position = centre + Vec3{ -4, -3, -2 };
+      }
+    }
+    const RayCastView view = MakeView(camera, 96, 80, 0.5, 500.0);
+    const Result footprint = Cast(scene, transfer, lighting, view, settings);
+    settings.screenFootprint = false;
+    const Result everyRay = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(footprint.rgba, everyRay.rgba)) << "trial " << trial;
+    EXPECT_EQ(everyRay.counters.culledPixels, 0u) << "trial " << trial;
+    EXPECT_LE(footprint.counters.rays, everyRay.counters.rays) << "trial " << trial;
+    EXPECT_GT(everyRay.counters.samples, 20u) << "trial " << trial;
+    if (inside)
+    {
+      EXPECT_EQ(footprint.counters.culledPixels, 0u);
+    }
+    culled += footprint.counters.culledPixels;
+    settings.screenFootprint = true;
+    const Result threaded = Cast(scene, transfer, lighting, view, settings, ThreadedFor(3, 1));
+    EXPECT_TRUE(Identical(footprint.rgba, threaded.rgba)) << "trial " << trial << ": threads";
+    settings.batchedComposite = false;
+    const Result perSample = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(footprint.rgba, perSample.rgba)) << "trial " << trial << ": per sample";
+  }
+  // Most views leave a good part of the projected box without a ray.
+  EXPECT_GT(culled, 45u * 37u);
 }

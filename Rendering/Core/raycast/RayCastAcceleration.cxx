@@ -2,6 +2,7 @@
 // classification and distance map, the packed cell table, precomputed gradients), rebuilt only
 // when the scalars or the transfer function change.
 #include "raycast/RayCastEngineInternals.h"
+#include "raycast/RayCastKernel.h"
 #include "skipping/CellBricks.h"
 
 #include "skipping/DistanceMap.h"
@@ -555,6 +556,39 @@ bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64
     progress.Rebuilt();
   }
   return useGradients;
+}
+
+void RayCaster::Internals::UpdateFootprint(
+  detail::KernelFrame& frame, const double indexToClip[4][4], const ParallelFor& parallel)
+{
+  frame.footprint = nullptr;
+  const RayCastSettings& settings = *frame.settings;
+  // Only the grouped approach reads it (the composite walks of one component that leap by the
+  // distance map: there a ray through empty cells only adds nothing).
+  if (!settings.screenFootprint || !settings.approachTogether ||
+    settings.blend != Blend::Composite || frame.components != 1 || !frame.useDistance ||
+    frame.useOctree || frame.visible[0] > frame.visible[1] || frame.visible[2] > frame.visible[3])
+  {
+    return;
+  }
+  if (this->MacroBuild != this->DistanceBuilds || this->Macro.nonEmpty.empty())
+  {
+    if (frame.distanceOnly == nullptr && frame.cellInfo != nullptr)
+    {
+      ComputeMacroCells(this->CellDims, this->CellInfo.data(), parallel, this->Macro);
+    }
+    else
+    {
+      ComputeMacroCells(this->CellDims, this->DistanceOnly.data(), parallel, this->Macro);
+    }
+    this->MacroBuild = this->DistanceBuilds;
+  }
+  if (ProjectFootprint(this->Macro, frame.volume.dims, indexToClip, frame.view->width,
+        frame.view->height, this->Footprint))
+  {
+    frame.footprint = this->Footprint.covered.data();
+    frame.footprintBlocks = this->Footprint.blocks[0];
+  }
 }
 
 } // namespace accelvolume

@@ -47,7 +47,8 @@ std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
   std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) + impl.DistanceOnly.size() +
-    impl.Gradients.size() * sizeof(std::int16_t);
+    impl.Gradients.size() * sizeof(std::int16_t) + impl.Macro.nonEmpty.size() +
+    impl.Footprint.covered.size();
   for (const std::vector<std::uint8_t>& map : impl.OctantDistance)
   {
     bytes += map.size();
@@ -189,6 +190,31 @@ bool Invert4x4(const double in[4][4], double out[4][4])
     for (int c = 0; c < 4; ++c)
     {
       out[r][c] = a[r][c + 4];
+    }
+  }
+  return true;
+}
+
+// Index space (x, y, z, 1) to clip space: the view's projection after the volume's index to
+// world map; false when the view's matrix is singular.
+bool IndexToClip(const RayCastView& view, double indexToClip[4][4])
+{
+  double worldToClip[4][4];
+  if (!Invert4x4(view.clipToWorld, worldToClip))
+  {
+    return false;
+  }
+  const Affine indexToWorld = view.worldToIndex.Inverse();
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      double sum = c == 3 ? worldToClip[r][3] : 0.0;
+      for (int k = 0; k < 3; ++k)
+      {
+        sum += worldToClip[r][k] * indexToWorld.m[k][c];
+      }
+      indexToClip[r][c] = sum;
     }
   }
   return true;
@@ -456,6 +482,7 @@ void CastTiles(const detail::KernelFrame& frame, const RayCastView& view, int ti
     counters.terminatedRays += c.terminatedRays;
     counters.octreeLeaps += c.octreeLeaps;
     counters.distanceLeaps += c.distanceLeaps;
+    counters.culledPixels += c.culledPixels;
   }
 }
 
@@ -706,6 +733,11 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   if (settings.octantDistanceMaps)
   {
     impl.UpdateOctantMaps(frame, parallel);
+  }
+  double indexToClip[4][4];
+  if (IndexToClip(view, indexToClip))
+  {
+    impl.UpdateFootprint(frame, indexToClip, parallel);
   }
   impl.PrepareSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();

@@ -157,6 +157,10 @@ struct RayCastSettings
   // longer leaps, one byte per cell per octant the frame's rays take); false: the chessboard
   // map alone (tests: both give the same bits).
   bool octantDistanceMaps = true;
+  // With the grouped approach, the pixels whose rays cannot meet a non-empty cell (the
+  // non-empty macro cells projected to the screen, ScreenFootprint.h) stay empty without a ray;
+  // false: every pixel of the projected box casts one (tests: both give the same bits).
+  bool screenFootprint = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).
@@ -193,6 +197,7 @@ struct RayCastCounters
   std::uint64_t terminatedRays = 0;  // rays closed by early ray termination
   std::uint64_t octreeLeaps = 0;     // octree leaps taken (each skips >= 1 sample)
   std::uint64_t distanceLeaps = 0;   // distance-map leaps taken
+  std::uint64_t culledPixels = 0;    // pixels left empty by the screen footprint, without a ray
 };
 
 class RayCaster

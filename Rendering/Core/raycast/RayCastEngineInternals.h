@@ -7,6 +7,7 @@
 #include "skipping/CellClassification.h"
 #include "skipping/MinMaxOctree.h"
 #include "skipping/OpacityRange.h"
+#include "skipping/ScreenFootprint.h"
 
 #include <cstdint>
 #include <vector>
@@ -84,6 +85,11 @@ struct RayCaster::Internals
   std::uint64_t DistanceBuilds = 0;
   std::vector<std::uint8_t> OctantDistance[8];
   std::uint64_t OctantDistanceBuild[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  // The non-empty macro cells of DistanceOnly's (or the packed table's) build MacroBuild, and
+  // the frame's screen footprint of them.
+  MacroCells Macro;
+  std::uint64_t MacroBuild = 0;
+  ScreenFootprint Footprint;
 
   std::vector<std::int16_t> Gradients;
   bool GradientsBuilt = false;
@@ -132,6 +138,11 @@ struct RayCaster::Internals
   // The octant maps of the directions the frame's rays take (built when missing, stale ones
   // freed) into frame.octantDistance; needs frame.visible.
   void UpdateOctantMaps(detail::KernelFrame& frame, const ParallelFor& parallel);
+  // The screen footprint of the frame's non-empty cells into frame.footprint (nullptr when the
+  // frame's rays do not approach together or no footprint bounds them); indexToClip maps
+  // index-space points to clip space.
+  void UpdateFootprint(
+    detail::KernelFrame& frame, const double indexToClip[4][4], const ParallelFor& parallel);
   void FillKernelFrame(const VolumeView& volume, double rangeMin, double rangeMax,
     const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
     const RayCastSettings& settings, const detail::LeapPlan& plan, bool useGradients, double exponent,

@@ -8,6 +8,7 @@
 #include "skipping/CellLeapTable.h"
 #include "skipping/DistanceTemplate.h"
 #include "skipping/OctantDistanceMap.h"
+#include "skipping/ScreenFootprint.h"
 
 #include <algorithm>
 #include <cmath>
@@ -687,6 +688,7 @@ private:
   WalkStart RayStart;
   bool ApproachTogether = false; // composite rays approach their first non-empty cell together
   PixelRay GroupPixels[ApproachGroup];
+  int GroupColumns[ApproachGroup]; // the group's pixel columns (the footprint skips some)
   std::vector<Interval> GroupIntervals[ApproachGroup];
   bool GroupHits[ApproachGroup];
   WalkStart GroupStarts[ApproachGroup];

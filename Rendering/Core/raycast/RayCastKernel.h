@@ -103,6 +103,11 @@ struct KernelFrame
   // Pixels [visible[0], visible[1]] x [visible[2], visible[3]] (inclusive) hold every ray that
   // can meet what is drawn (the projected box); the others stay empty without a ray.
   int visible[4] = { 0, -1, 0, -1 };
+  // With the grouped approach (composite, distance-map leaping): per block of pixels
+  // (ScreenFootprint.h, footprintBlocks per row) 1 when its rays may meet a non-empty cell; the
+  // others stay empty without a ray. nullptr: every pixel of the rectangle casts its ray.
+  const std::uint8_t* footprint = nullptr;
+  int footprintBlocks = 0;
 };
 
 // Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).

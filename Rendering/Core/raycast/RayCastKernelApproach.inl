@@ -4,7 +4,8 @@
 // dependent steps per leap, which a core cannot overlap within one ray. Leaping the empty
 // space of a group of rays in turn overlaps their chains; each ray then resumes its own walk
 // (Walk or CompositeBatched) at the sample it would have reached alone, so the image does not
-// change (tests compare with approachTogether off).
+// change (tests compare with approachTogether off). Pixels outside the frame's screen footprint
+// (ScreenFootprint.h: their rays cannot meet a non-empty cell) get no ray at all.
 
 template <typename T>
 bool RayCasterTile<T>::CanApproachTogether() const
@@ -17,19 +18,37 @@ bool RayCasterTile<T>::CanApproachTogether() const
 template <typename T>
 void RayCasterTile<T>::CastRowTogether(int j, int x0, int x1, float* row)
 {
-  const double y = PixelCentre(j, this->Frame.view->height);
-  for (int i = x0; i < x1; i += ApproachGroup)
+  const KernelFrame& frame = this->Frame;
+  const double y = PixelCentre(j, frame.view->height);
+  // The row's blocks of the screen footprint: pixels outside it stay empty without a ray.
+  const std::uint8_t* covered = frame.footprint
+    ? frame.footprint + static_cast<std::size_t>(j >> FootprintBlockShift) * frame.footprintBlocks
+    : nullptr;
+  for (int i = x0; i < x1;)
   {
-    const int n = std::min(ApproachGroup, x1 - i);
-    for (int g = 0; g < n; ++g)
+    int n = 0;
+    for (; i < x1 && n < ApproachGroup; ++i)
     {
-      SetPixelRay(this->Frame, i + g, j, this->ColumnCentres[i + g - x0], y, this->GroupPixels[g]);
-      this->GroupHits[g] = this->Intervals(this->GroupPixels[g].index, this->GroupIntervals[g]);
+      if (covered && !covered[i >> FootprintBlockShift])
+      {
+        float* out = row + 4 * static_cast<std::size_t>(i);
+        out[0] = out[1] = out[2] = out[3] = 0.0f;
+        ++this->Counters.culledPixels;
+        continue;
+      }
+      this->GroupColumns[n] = i;
+      SetPixelRay(frame, i, j, this->ColumnCentres[i - x0], y, this->GroupPixels[n]);
+      this->GroupHits[n] = this->Intervals(this->GroupPixels[n].index, this->GroupIntervals[n]);
+      ++n;
+    }
+    if (n == 0)
+    {
+      continue;
     }
     this->Approach(n);
     for (int g = 0; g < n; ++g)
     {
-      float* out = row + 4 * static_cast<std::size_t>(i + g);
+      float* out = row + 4 * static_cast<std::size_t>(this->GroupColumns[g]);
       if (!this->GroupHits[g])
       {
         out[0] = out[1] = out[2] = out[3] = 0.0f;

@@ -1,0 +1,195 @@
+#include "skipping/ScreenFootprint.h"
+
+#include "skipping/CellBricks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace accelvolume
+{
+
+namespace
+{
+
+template <typename Entry>
+void ComputeMacroCellsOf(const int cellDims[3], const Entry* distance, const ParallelFor& parallel,
+  MacroCells& macro, std::size_t maximumMacroCells)
+{
+  const auto macroCount = [cellDims](int shift)
+  {
+    std::size_t count = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      count *= static_cast<std::size_t>((cellDims[a] + (1 << shift) - 1) >> shift);
+    }
+    return count;
+  };
+  macro.shift = 3;
+  while (macro.shift < 30 && macroCount(macro.shift) > maximumMacroCells)
+  {
+    ++macro.shift;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    macro.dims[a] = (cellDims[a] + (1 << macro.shift) - 1) >> macro.shift;
+  }
+  macro.nonEmpty.assign(macroCount(macro.shift), 0);
+  const CellBricks bricks(cellDims);
+  constexpr int Size = CellBricks::Size;
+  const int bricksPerMacro = 1 << (macro.shift - CellBricks::Shift);
+  int brickDims[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    brickDims[a] = (cellDims[a] + Size - 1) / Size;
+  }
+  // Macro planes in parallel: each writes its own rows.
+  parallel(static_cast<std::size_t>(macro.dims[2]),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t mz = begin; mz < end; ++mz)
+      {
+        const int bz0 = static_cast<int>(mz) * bricksPerMacro;
+        const int bz1 = std::min(bz0 + bricksPerMacro, brickDims[2]);
+        for (int bz = bz0; bz < bz1; ++bz)
+        {
+          for (int by = 0; by < brickDims[1]; ++by)
+          {
+            for (int bx = 0; bx < brickDims[0]; ++bx)
+            {
+              std::uint8_t& flag =
+                macro
+                  .nonEmpty[(mz * macro.dims[1] + static_cast<std::size_t>(by / bricksPerMacro)) *
+                      macro.dims[0] +
+                    static_cast<std::size_t>(bx / bricksPerMacro)];
+              if (flag)
+              {
+                continue;
+              }
+              // The brick's cells inside the grid (padding entries are not cells).
+              const int x0 = bx * Size, y0 = by * Size, z0 = bz * Size;
+              const int nx = std::min(Size, cellDims[0] - x0),
+                        ny = std::min(Size, cellDims[1] - y0),
+                        nz = std::min(Size, cellDims[2] - z0);
+              const Entry* entries = distance + bricks.Index(x0, y0, z0);
+              bool nonEmpty = false;
+              for (int z = 0; z < nz && !nonEmpty; ++z)
+              {
+                for (int y = 0; y < ny && !nonEmpty; ++y)
+                {
+                  for (int x = 0; x < nx; ++x)
+                  {
+                    if ((entries[(z * Size + y) * Size + x] & 0xff) == 0)
+                    {
+                      nonEmpty = true;
+                      break;
+                    }
+                  }
+                }
+              }
+              flag = nonEmpty ? 1 : 0;
+            }
+          }
+        }
+      }
+    });
+}
+
+} // namespace
+
+void ComputeMacroCells(const int cellDims[3], const std::uint8_t* distance,
+  const ParallelFor& parallel, MacroCells& macro, std::size_t maximumMacroCells)
+{
+  ComputeMacroCellsOf(cellDims, distance, parallel, macro, maximumMacroCells);
+}
+
+void ComputeMacroCells(const int cellDims[3], const std::uint16_t* distance,
+  const ParallelFor& parallel, MacroCells& macro, std::size_t maximumMacroCells)
+{
+  ComputeMacroCellsOf(cellDims, distance, parallel, macro, maximumMacroCells);
+}
+
+bool ProjectFootprint(const MacroCells& macro, const int volumeDims[3],
+  const double indexToClip[4][4], int width, int height, ScreenFootprint& footprint)
+{
+  footprint.blocks[0] = (width + (1 << FootprintBlockShift) - 1) >> FootprintBlockShift;
+  footprint.blocks[1] = (height + (1 << FootprintBlockShift) - 1) >> FootprintBlockShift;
+  footprint.covered.assign(
+    static_cast<std::size_t>(footprint.blocks[0]) * static_cast<std::size_t>(footprint.blocks[1]),
+    0);
+  const int size[2] = { width, height };
+  const int side = 1 << macro.shift;
+  std::size_t at = 0;
+  for (int mz = 0; mz < macro.dims[2]; ++mz)
+  {
+    for (int my = 0; my < macro.dims[1]; ++my)
+    {
+      for (int mx = 0; mx < macro.dims[0]; ++mx, ++at)
+      {
+        if (!macro.nonEmpty[at])
+        {
+          continue;
+        }
+        // Cells [m side, (m + 1) side) span voxels [m side, (m + 1) side], within the volume;
+        // one voxel more each way.
+        const int m[3] = { mx, my, mz };
+        double lower[3], upper[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          lower[a] = m[a] * side - 1.0;
+          upper[a] = std::min((m[a] + 1) * side, std::max(volumeDims[a] - 1, 0)) + 1.0;
+        }
+        double low[2] = { std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity() };
+        double high[2] = { -low[0], -low[1] };
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          const double p[3] = { corner & 1 ? upper[0] : lower[0], corner & 2 ? upper[1] : lower[1],
+            corner & 4 ? upper[2] : lower[2] };
+          double clip[4];
+          for (int r = 0; r < 4; ++r)
+          {
+            clip[r] = indexToClip[r][0] * p[0] + indexToClip[r][1] * p[1] +
+              indexToClip[r][2] * p[2] + indexToClip[r][3];
+          }
+          if (!(clip[3] > 1.0e-12))
+          {
+            footprint.covered.clear();
+            return false;
+          }
+          for (int a = 0; a < 2; ++a)
+          {
+            const double pixel = (clip[a] / clip[3] + 1.0) * 0.5 * size[a] - 0.5;
+            if (!std::isfinite(pixel))
+            {
+              footprint.covered.clear();
+              return false;
+            }
+            low[a] = std::min(low[a], pixel);
+            high[a] = std::max(high[a], pixel);
+          }
+        }
+        // One pixel of slack each way absorbs rounding; then the blocks those pixels are in.
+        int first[2], last[2];
+        bool onScreen = true;
+        for (int a = 0; a < 2; ++a)
+        {
+          const double from = std::max(std::floor(low[a]) - 1.0, 0.0);
+          const double to = std::min(std::ceil(high[a]) + 1.0, size[a] - 1.0);
+          onScreen = onScreen && from <= to;
+          first[a] = onScreen ? static_cast<int>(from) >> FootprintBlockShift : 0;
+          last[a] = onScreen ? static_cast<int>(to) >> FootprintBlockShift : -1;
+        }
+        for (int by = first[1]; onScreen && by <= last[1]; ++by)
+        {
+          std::uint8_t* row =
+            footprint.covered.data() + static_cast<std::size_t>(by) * footprint.blocks[0];
+          std::fill(row + first[0], row + last[0] + 1, std::uint8_t(1));
+        }
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace accelvolume
