@@ -94,12 +94,14 @@ inline ParallelFor ShuffledFor(unsigned seed)
   };
 }
 
-// Runs chunks on `threads` std::threads pulling from a shared counter.
-inline ParallelFor ThreadedFor(unsigned threads)
+// Runs chunks of `chunk` items (0: about 8 per thread) on `threads` std::threads pulling from a
+// shared counter.
+inline ParallelFor ThreadedFor(unsigned threads, std::size_t chunk = 0)
 {
-  return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  return
+    [threads, chunk](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
   {
-    const std::size_t grain = std::max<std::size_t>(1, count / (8 * threads));
+    const std::size_t grain = chunk > 0 ? chunk : std::max<std::size_t>(1, count / (8 * threads));
     std::atomic<std::size_t> next{ 0 };
     auto worker = [&]()
     {

@@ -1,23 +1,23 @@
 // Helpers shared by the ray caster engine's unit tests (TestRayCastEngine.cxx,
 // TestRayCastLeaping.cxx): VTK-like views, random transfer functions, phantom scenes and cameras,
-// base settings, one-frame casts and threaded loops (plain C++, no VTK).
+// base settings and one-frame casts (plain C++, no VTK); threaded loops are
+// MinMaxOctreeTestSupport's.
 #ifndef accelvolume_test_RayCastEngineTestSupport_h
 #define accelvolume_test_RayCastEngineTestSupport_h
 
 #include "raycast/RayCastEngine.h"
 #include "reference/Phantoms.h"
 
+#include "MinMaxOctreeTestSupport.h"
 #include "ShearWarpTestSupport.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace accelvolume_test
@@ -204,26 +204,7 @@ inline Result Cast(const Scene& scene, const RayCastTransfer& transfer,
   return result;
 }
 
-// Hands [0, count) out in chunks of `chunk` to `threads` threads.
-inline ParallelFor ThreadedFor(int threads, std::size_t chunk)
-{
-  return
-    [threads, chunk](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-  {
-    std::atomic<std::size_t> next{ 0 };
-    auto work = [&]()
-    {
-      for (std::size_t begin = next.fetch_add(chunk); begin < count; begin = next.fetch_add(chunk))
-        body(begin, std::min(count, begin + chunk));
-    };
-    std::vector<std::thread> workers;
-    for (int t = 1; t < threads; ++t)
-      workers.emplace_back(work);
-    work();
-    for (std::thread& w : workers)
-      w.join();
-  };
-}
+using accelvolume_test::ThreadedFor;
 
 inline bool Identical(const std::vector<float>& a, const std::vector<float>& b)
 {

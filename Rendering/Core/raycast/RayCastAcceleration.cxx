@@ -563,24 +563,17 @@ void RayCaster::Internals::UpdateFootprint(
 {
   frame.footprint = nullptr;
   const RayCastSettings& settings = *frame.settings;
-  // Only the grouped approach reads it (the composite walks of one component that leap by the
+  // Only the grouped approach reads it (composite rays of one component that leap by the
   // distance map: there a ray through empty cells only adds nothing).
-  if (!settings.screenFootprint || !settings.approachTogether ||
-    settings.blend != Blend::Composite || frame.components != 1 || !frame.useDistance ||
-    frame.useOctree || frame.visible[0] > frame.visible[1] || frame.visible[2] > frame.visible[3])
+  if (!settings.screenFootprint || !detail::RaysApproachTogether(frame) ||
+    frame.visible[0] > frame.visible[1] || frame.visible[2] > frame.visible[3])
   {
     return;
   }
   if (this->MacroBuild != this->DistanceBuilds || this->Macro.nonEmpty.empty())
   {
-    if (frame.distanceOnly == nullptr && frame.cellInfo != nullptr)
-    {
-      ComputeMacroCells(this->CellDims, this->CellInfo.data(), parallel, this->Macro);
-    }
-    else
-    {
-      ComputeMacroCells(this->CellDims, this->DistanceOnly.data(), parallel, this->Macro);
-    }
+    this->VisitDistanceMap([&](const auto* distance)
+      { ComputeMacroCells(this->CellDims, distance, parallel, this->Macro); });
     this->MacroBuild = this->DistanceBuilds;
   }
   if (ProjectFootprint(this->Macro, frame.volume.dims, indexToClip, frame.view->width,

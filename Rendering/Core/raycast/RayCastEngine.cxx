@@ -65,7 +65,6 @@ void RayCaster::Internals::UpdateOctantMaps(detail::KernelFrame& frame, const Pa
   // A ray direction's components are linear over the image plane before normalising, so the
   // corner pixels' rays show every sign the rays between them take.
   bool needed[8] = { false, false, false, false, false, false, false, false };
-  const bool cellTable = frame.distanceOnly == nullptr && frame.cellInfo != nullptr;
   if (frame.useDistance && frame.visible[0] <= frame.visible[1] &&
     frame.visible[2] <= frame.visible[3])
   {
@@ -121,14 +120,8 @@ void RayCaster::Internals::UpdateOctantMaps(detail::KernelFrame& frame, const Pa
       for (std::size_t b = begin; b < end; ++b)
       {
         std::vector<std::uint8_t>& map = this->OctantDistance[build[b]];
-        if (cellTable)
-        {
-          ComputeOctantDistanceMap(this->CellDims, this->CellInfo.data(), build[b], map);
-        }
-        else
-        {
-          ComputeOctantDistanceMap(this->CellDims, this->DistanceOnly.data(), build[b], map);
-        }
+        this->VisitDistanceMap([&](const auto* distance)
+          { ComputeOctantDistanceMap(this->CellDims, distance, build[b], map); });
       }
     });
   for (int octant : build)
@@ -220,10 +213,11 @@ bool IndexToClip(const RayCastView& view, double indexToClip[4][4])
   return true;
 }
 
-// Pixels whose centres the index-space box projects over (inclusive, clamped to the image);
-// the whole image when a corner is not in front of the camera (the projection of the box
-// is then not bounded by its corners'). An empty box gives an empty rectangle.
-void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
+// Pixels whose centres the index-space box projects over (ProjectBox); the whole image when
+// there is no index-to-clip map or a corner is not in front of the camera. An empty box gives
+// an empty rectangle.
+void VisiblePixels(
+  const Box& box, const double (*indexToClip)[4], const RayCastView& view, int visible[4])
 {
   visible[0] = 0;
   visible[1] = view.width - 1;
@@ -234,52 +228,12 @@ void VisiblePixels(const Box& box, const RayCastView& view, int visible[4])
     visible[1] = visible[3] = -1;
     return;
   }
-  double worldToClip[4][4];
-  if (!Invert4x4(view.clipToWorld, worldToClip))
+  int pixels[4];
+  if (indexToClip && ProjectBox(box, indexToClip, view.width, view.height, pixels))
   {
-    return;
-  }
-  const Affine indexToWorld = view.worldToIndex.Inverse();
-  double lower[2] = { std::numeric_limits<double>::infinity(),
-    std::numeric_limits<double>::infinity() };
-  double upper[2] = { -lower[0], -lower[1] };
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const Vec3 world = indexToWorld.Apply({ corner & 1 ? box.upper.x : box.lower.x,
-      corner & 2 ? box.upper.y : box.lower.y, corner & 4 ? box.upper.z : box.lower.z });
-    double clip[4];
-    for (int r = 0; r < 4; ++r)
-    {
-      clip[r] = worldToClip[r][0] * world.x + worldToClip[r][1] * world.y +
-        worldToClip[r][2] * world.z + worldToClip[r][3];
-    }
-    if (!(clip[3] > 1.0e-12))
-    {
-      return;
-    }
-    const int size[2] = { view.width, view.height };
-    for (int a = 0; a < 2; ++a)
-    {
-      // Pixel i has its centre at NDC 2 (i + 0.5) / size - 1.
-      const double pixel = (clip[a] / clip[3] + 1.0) * 0.5 * size[a] - 0.5;
-      lower[a] = std::min(lower[a], pixel);
-      upper[a] = std::max(upper[a], pixel);
-    }
-  }
-  // One pixel of slack on each side absorbs rounding.
-  const int size[2] = { view.width, view.height };
-  for (int a = 0; a < 2; ++a)
-  {
-    const double first = std::floor(lower[a]) - 1.0;
-    const double last = std::ceil(upper[a]) + 1.0;
-    visible[2 * a] = static_cast<int>(std::max(0.0, std::min(first, size[a] - 1.0)));
-    visible[2 * a + 1] = static_cast<int>(std::max(-1.0, std::min(last, size[a] - 1.0)));
-    if (last < 0 || first > size[a] - 1.0)
-    {
-      visible[0] = visible[2] = 0;
-      visible[1] = visible[3] = -1;
-      return;
-    }
+    const bool offImage = pixels[0] > pixels[1] || pixels[2] > pixels[3];
+    const int none[4] = { 0, -1, 0, -1 };
+    std::copy(offImage ? none : pixels, (offImage ? none : pixels) + 4, visible);
   }
 }
 
@@ -728,14 +682,15 @@ bool RayCaster::Render(const VolumeView& volume, double rangeMin, double rangeMa
   }
   frame.raysThroughEye = detail::RaysPassThroughEye(frame);
   frame.eyeLightsAtEntry = detail::EyeLightsAtEntry(frame);
-  VisiblePixels(ShownBox(settings, frame), view, frame.visible);
+  double indexToClip[4][4];
+  const bool projects = IndexToClip(view, indexToClip);
+  VisiblePixels(ShownBox(settings, frame), projects ? indexToClip : nullptr, view, frame.visible);
   std::copy(frame.visible, frame.visible + 4, impl.CastRectangle);
   if (settings.octantDistanceMaps)
   {
     impl.UpdateOctantMaps(frame, parallel);
   }
-  double indexToClip[4][4];
-  if (IndexToClip(view, indexToClip))
+  if (projects)
   {
     impl.UpdateFootprint(frame, indexToClip, parallel);
   }

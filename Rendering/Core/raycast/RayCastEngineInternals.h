@@ -83,6 +83,20 @@ struct RayCaster::Internals
   // DistanceOnly's rebuilds, and per ray octant (OctantDistanceMap.h) the map built from the
   // DistanceOnly of that build, made when a frame's rays first head that way.
   std::uint64_t DistanceBuilds = 0;
+  // Calls visit with the distance map last built: the packed table's (its low byte) when
+  // Packed, else DistanceOnly (what the octant maps and the macro cells are made from).
+  template <typename Visit>
+  void VisitDistanceMap(Visit&& visit) const
+  {
+    if (this->Packed)
+    {
+      visit(this->CellInfo.data());
+    }
+    else
+    {
+      visit(this->DistanceOnly.data());
+    }
+  }
   std::vector<std::uint8_t> OctantDistance[8];
   std::uint64_t OctantDistanceBuild[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
   // The non-empty macro cells of DistanceOnly's (or the packed table's) build MacroBuild, and

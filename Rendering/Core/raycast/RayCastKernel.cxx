@@ -85,7 +85,7 @@ public:
       this->Channels.emplace_back(frame.volume, frame.components, c);
     }
     this->Batching = this->CanBatch();
-    this->ApproachTogether = this->CanApproachTogether();
+    this->ApproachTogether = RaysApproachTogether(frame);
     // The lanes shade directional and positional lights, not spot lights.
     for (const SceneLight& light : frame.lighting->model.lights)
     {
@@ -418,7 +418,6 @@ private:
     const std::uint8_t* distance = nullptr; // DistanceMapOf the lane's ray
     bool going = false;
   };
-  bool CanApproachTogether() const;
   void CastRowTogether(int j, int x0, int x1, float* row);
   void Approach(int n);
   bool ApproachInterval(int g);

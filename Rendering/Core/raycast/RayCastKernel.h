@@ -110,6 +110,15 @@ struct KernelFrame
   int footprintBlocks = 0;
 };
 
+// Whether composite rays approach their first non-empty cell a few at a time
+// (RayCastKernelApproach.inl; the screen footprint serves those rays only).
+inline bool RaysApproachTogether(const KernelFrame& frame)
+{
+  const RayCastSettings& settings = *frame.settings;
+  return settings.approachTogether && settings.blend == Blend::Composite && frame.components == 1 &&
+    frame.useDistance && !frame.useOctree;
+}
+
 // Casts the rays of pixels [x0, x1) x [y0, y1) into rgba (the whole image's buffer).
 void CastTile(
   const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters);

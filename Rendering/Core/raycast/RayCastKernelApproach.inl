@@ -8,14 +8,6 @@
 // (ScreenFootprint.h: their rays cannot meet a non-empty cell) get no ray at all.
 
 template <typename T>
-bool RayCasterTile<T>::CanApproachTogether() const
-{
-  const KernelFrame& frame = this->Frame;
-  return this->Settings.approachTogether && this->Settings.blend == Blend::Composite &&
-    frame.components == 1 && frame.useDistance && !frame.useOctree;
-}
-
-template <typename T>
 void RayCasterTile<T>::CastRowTogether(int j, int x0, int x1, float* row)
 {
   const KernelFrame& frame = this->Frame;

@@ -12,6 +12,33 @@ namespace accelvolume
 namespace
 {
 
+// Whether brick (bx, by, bz) of a CellBricks-layout distance map holds a non-empty cell (0 in
+// the low byte); only its cells inside the grid count (padding entries are not cells).
+template <typename Entry>
+bool BrickHasNonEmptyCell(
+  const Entry* distance, const CellBricks& bricks, const int cellDims[3], int bx, int by, int bz)
+{
+  constexpr int Size = CellBricks::Size;
+  const int x0 = bx * Size, y0 = by * Size, z0 = bz * Size;
+  const int nx = std::min(Size, cellDims[0] - x0), ny = std::min(Size, cellDims[1] - y0),
+            nz = std::min(Size, cellDims[2] - z0);
+  const Entry* entries = distance + bricks.Index(x0, y0, z0);
+  for (int z = 0; z < nz; ++z)
+  {
+    for (int y = 0; y < ny; ++y)
+    {
+      for (int x = 0; x < nx; ++x)
+      {
+        if ((entries[(z * Size + y) * Size + x] & 0xff) == 0)
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
 template <typename Entry>
 void ComputeMacroCellsOf(const int cellDims[3], const Entry* distance, const ParallelFor& parallel,
   MacroCells& macro, std::size_t maximumMacroCells)
@@ -36,14 +63,14 @@ void ComputeMacroCellsOf(const int cellDims[3], const Entry* distance, const Par
   }
   macro.nonEmpty.assign(macroCount(macro.shift), 0);
   const CellBricks bricks(cellDims);
-  constexpr int Size = CellBricks::Size;
   const int bricksPerMacro = 1 << (macro.shift - CellBricks::Shift);
   int brickDims[3];
   for (int a = 0; a < 3; ++a)
   {
-    brickDims[a] = (cellDims[a] + Size - 1) / Size;
+    brickDims[a] = (cellDims[a] + CellBricks::Size - 1) / CellBricks::Size;
   }
-  // Macro planes in parallel: each writes its own rows.
+  // Macro planes in parallel: each writes its own rows; a macro cell's scan stops at its first
+  // non-empty brick.
   parallel(static_cast<std::size_t>(macro.dims[2]),
     [&](std::size_t begin, std::size_t end)
     {
@@ -55,39 +82,12 @@ void ComputeMacroCellsOf(const int cellDims[3], const Entry* distance, const Par
         {
           for (int by = 0; by < brickDims[1]; ++by)
           {
+            std::uint8_t* row = macro.nonEmpty.data() +
+              (mz * macro.dims[1] + static_cast<std::size_t>(by / bricksPerMacro)) * macro.dims[0];
             for (int bx = 0; bx < brickDims[0]; ++bx)
             {
-              std::uint8_t& flag =
-                macro
-                  .nonEmpty[(mz * macro.dims[1] + static_cast<std::size_t>(by / bricksPerMacro)) *
-                      macro.dims[0] +
-                    static_cast<std::size_t>(bx / bricksPerMacro)];
-              if (flag)
-              {
-                continue;
-              }
-              // The brick's cells inside the grid (padding entries are not cells).
-              const int x0 = bx * Size, y0 = by * Size, z0 = bz * Size;
-              const int nx = std::min(Size, cellDims[0] - x0),
-                        ny = std::min(Size, cellDims[1] - y0),
-                        nz = std::min(Size, cellDims[2] - z0);
-              const Entry* entries = distance + bricks.Index(x0, y0, z0);
-              bool nonEmpty = false;
-              for (int z = 0; z < nz && !nonEmpty; ++z)
-              {
-                for (int y = 0; y < ny && !nonEmpty; ++y)
-                {
-                  for (int x = 0; x < nx; ++x)
-                  {
-                    if ((entries[(z * Size + y) * Size + x] & 0xff) == 0)
-                    {
-                      nonEmpty = true;
-                      break;
-                    }
-                  }
-                }
-              }
-              flag = nonEmpty ? 1 : 0;
+              std::uint8_t& flag = row[bx / bricksPerMacro];
+              flag = flag || BrickHasNonEmptyCell(distance, bricks, cellDims, bx, by, bz) ? 1 : 0;
             }
           }
         }
@@ -109,6 +109,48 @@ void ComputeMacroCells(const int cellDims[3], const std::uint16_t* distance,
   ComputeMacroCellsOf(cellDims, distance, parallel, macro, maximumMacroCells);
 }
 
+bool ProjectBox(
+  const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4])
+{
+  const int size[2] = { width, height };
+  double low[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  double high[2] = { -low[0], -low[1] };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double p[3] = { corner & 1 ? box.upper.x : box.lower.x,
+      corner & 2 ? box.upper.y : box.lower.y, corner & 4 ? box.upper.z : box.lower.z };
+    double clip[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      clip[r] = indexToClip[r][0] * p[0] + indexToClip[r][1] * p[1] + indexToClip[r][2] * p[2] +
+        indexToClip[r][3];
+    }
+    if (!(clip[3] > 1.0e-12))
+    {
+      return false;
+    }
+    for (int a = 0; a < 2; ++a)
+    {
+      const double pixel = (clip[a] / clip[3] + 1.0) * 0.5 * size[a] - 0.5;
+      if (!std::isfinite(pixel))
+      {
+        return false;
+      }
+      low[a] = std::min(low[a], pixel);
+      high[a] = std::max(high[a], pixel);
+    }
+  }
+  for (int a = 0; a < 2; ++a)
+  {
+    const double from = std::max(std::floor(low[a]) - 1.0, 0.0);
+    const double to = std::min(std::ceil(high[a]) + 1.0, size[a] - 1.0);
+    pixels[2 * a] = from <= to ? static_cast<int>(from) : 0;
+    pixels[2 * a + 1] = from <= to ? static_cast<int>(to) : -1;
+  }
+  return true;
+}
+
 bool ProjectFootprint(const MacroCells& macro, const int volumeDims[3],
   const double indexToClip[4][4], int width, int height, ScreenFootprint& footprint)
 {
@@ -117,7 +159,6 @@ bool ProjectFootprint(const MacroCells& macro, const int volumeDims[3],
   footprint.covered.assign(
     static_cast<std::size_t>(footprint.blocks[0]) * static_cast<std::size_t>(footprint.blocks[1]),
     0);
-  const int size[2] = { width, height };
   const int side = 1 << macro.shift;
   std::size_t at = 0;
   for (int mz = 0; mz < macro.dims[2]; ++mz)
@@ -139,52 +180,25 @@ bool ProjectFootprint(const MacroCells& macro, const int volumeDims[3],
           lower[a] = m[a] * side - 1.0;
           upper[a] = std::min((m[a] + 1) * side, std::max(volumeDims[a] - 1, 0)) + 1.0;
         }
-        double low[2] = { std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity() };
-        double high[2] = { -low[0], -low[1] };
-        for (int corner = 0; corner < 8; ++corner)
+        const Box box{ { lower[0], lower[1], lower[2] }, { upper[0], upper[1], upper[2] } };
+        int pixels[4];
+        if (!ProjectBox(box, indexToClip, width, height, pixels))
         {
-          const double p[3] = { corner & 1 ? upper[0] : lower[0], corner & 2 ? upper[1] : lower[1],
-            corner & 4 ? upper[2] : lower[2] };
-          double clip[4];
-          for (int r = 0; r < 4; ++r)
-          {
-            clip[r] = indexToClip[r][0] * p[0] + indexToClip[r][1] * p[1] +
-              indexToClip[r][2] * p[2] + indexToClip[r][3];
-          }
-          if (!(clip[3] > 1.0e-12))
-          {
-            footprint.covered.clear();
-            return false;
-          }
-          for (int a = 0; a < 2; ++a)
-          {
-            const double pixel = (clip[a] / clip[3] + 1.0) * 0.5 * size[a] - 0.5;
-            if (!std::isfinite(pixel))
-            {
-              footprint.covered.clear();
-              return false;
-            }
-            low[a] = std::min(low[a], pixel);
-            high[a] = std::max(high[a], pixel);
-          }
+          footprint.covered.clear();
+          return false;
         }
-        // One pixel of slack each way absorbs rounding; then the blocks those pixels are in.
-        int first[2], last[2];
-        bool onScreen = true;
-        for (int a = 0; a < 2; ++a)
+        if (pixels[0] > pixels[1] || pixels[2] > pixels[3])
         {
-          const double from = std::max(std::floor(low[a]) - 1.0, 0.0);
-          const double to = std::min(std::ceil(high[a]) + 1.0, size[a] - 1.0);
-          onScreen = onScreen && from <= to;
-          first[a] = onScreen ? static_cast<int>(from) >> FootprintBlockShift : 0;
-          last[a] = onScreen ? static_cast<int>(to) >> FootprintBlockShift : -1;
+          continue; // off the image
         }
-        for (int by = first[1]; onScreen && by <= last[1]; ++by)
+        // The blocks those pixels are in.
+        const int first = pixels[0] >> FootprintBlockShift, last = pixels[1] >> FootprintBlockShift;
+        for (int by = pixels[2] >> FootprintBlockShift; by <= pixels[3] >> FootprintBlockShift;
+             ++by)
         {
           std::uint8_t* row =
             footprint.covered.data() + static_cast<std::size_t>(by) * footprint.blocks[0];
-          std::fill(row + first[0], row + last[0] + 1, std::uint8_t(1));
+          std::fill(row + first, row + last + 1, std::uint8_t(1));
         }
       }
     }

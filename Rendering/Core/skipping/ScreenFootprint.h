@@ -8,6 +8,7 @@
 #ifndef accelvolume_ScreenFootprint_h
 #define accelvolume_ScreenFootprint_h
 
+#include "common/Geometry.h"
 #include "common/ParallelFor.h"
 
 #include <cstdint>
@@ -37,13 +38,19 @@ void ComputeMacroCells(const int cellDims[3], const std::uint8_t* distance,
 void ComputeMacroCells(const int cellDims[3], const std::uint16_t* distance,
   const ParallelFor& parallel, MacroCells& macro, std::size_t maximumMacroCells = 32768);
 
+// Pixels of a width x height image whose centres the index-space box projects over, with one
+// pixel of slack each way for rounding (inclusive: [pixels[0], pixels[1]] x [pixels[2],
+// pixels[3]]; an empty range when the box is off the image). indexToClip maps index-space points
+// (x, y, z, 1) to clip space (NDC = xy / w; pixel i has its centre at NDC 2 (i + 0.5) / size - 1).
+// False when a corner is not in front of the camera (or does not project to a finite point): the
+// projection of the box is then not bounded by its corners'.
+bool ProjectBox(
+  const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4]);
+
 // Pixel blocks of a width x height image (blocks[0] x blocks[1], row-major): covered[b] = 1 when
 // a pixel centre's ray of block b may meet a non-empty cell, i.e. the block meets the projection
 // of a non-empty macro cell's index-space box (grown by one voxel, for clamped samples and
-// rounding) with one pixel of slack. indexToClip maps index-space points (x, y, z, 1) to clip
-// space (NDC = xy / w; pixel i has its centre at NDC 2 (i + 0.5) / size - 1). False (and no
-// mask) when a box corner is not in front of the camera: the projection of the box is then not
-// bounded by its corners'.
+// rounding; ProjectBox). False (and no mask) when ProjectBox fails for one of them.
 struct ScreenFootprint
 {
   int blocks[2] = { 0, 0 };
