@@ -113,6 +113,7 @@ void ReadRayCastResult(vtkAccelVolumeRayCastMapper* mapper, RenderResult& result
   out.octreeLeaps = mapper->GetLastNumberOfOctreeLeaps();
   out.distanceMapLeaps = mapper->GetLastNumberOfDistanceMapLeaps();
   out.culledPixels = mapper->GetLastNumberOfCulledPixels();
+  out.packetRays = mapper->GetLastNumberOfPacketRays();
   out.accelerationBytes = mapper->GetAccelerationBytes();
   out.renderMs = 1000 * mapper->GetLastRenderTime();
   out.castMs = 1000 * mapper->GetLastCastTime();

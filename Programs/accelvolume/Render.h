@@ -60,6 +60,7 @@ struct RayCastResult
   long long octreeLeaps = 0;      // leaps taken (each skips >= 1 sample)
   long long distanceMapLeaps = 0;
   long long culledPixels = 0;
+  long long packetRays = 0;        // cast sixteen at a time
   long long accelerationBytes = 0; // held by the octree, cell table / distance map, gradients
   double renderMs = 0;
   double castMs = 0;

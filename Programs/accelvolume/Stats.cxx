@@ -92,6 +92,7 @@ JsonDocument RayCastObject(const RenderResult& result)
   o["octree_leaps"] = r.octreeLeaps;
   o["distance_map_leaps"] = r.distanceMapLeaps;
   o["culled_pixels"] = r.culledPixels;
+  o["packet_rays"] = r.packetRays;
   o["acceleration_bytes"] = r.accelerationBytes;
   o["render_ms"] = JsonNumber(r.renderMs);
   o["cast_ms"] = JsonNumber(r.castMs);

@@ -182,6 +182,7 @@ void vtkAccelVolumeRayCastMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfOctreeLeaps: " << this->LastNumberOfOctreeLeaps << "\n";
   os << indent << "LastNumberOfDistanceMapLeaps: " << this->LastNumberOfDistanceMapLeaps << "\n";
   os << indent << "LastNumberOfCulledPixels: " << this->LastNumberOfCulledPixels << "\n";
+  os << indent << "LastNumberOfPacketRays: " << this->LastNumberOfPacketRays << "\n";
   os << indent << "AccelerationBytes: " << this->AccelerationBytes << "\n";
 }
 
@@ -461,6 +462,7 @@ void vtkAccelVolumeRayCastMapper::vtkInternals::RecordCounters(vtkAccelVolumeRay
   self->LastNumberOfOctreeLeaps = static_cast<vtkTypeInt64>(counters.octreeLeaps);
   self->LastNumberOfDistanceMapLeaps = static_cast<vtkTypeInt64>(counters.distanceLeaps);
   self->LastNumberOfCulledPixels = static_cast<vtkTypeInt64>(counters.culledPixels);
+  self->LastNumberOfPacketRays = static_cast<vtkTypeInt64>(counters.packetRays);
   self->AccelerationBytes = static_cast<vtkTypeInt64>(this->Caster.GetAccelerationBytes());
 }
 

@@ -230,6 +230,9 @@ public:
   /** Last frame: pixels left empty without a ray, their rays unable to meet a non-empty cell
    * (the screen footprint of the non-empty cells; composite with distance-map leaping). */
   vtkGetMacro(LastNumberOfCulledPixels, vtkTypeInt64);
+  /** Last frame: rays cast sixteen at a time, one per SIMD lane (composite with distance-map
+   * leaping on CPUs with AVX-512; the other rays take the one-ray paths, same image). */
+  vtkGetMacro(LastNumberOfPacketRays, vtkTypeInt64);
   /** Bytes the acceleration structures (octree, cell table / distance map, gradients) hold. */
   vtkGetMacro(AccelerationBytes, vtkTypeInt64);
   /** Wall-clock seconds: the ray casting alone, the structure rebuild (GetLastRenderTime: the
@@ -284,6 +287,7 @@ protected:
   double LastPrepareTime = 0.0;
   double LastImageSampleDistance = 1.0;
   double LastSampleDistance = 1.0;
+  vtkTypeInt64 LastNumberOfPacketRays = 0;
 
 private:
   vtkAccelVolumeRayCastMapper(const vtkAccelVolumeRayCastMapper&) = delete;

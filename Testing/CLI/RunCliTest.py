@@ -242,7 +242,8 @@ class Checker:
                      "prepare_ms".split(),
                      "rays samples leaped_octree leaped_distance_map leaped_cell_table "
                      "transparent_cell_samples terminated_rays octree_leaps distance_map_leaps "
-                     "culled_pixels acceleration_bytes".split(), "rays," + o.get("RAYCAST_POSITIVE", ""))
+                     "culled_pixels packet_rays acceleration_bytes".split(),
+                     "rays," + o.get("RAYCAST_POSITIVE", ""))
         part = stats["raycast"]
         for key in [k for k in o.get("RAYCAST_ZERO", "").split(",") if k]:
             if part[key] != 0:

@@ -437,6 +437,7 @@ void CastTiles(const detail::KernelFrame& frame, const RayCastView& view, int ti
     counters.octreeLeaps += c.octreeLeaps;
     counters.distanceLeaps += c.distanceLeaps;
     counters.culledPixels += c.culledPixels;
+    counters.packetRays += c.packetRays;
   }
 }
 

@@ -161,6 +161,10 @@ struct RayCastSettings
   // non-empty macro cells projected to the screen, ScreenFootprint.h) stay empty without a ray;
   // false: every pixel of the projected box casts one (tests: both give the same bits).
   bool screenFootprint = true;
+  // With the grouped approach, composite rays of the common case go sixteen at a time, one
+  // per AVX-512 lane, where the CPU has AVX-512 (RayCastKernelPackets.inl); false (or
+  // baselineLanes): the other paths (tests: all give the same bits).
+  bool rayPackets = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).
@@ -198,6 +202,7 @@ struct RayCastCounters
   std::uint64_t octreeLeaps = 0;     // octree leaps taken (each skips >= 1 sample)
   std::uint64_t distanceLeaps = 0;   // distance-map leaps taken
   std::uint64_t culledPixels = 0;    // pixels left empty by the screen footprint, without a ray
+  std::uint64_t packetRays = 0;      // rays cast sixteen at a time (RayCastSettings::rayPackets)
 };
 
 class RayCaster

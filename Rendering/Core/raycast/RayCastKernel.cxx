@@ -16,6 +16,10 @@
 #include <limits>
 #include <type_traits>
 
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace accelvolume
 {
 namespace detail
@@ -43,6 +47,33 @@ inline bool LanesOnAvx2()
   return false;
 #endif
 }
+
+// Composite rays in packets of sixteen (RayCastKernelPackets.inl): an AVX-512 build on
+// x86-64, run where the CPU has it.
+#define ACCELVOLUME_PACKETS ACCELVOLUME_AVX2_LANES
+#if ACCELVOLUME_PACKETS
+#define ACCELVOLUME_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl")))
+
+inline bool PacketsOnAvx512()
+{
+  static const bool avx512 = __builtin_cpu_supports("avx512f") &&
+    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+    __builtin_cpu_supports("avx512vl");
+  return avx512;
+}
+
+// Sixteen int64 lanes as two registers of eight.
+struct PacketWide
+{
+  __m512i half[2];
+};
+
+// The scalar types whose corners the packets load (the others take the other paths).
+template <typename T>
+constexpr bool PacketScalar = std::is_same<T, std::uint8_t>::value ||
+  std::is_same<T, std::int8_t>::value || std::is_same<T, std::uint16_t>::value ||
+  std::is_same<T, std::int16_t>::value || std::is_same<T, float>::value;
+#endif
 
 // A hint to start loading the cache line at `address` (no effect on results).
 inline void Prefetch(const void* address)
@@ -92,6 +123,7 @@ public:
       this->LaneLights = this->LaneLights && !(light.positional && light.cosCone >= -1.0f);
     }
     this->Avx2Lanes = !this->Settings.baselineLanes && LanesOnAvx2();
+    this->Packets = this->SetUpPackets();
   }
 
   void Cast(int x0, int y0, int x1, int y1, float* rgba)
@@ -114,6 +146,16 @@ public:
       {
         this->ColumnCentres[static_cast<std::size_t>(i - x0)] = PixelCentre(i, width);
       }
+#if ACCELVOLUME_PACKETS
+      if (this->Packets)
+      {
+        for (int j = y0; j < y1; j += PacketRows)
+        {
+          this->CastRowsInPackets(j, std::min(j + PacketRows, y1), x0, x1, rgba);
+        }
+        return;
+      }
+#endif
       for (int j = y0; j < y1; ++j)
       {
         this->CastRowTogether(j, x0, x1, rgba + 4 * static_cast<std::size_t>(j) * width);
@@ -335,15 +377,9 @@ private:
     this->IntervalSamples(ray, this->RayIntervals[at], h, opaqueBox, first, last, leaped);
   }
 
-  // CastRay once the ray's intervals and RayStart are set.
-  void CastFromStart(PixelRay& pixel, float* out)
+  // The ray's lights (shading only), once RayIntervals holds its intervals.
+  void LightRay(PixelRay& pixel) const
   {
-    out[0] = out[1] = out[2] = out[3] = 0.0f;
-    if (this->RayStart.interval >= this->RayIntervals.size())
-    {
-      ++this->Counters.rays; // leaped through by the grouped approach: adds nothing
-      return;
-    }
     const RayCastLighting& lighting = *this->Frame.lighting;
     if (this->Frame.eyeLightsAtEntry)
     {
@@ -357,6 +393,18 @@ private:
     {
       LightPixelRay(lighting, this->Frame.raysThroughEye, pixel);
     }
+  }
+
+  // CastRay once the ray's intervals and RayStart are set.
+  void CastFromStart(PixelRay& pixel, float* out)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    if (this->RayStart.interval >= this->RayIntervals.size())
+    {
+      ++this->Counters.rays; // leaped through by the grouped approach: adds nothing
+      return;
+    }
+    this->LightRay(pixel);
     ++this->Counters.rays;
     if (this->Frame.components > 1)
     {
@@ -420,6 +468,32 @@ private:
   };
   void CastRowTogether(int j, int x0, int x1, float* row);
   void Approach(int n);
+  // Composite rays sixteen at a time (RayCastKernelPackets.inl); false where they cannot.
+  bool SetUpPackets();
+#if ACCELVOLUME_PACKETS
+  static constexpr int PacketSize = 16;
+  static constexpr int PacketRows = 4, PacketColumns = 4; // a packet's pixels, when all cast
+  // The packet's rays, lane by lane (structure of arrays).
+  struct PacketRays
+  {
+    alignas(64) std::int64_t start[3][PacketSize];
+    alignas(64) std::int64_t step[3][PacketSize];
+    alignas(64) std::int64_t sample[PacketSize];
+    alignas(64) std::int64_t last[PacketSize];
+    alignas(64) double inverse[3][PacketSize]; // LeapSteps::inverse
+    alignas(64) float forward[3][PacketSize];  // 1 where LeapSteps::along > 0
+    alignas(64) float toLight[MaximumRayLights][3][PacketSize];
+    alignas(64) float half[MaximumRayLights][3][PacketSize];
+    float* out[PacketSize];
+    const std::uint8_t* distance = nullptr; // every lane's distance map (DistanceMapOf)
+  };
+  int AddToPacket(int n, PixelRay& pixel, float* out);
+  void CastRowsInPackets(int j0, int j1, int x0, int x1, float* rgba);
+  ACCELVOLUME_AVX512 void CastPacket(int n);
+  ACCELVOLUME_AVX512 void PacketLeap(
+    __mmask16 leaping, const __m512i& d, const __m512 f[3], PacketWide& k, const PacketWide& last);
+  ACCELVOLUME_AVX512 void PacketShade(const __m512i& base, const __m512 f[3], __m512 rgb[3]);
+#endif
   bool ApproachInterval(int g);
   bool CanBatch() const;
   void CompositeBatched(const PixelRay& pixel, float* out);
@@ -703,12 +777,19 @@ private:
   bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;
+  bool Packets = false; // composite rays take CastRowInPackets
+#if ACCELVOLUME_PACKETS
+  PacketRays Packet;
+  std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets
+  int PacketBricks[3] = {};            // CellBricks per axis of the cell grid
+#endif
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };
 
 #include "raycast/RayCastKernelApproach.inl"
 #include "raycast/RayCastKernelBatch.inl"
 #include "raycast/RayCastKernelComponents.inl"
+#include "raycast/RayCastKernelPackets.inl"
 #include "raycast/RayCastKernelPlanes.inl"
 #include "raycast/RayCastKernelProjections.inl"
 #include "raycast/RayCastKernelWalk.inl"

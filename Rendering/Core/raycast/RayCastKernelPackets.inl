@@ -1,0 +1,605 @@
+// RayCastKernelPackets.inl: composite rays sixteen at a time, one per lane of an AVX-512
+// register (ray packets), included after RayCasterTile. One ray at a time, a sample is a chain
+// of dependent steps (locate, read the map, load eight corners, classify, load 24 gradient
+// values, shade, blend) that leaves most of the core idle; sixteen neighbouring rays take each
+// step together, their loads as gathers. Each lane leaps or samples on its own: a lane in an
+// empty cell leaps (the distance map, as the walks do) while the others sample. Every lane's
+// arithmetic is CompositeBatch's and ShadeBatchLanes' (the same operations in the same order,
+// no FMA contraction), so images are bit-identical to the other paths (tests compare them).
+// Used for the common case only (RayCasterTile::CanCastPackets); built only on x86-64 and run
+// only on CPUs with AVX-512 (F, DQ, BW, VL).
+
+template <typename T>
+bool RayCasterTile<T>::SetUpPackets()
+{
+#if ACCELVOLUME_PACKETS
+  const KernelFrame& frame = this->Frame;
+  const RayCastSettings& settings = this->Settings;
+  const RayCastLighting& lighting = *frame.lighting;
+  const int* dims = frame.volume.dims;
+  int cells[3];
+  std::int64_t voxels = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (dims[a] < 2)
+    {
+      return false; // the corner pairs need an x neighbour, the locating two voxels per axis
+    }
+    cells[a] = dims[a] - 1;
+    voxels *= dims[a];
+  }
+  const CellBricks bricks(cells);
+  // Voxel, gradient and cell indices are 32-bit lanes.
+  constexpr std::int64_t Lanes32 = std::numeric_limits<std::int32_t>::max();
+  if (!PacketScalar<T> || !settings.rayPackets || settings.baselineLanes || !PacketsOnAvx512() ||
+    !this->ApproachTogether || settings.nearest || frame.mask != nullptr ||
+    frame.gradientOpacity != nullptr || frame.useCellLeap || frame.tableSize < 2 ||
+    3 * voxels + 8 > Lanes32 || static_cast<std::int64_t>(bricks.Entries()) > Lanes32 ||
+    (lighting.shade &&
+      (frame.gradients == nullptr || frame.specularTableSize < 2 ||
+        lighting.model.lights.size() > MaximumRayLights)))
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    this->PacketBricks[a] = (cells[a] + CellBricks::Size - 1) >> CellBricks::Shift;
+  }
+  const std::ptrdiff_t oy = dims[0], oz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
+  const std::ptrdiff_t corners[8] = { 0, 1, oy, oy + 1, oz, oz + 1, oz + oy, oz + oy + 1 };
+  std::copy(corners, corners + 8, this->PacketCorner);
+  return true;
+#else
+  return false;
+#endif
+}
+
+#if ACCELVOLUME_PACKETS
+
+// Lane-wise std::min / std::max as the scalar code evaluates them (a < b ? b : a), NaN
+// included.
+ACCELVOLUME_AVX512 inline __m512 PacketMax(__m512 a, __m512 b)
+{
+  return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(a, b, _CMP_LT_OQ), a, b);
+}
+
+ACCELVOLUME_AVX512 inline __m512 PacketMin(__m512 a, __m512 b)
+{
+  return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(b, a, _CMP_LT_OQ), a, b);
+}
+
+// Lerp(a, b, t) = a + t * (b - a).
+ACCELVOLUME_AVX512 inline __m512 PacketLerp(__m512 a, __m512 b, __m512 t)
+{
+  return _mm512_add_ps(a, _mm512_mul_ps(t, _mm512_sub_ps(b, a)));
+}
+
+// The `width` (1 or 2) bytes at byte offsets `offset` of `base`, from the 32-bit word that ends
+// with them (or starts the buffer, of at least 4 bytes): no load passes the buffer's end.
+ACCELVOLUME_AVX512 inline __m512i PacketBytes(const void* base, __m512i offset, int width)
+{
+  const __m512i start =
+    _mm512_max_epi32(_mm512_sub_epi32(offset, _mm512_set1_epi32(4 - width)), _mm512_setzero_si512());
+  const __m512i word = _mm512_i32gather_epi32(start, base, 1);
+  return _mm512_srlv_epi32(word, _mm512_slli_epi32(_mm512_sub_epi32(offset, start), 3));
+}
+
+// Corners `at` and `at + 1` (x neighbours) of every lane as floats, as static_cast<float>.
+template <typename T>
+struct PacketCorners;
+
+template <>
+struct PacketCorners<std::uint8_t>
+{
+  ACCELVOLUME_AVX512 static void Load(const std::uint8_t* v, __m512i at, __m512& lo, __m512& hi)
+  {
+    const __m512i pair = PacketBytes(v, at, 2);
+    lo = _mm512_cvtepi32_ps(_mm512_and_si512(pair, _mm512_set1_epi32(0xff)));
+    hi = _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(pair, 8), _mm512_set1_epi32(0xff)));
+  }
+};
+
+template <>
+struct PacketCorners<std::int8_t>
+{
+  ACCELVOLUME_AVX512 static void Load(const std::int8_t* v, __m512i at, __m512& lo, __m512& hi)
+  {
+    const __m512i pair = PacketBytes(v, at, 2);
+    lo = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(pair, 24), 24));
+    hi = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(pair, 16), 24));
+  }
+};
+
+template <>
+struct PacketCorners<std::uint16_t>
+{
+  ACCELVOLUME_AVX512 static void Load(const std::uint16_t* v, __m512i at, __m512& lo, __m512& hi)
+  {
+    const __m512i pair = _mm512_i32gather_epi32(at, v, 2);
+    lo = _mm512_cvtepi32_ps(_mm512_and_si512(pair, _mm512_set1_epi32(0xffff)));
+    hi = _mm512_cvtepi32_ps(_mm512_srli_epi32(pair, 16));
+  }
+};
+
+template <>
+struct PacketCorners<std::int16_t>
+{
+  ACCELVOLUME_AVX512 static void Load(const std::int16_t* v, __m512i at, __m512& lo, __m512& hi)
+  {
+    const __m512i pair = _mm512_i32gather_epi32(at, v, 2);
+    lo = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(pair, 16), 16));
+    hi = _mm512_cvtepi32_ps(_mm512_srai_epi32(pair, 16));
+  }
+};
+
+template <>
+struct PacketCorners<float>
+{
+  ACCELVOLUME_AVX512 static void Load(const float* v, __m512i at, __m512& lo, __m512& hi)
+  {
+    lo = _mm512_i32gather_ps(at, v, 4);
+    hi = _mm512_i32gather_ps(_mm512_add_epi32(at, _mm512_set1_epi32(1)), v, 4);
+  }
+};
+
+ACCELVOLUME_AVX512 inline PacketWide PacketLoadWide(const std::int64_t* lanes)
+{
+  return { { _mm512_load_si512(lanes), _mm512_load_si512(lanes + 8) } };
+}
+
+// Sampler::LocateFixedCell along one axis of n > 1 voxels for sixteen 32.32 positions: the
+// cell index and the fraction, with the same integer steps and the same conversion to float.
+ACCELVOLUME_AVX512 inline void PacketLocate(const PacketWide& q, int n, __m512i& cell, __m512& f)
+{
+  const __m512i top = _mm512_set1_epi64(static_cast<std::int64_t>(n - 1) << 32);
+  const __m512i lastCell = _mm512_set1_epi64(n - 2);
+  __m256i cells[2];
+  __m256 fractions[2];
+  for (int h = 0; h < 2; ++h)
+  {
+    const __m512i clamped = _mm512_max_epi64(_mm512_min_epi64(q.half[h], top), _mm512_setzero_si512());
+    const __m512i i = _mm512_min_epi64(_mm512_srai_epi64(clamped, 32), lastCell);
+    const __m512i rest = _mm512_sub_epi64(clamped, _mm512_slli_epi64(i, 32));
+    cells[h] = _mm512_cvtepi64_epi32(i);
+    fractions[h] = _mm256_mul_ps(_mm512_cvtepi64_ps(rest), _mm256_set1_ps(1.0f / 4294967296.0f));
+  }
+  cell = _mm512_inserti64x4(_mm512_castsi256_si512(cells[0]), cells[1], 1);
+  f = _mm512_insertf32x8(_mm512_castps256_ps512(fractions[0]), fractions[1], 1);
+}
+
+// Fills `packet` lane `n` with the ray whose intervals RayIntervals holds: 1 when added, 0 when
+// it has nothing to walk (its pixel is set), -1 when it needs the other paths (several
+// intervals, a distance map of another octant than the packet's, lights not fixed).
+template <typename T>
+int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
+{
+  const KernelFrame& frame = this->Frame;
+  const IndexRay& ray = pixel.index;
+  const std::uint8_t* distance = this->DistanceMapOf(ray);
+  if (this->RayIntervals.size() != 1 || (n > 0 && distance != this->Packet.distance))
+  {
+    return -1;
+  }
+  this->LightRay(pixel);
+  if (frame.lighting->shade && !pixel.fixedLights)
+  {
+    return -1;
+  }
+  ++this->Counters.rays;
+  const double h = this->Settings.sampleDistance;
+  const Interval& interval = this->RayIntervals.front();
+  std::int64_t first, last;
+  this->IntervalSamples(
+    ray, interval, h, frame.useOpaqueBox, first, last, this->Counters.leapedDistance);
+  if (first >= last)
+  {
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    return 0;
+  }
+  PacketRays& packet = this->Packet;
+  packet.distance = distance;
+  const FixedSteps steps(ray, interval.t0, h);
+  const LeapSteps leap(ray.direction * h);
+  for (int a = 0; a < 3; ++a)
+  {
+    packet.start[a][n] = steps.start[a];
+    packet.step[a][n] = steps.step[a];
+    packet.inverse[a][n] = leap.inverse[a];
+    packet.forward[a][n] = leap.along[a] > 0 ? 1 : 0;
+  }
+  packet.sample[n] = first;
+  packet.last[n] = last;
+  packet.out[n] = out;
+  for (std::size_t l = 0; frame.lighting->shade && l < frame.lighting->model.lights.size(); ++l)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      packet.toLight[l][c][n] = pixel.toLight[l][c];
+      packet.half[l][c][n] = pixel.half[l][c];
+    }
+  }
+  return 1;
+}
+
+// CastRowTogether with packets, for rows [j0, j1) (at most PacketRows): the rays of blocks of
+// PacketRows x PacketColumns pixels go together (neighbours in both directions meet the same
+// cells more often than a row of sixteen), the screen footprint as there.
+template <typename T>
+void RayCasterTile<T>::CastRowsInPackets(int j0, int j1, int x0, int x1, float* rgba)
+{
+  const KernelFrame& frame = this->Frame;
+  const int width = frame.view->width;
+  double rowCentres[PacketRows];
+  const std::uint8_t* covered[PacketRows];
+  for (int j = j0; j < j1; ++j)
+  {
+    rowCentres[j - j0] = PixelCentre(j, frame.view->height);
+    covered[j - j0] = frame.footprint ? frame.footprint +
+        static_cast<std::size_t>(j >> FootprintBlockShift) * frame.footprintBlocks
+                                      : nullptr;
+  }
+  PixelRay& pixel = this->GroupPixels[0];
+  int n = 0;
+  for (int block = x0; block < x1; block += PacketColumns)
+  {
+    const int blockEnd = std::min(block + PacketColumns, x1);
+    for (int j = j0; j < j1; ++j)
+    {
+      for (int i = block; i < blockEnd; ++i)
+      {
+        float* out = rgba + 4 * (static_cast<std::size_t>(j) * width + i);
+        if (covered[j - j0] && !covered[j - j0][i >> FootprintBlockShift])
+        {
+          out[0] = out[1] = out[2] = out[3] = 0.0f;
+          ++this->Counters.culledPixels;
+          continue;
+        }
+        SetPixelRay(frame, i, j, this->ColumnCentres[i - x0], rowCentres[j - j0], pixel);
+        if (!this->Intervals(pixel.index, this->RayIntervals))
+        {
+          out[0] = out[1] = out[2] = out[3] = 0.0f;
+          continue;
+        }
+        const int added = this->AddToPacket(n, pixel, out);
+        if (added < 0)
+        {
+          this->RayStart = WalkStart();
+          this->CastFromStart(pixel, out);
+        }
+        else if (added > 0 && ++n == PacketSize)
+        {
+          this->CastPacket(n);
+          n = 0;
+        }
+      }
+    }
+  }
+  if (n > 0)
+  {
+    this->CastPacket(n);
+  }
+}
+
+// The packet's leaps: lanes `leaping` move on by CountedDistanceLeap's samples (DistanceLeap's
+// arithmetic; their fractions `f`, map values `d`).
+template <typename T>
+ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketLeap(
+  __mmask16 leaping, const __m512i& d, const __m512 f[3], PacketWide& k, const PacketWide& last)
+{
+  const PacketRays& packet = this->Packet;
+  const __m512 df = _mm512_cvtepi32_ps(d);
+  const __m512 dBack = _mm512_cvtepi32_ps(_mm512_sub_epi32(d, _mm512_set1_epi32(1)));
+  __m512d room[2] = { _mm512_set1_pd(1.0e30), _mm512_set1_pd(1.0e30) };
+  for (int a = 0; a < 3; ++a)
+  {
+    const __mmask16 forward =
+      _mm512_cmp_ps_mask(_mm512_load_ps(packet.forward[a]), _mm512_setzero_ps(), _CMP_GT_OQ);
+    const __m512 along = _mm512_mask_blend_ps(
+      forward, _mm512_add_ps(dBack, f[a]), _mm512_sub_ps(df, f[a]));
+    for (int h = 0; h < 2; ++h)
+    {
+      const __m512d inverse = _mm512_load_pd(packet.inverse[a] + 8 * h);
+      const __m512d wide = _mm512_cvtps_pd(h == 0 ? _mm512_castps512_ps256(along)
+                                                  : _mm512_extractf32x8_ps(along, 1));
+      const __m512d term = _mm512_mul_pd(_mm512_sub_pd(wide, _mm512_set1_pd(1.0e-4)), inverse);
+      const __mmask8 moves = _mm512_cmp_pd_mask(inverse, _mm512_setzero_pd(), _CMP_GT_OQ);
+      room[h] = _mm512_mask_min_pd(room[h], moves, term, room[h]); // std::min(room, term)
+    }
+  }
+  std::uint64_t skippedTotal = 0;
+  alignas(64) std::int64_t skipped[16];
+  for (int h = 0; h < 2; ++h)
+  {
+    // std::max(0.0, std::min(room, 1.0e18)).
+    const __m512d bounded =
+      _mm512_max_pd(_mm512_min_pd(_mm512_set1_pd(1.0e18), room[h]), _mm512_setzero_pd());
+    const __m512i leap = _mm512_add_epi64(_mm512_cvttpd_epi64(bounded), _mm512_set1_epi64(1));
+    const __mmask8 lanes = static_cast<__mmask8>(leaping >> (8 * h));
+    const __m512i moved =
+      _mm512_maskz_min_epi64(lanes, leap, _mm512_sub_epi64(last.half[h], k.half[h]));
+    k.half[h] = _mm512_add_epi64(k.half[h], moved);
+    _mm512_store_si512(skipped + 8 * h, moved);
+  }
+  for (int l = 0; l < 16; ++l)
+  {
+    skippedTotal += static_cast<std::uint64_t>(skipped[l]);
+  }
+  this->Counters.leapedDistance += skippedTotal;
+  this->Counters.distanceLeaps += static_cast<std::uint64_t>(__builtin_popcount(leaping));
+}
+
+// Shades the lanes' colours (ShadeBatchLanesIn's arithmetic) from their gradients.
+template <typename T>
+ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
+  const __m512i& base, const __m512 f[3], __m512 rgb[3])
+{
+  const KernelFrame& frame = this->Frame;
+  const PacketRays& packet = this->Packet;
+  const LightModel& model = frame.lighting->model;
+  const std::int16_t* gradients = frame.gradients;
+  const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+  const __m512 wx[2] = { _mm512_sub_ps(one, f[0]), f[0] };
+  const __m512 wy[2] = { _mm512_sub_ps(one, f[1]), f[1] };
+  const __m512 wz[2] = { _mm512_sub_ps(one, f[2]), f[2] };
+  __m512 g[3] = { zero, zero, zero };
+  const __m512i three = _mm512_set1_epi32(3);
+  for (int c = 0; c < 8; ++c)
+  {
+    const __m512 w = _mm512_mul_ps(_mm512_mul_ps(wx[c & 1], wy[(c >> 1) & 1]), wz[c >> 2]);
+    const __m512i at = _mm512_mullo_epi32(
+      _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c]))), three);
+    const __m512i xy = _mm512_i32gather_epi32(at, gradients, 2);
+    const __m512i zw = _mm512_i32gather_epi32(_mm512_add_epi32(at, _mm512_set1_epi32(2)), gradients, 2);
+    const __m512 gx = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(xy, 16), 16));
+    const __m512 gy = _mm512_cvtepi32_ps(_mm512_srai_epi32(xy, 16));
+    const __m512 gz = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(zw, 16), 16));
+    g[0] = _mm512_add_ps(g[0], _mm512_mul_ps(w, gx));
+    g[1] = _mm512_add_ps(g[1], _mm512_mul_ps(w, gy));
+    g[2] = _mm512_add_ps(g[2], _mm512_mul_ps(w, gz));
+  }
+  const float(*m)[3] = frame.normalMatrix;
+  __m512 eye[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    eye[r] = _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(m[r][0]), g[0]),
+                             _mm512_mul_ps(_mm512_set1_ps(m[r][1]), g[1])),
+      _mm512_mul_ps(_mm512_set1_ps(m[r][2]), g[2]));
+  }
+  const __m512 squared = _mm512_add_ps(
+    _mm512_add_ps(_mm512_mul_ps(eye[0], eye[0]), _mm512_mul_ps(eye[1], eye[1])),
+    _mm512_mul_ps(eye[2], eye[2]));
+  const __m512 tiny = _mm512_set1_ps(1.0e-16f);
+  const __m512 candidate =
+    _mm512_div_ps(_mm512_set1_ps(-1.0f), _mm512_sqrt_ps(PacketMax(squared, tiny)));
+  const __m512 inverse =
+    _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(squared, tiny, _CMP_GT_OQ), candidate);
+  const __m512 normal[3] = { _mm512_mul_ps(eye[0], inverse), _mm512_mul_ps(eye[1], inverse),
+    _mm512_mul_ps(eye[2], inverse) };
+  __m512 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
+  float ambient[3] = { 0, 0, 0 };
+  const float* table = frame.specularTable;
+  const int size = frame.specularTableSize;
+  std::size_t index = 0;
+  for (const SceneLight& light : model.lights)
+  {
+    const float(*l)[16] = packet.toLight[index];
+    const float(*h)[16] = packet.half[index++];
+    __m512 nDotL = _mm512_add_ps(
+      _mm512_add_ps(_mm512_mul_ps(normal[0], _mm512_load_ps(l[0])),
+        _mm512_mul_ps(normal[1], _mm512_load_ps(l[1]))),
+      _mm512_mul_ps(normal[2], _mm512_load_ps(l[2])));
+    __m512 nDotH = _mm512_add_ps(
+      _mm512_add_ps(_mm512_mul_ps(normal[0], _mm512_load_ps(h[0])),
+        _mm512_mul_ps(normal[1], _mm512_load_ps(h[1]))),
+      _mm512_mul_ps(normal[2], _mm512_load_ps(h[2])));
+    if (model.twoSided)
+    {
+      nDotL = _mm512_abs_ps(nDotL);
+      nDotH = _mm512_abs_ps(nDotH);
+    }
+    const __m512 lit = PacketMax(nDotL, zero);
+    const __m512 x = PacketMin(PacketMax(nDotH, zero), one);
+    const __m512 u = _mm512_mul_ps(x, _mm512_set1_ps(static_cast<float>(size - 1)));
+    // Clamped below too: lanes not sampling (their light vectors unset) must stay in the table.
+    const __m512i k = _mm512_max_epi32(
+      _mm512_min_epi32(_mm512_cvttps_epi32(u), _mm512_set1_epi32(size - 2)), _mm512_setzero_si512());
+    const __m512 highlight = PacketLerp(_mm512_i32gather_ps(k, table, 4),
+      _mm512_i32gather_ps(_mm512_add_epi32(k, _mm512_set1_epi32(1)), table, 4),
+      _mm512_sub_ps(u, _mm512_cvtepi32_ps(k)));
+    const __m512 term =
+      _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(nDotH, zero, _CMP_GT_OQ), highlight);
+    for (int c = 0; c < 3; ++c)
+    {
+      ambient[c] += light.ambient[c];
+      diffuse[c] = _mm512_add_ps(diffuse[c], _mm512_mul_ps(lit, _mm512_set1_ps(light.diffuse[c])));
+      specular[c] =
+        _mm512_add_ps(specular[c], _mm512_mul_ps(term, _mm512_set1_ps(light.specular[c])));
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    const float base = model.ambient * (model.headlightOnly ? 1.0f : ambient[c]);
+    const __m512 factor =
+      _mm512_add_ps(_mm512_set1_ps(base), _mm512_mul_ps(_mm512_set1_ps(model.diffuse), diffuse[c]));
+    const __m512 highlight = _mm512_mul_ps(_mm512_set1_ps(model.specular), specular[c]);
+    rgb[c] = PacketMin(_mm512_add_ps(_mm512_mul_ps(rgb[c], factor), highlight), one);
+  }
+}
+
+// Walks the packet's lanes [0, n) to their ends (or early termination) and writes their pixels.
+template <typename T>
+ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
+{
+  const KernelFrame& frame = this->Frame;
+  PacketRays& packet = this->Packet;
+  for (int l = n; l < PacketSize; ++l)
+  {
+    packet.sample[l] = packet.last[l] = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      packet.start[a][l] = packet.step[a][l] = 0;
+      packet.inverse[a][l] = 0;
+      packet.forward[a][l] = 0;
+    }
+    for (std::size_t light = 0; light < MaximumRayLights; ++light)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        packet.toLight[light][c][l] = packet.half[light][c][l] = 0.0f;
+      }
+    }
+  }
+  const PacketWide start[3] = { PacketLoadWide(packet.start[0]), PacketLoadWide(packet.start[1]),
+    PacketLoadWide(packet.start[2]) };
+  const PacketWide step[3] = { PacketLoadWide(packet.step[0]), PacketLoadWide(packet.step[1]),
+    PacketLoadWide(packet.step[2]) };
+  const PacketWide last = PacketLoadWide(packet.last);
+  PacketWide k = PacketLoadWide(packet.sample);
+  const int* dims = frame.volume.dims;
+  const __m512i strideY = _mm512_set1_epi32(dims[0]);
+  const __m512i strideZ = _mm512_set1_epi32(dims[0] * dims[1]);
+  const __m512i bricksX = _mm512_set1_epi32(this->PacketBricks[0]);
+  const __m512i bricksY = _mm512_set1_epi32(this->PacketBricks[1]);
+  const __m512i low2 = _mm512_set1_epi32(3);
+  const T* voxels = this->Sampling.Voxels();
+  const bool shade = frame.lighting->shade;
+  const bool terminate = this->Settings.earlyTermination;
+  const __m512 threshold = _mm512_set1_ps(static_cast<float>(this->Settings.terminationThreshold));
+  const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+  const float lastEntry = static_cast<float>(frame.tableSize - 1);
+  __m512 colour[3] = { zero, zero, zero };
+  __m512 alpha = zero;
+  __mmask16 alive = static_cast<__mmask16>((1u << n) - 1);
+  std::uint64_t samples = 0, terminated = 0;
+  for (;;)
+  {
+    const __mmask16 going = alive &
+      static_cast<__mmask16>(_mm512_cmplt_epi64_mask(k.half[0], last.half[0]) |
+        (_mm512_cmplt_epi64_mask(k.half[1], last.half[1]) << 8));
+    if (going == 0)
+    {
+      break;
+    }
+    // FixedSteps::At and Sampler::LocateFixedCell, lane by lane.
+    __m512i cell[3];
+    __m512 f[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      PacketWide q;
+      for (int h = 0; h < 2; ++h)
+      {
+        q.half[h] = _mm512_add_epi64(start[a].half[h], _mm512_mullo_epi64(k.half[h], step[a].half[h]));
+      }
+      PacketLocate(q, dims[a], cell[a], f[a]);
+    }
+    // CellBricks::Index.
+    const __m512i brick = _mm512_add_epi32(
+      _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(cell[2], 2), bricksY),
+                           _mm512_srli_epi32(cell[1], 2)),
+        bricksX),
+      _mm512_srli_epi32(cell[0], 2));
+    const __m512i inBrick = _mm512_or_si512(
+      _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(cell[2], low2), 4),
+        _mm512_slli_epi32(_mm512_and_si512(cell[1], low2), 2)),
+      _mm512_and_si512(cell[0], low2));
+    const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 6), inBrick);
+    const __m512i d =
+      _mm512_and_si512(PacketBytes(packet.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
+    const __mmask16 leaping = going & _mm512_cmpgt_epi32_mask(d, _mm512_setzero_si512());
+    if (leaping)
+    {
+      this->PacketLeap(leaping, d, f, k, last);
+    }
+    const __mmask16 sampling = going & ~leaping;
+    if (sampling == 0)
+    {
+      continue;
+    }
+    samples += static_cast<std::uint64_t>(__builtin_popcount(sampling));
+    // Sampler::Trilinear.
+    const __m512i base = _mm512_add_epi32(cell[0],
+      _mm512_add_epi32(_mm512_mullo_epi32(cell[1], strideY), _mm512_mullo_epi32(cell[2], strideZ)));
+    __m512 corner[8];
+    for (int c = 0; c < 8; c += 2)
+    {
+      if constexpr (PacketScalar<T>) // the others never get here (SetUpPackets)
+      {
+        PacketCorners<T>::Load(voxels,
+          _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c]))),
+          corner[c], corner[c + 1]);
+      }
+    }
+    const __m512 c00 = PacketLerp(corner[0], corner[1], f[0]);
+    const __m512 c10 = PacketLerp(corner[2], corner[3], f[0]);
+    const __m512 c01 = PacketLerp(corner[4], corner[5], f[0]);
+    const __m512 c11 = PacketLerp(corner[6], corner[7], f[0]);
+    const __m512 value =
+      PacketLerp(PacketLerp(c00, c10, f[1]), PacketLerp(c01, c11, f[1]), f[2]);
+    // TablePosition and the corrected opacity (NaN samples are transparent).
+    __m512 u = _mm512_add_ps(
+      _mm512_mul_ps(value, _mm512_set1_ps(frame.tableScale)), _mm512_set1_ps(frame.tableBias));
+    const __m512 lastU = _mm512_set1_ps(lastEntry);
+    u = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(u, zero, _CMP_GT_OQ),
+      _mm512_mask_blend_ps(_mm512_cmp_ps_mask(u, lastU, _CMP_LT_OQ), lastU, u));
+    const __m512i entry =
+      _mm512_min_epi32(_mm512_cvttps_epi32(u), _mm512_set1_epi32(frame.tableSize - 2));
+    const __m512 fraction = _mm512_sub_ps(u, _mm512_cvtepi32_ps(entry));
+    const __m512i next = _mm512_add_epi32(entry, _mm512_set1_epi32(1));
+    const __m512 a = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(value, value, _CMP_ORD_Q),
+      PacketLerp(_mm512_i32gather_ps(entry, frame.correctedAlpha, 4),
+        _mm512_i32gather_ps(next, frame.correctedAlpha, 4), fraction));
+    const __mmask16 visible = sampling & _mm512_cmp_ps_mask(a, zero, _CMP_GT_OQ);
+    if (visible)
+    {
+      __m512 rgb[3];
+      const __m512i at = _mm512_slli_epi32(entry, 2);
+      for (int c = 0; c < 3; ++c)
+      {
+        const __m512i channel = _mm512_add_epi32(at, _mm512_set1_epi32(c));
+        rgb[c] = PacketLerp(_mm512_i32gather_ps(channel, frame.rgba, 4),
+          _mm512_i32gather_ps(_mm512_add_epi32(channel, _mm512_set1_epi32(4)), frame.rgba, 4),
+          fraction);
+      }
+      if (shade)
+      {
+        this->PacketShade(base, f, rgb);
+      }
+      // BlendSample.
+      const __m512 weight = _mm512_mul_ps(_mm512_sub_ps(one, alpha), a);
+      for (int c = 0; c < 3; ++c)
+      {
+        colour[c] =
+          _mm512_mask_add_ps(colour[c], visible, colour[c], _mm512_mul_ps(weight, rgb[c]));
+      }
+      alpha = _mm512_mask_add_ps(alpha, visible, alpha, weight);
+      if (terminate)
+      {
+        const __mmask16 done = visible & _mm512_cmp_ps_mask(alpha, threshold, _CMP_GE_OQ);
+        terminated += static_cast<std::uint64_t>(__builtin_popcount(done));
+        alive &= static_cast<__mmask16>(~done);
+      }
+    }
+    for (int h = 0; h < 2; ++h)
+    {
+      k.half[h] = _mm512_mask_add_epi64(k.half[h], static_cast<__mmask8>(sampling >> (8 * h)),
+        k.half[h], _mm512_set1_epi64(1));
+    }
+  }
+  this->Counters.samples += samples;
+  this->Counters.terminatedRays += terminated;
+  this->Counters.packetRays += static_cast<std::uint64_t>(n);
+  alignas(64) float out[4][16];
+  _mm512_store_ps(out[0], colour[0]);
+  _mm512_store_ps(out[1], colour[1]);
+  _mm512_store_ps(out[2], colour[2]);
+  _mm512_store_ps(out[3], alpha);
+  for (int l = 0; l < n; ++l)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      packet.out[l][c] = out[c][l];
+    }
+  }
+}
+
+#endif

@@ -1,0 +1,158 @@
+// Ray packets (RayCastKernelPackets.inl): composite rays sixteen at a time, one per AVX-512
+// lane, give the same bits as one ray at a time on every scalar type the packets load, shaded
+// or not, with several lights, crops (rays of two intervals leave the packet), without early
+// termination, over threads and on both one-ray walks.
+#include "RayCastEngineTestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace
+{
+using namespace accelvolume_test::raycast_engine;
+
+bool CpuHasPackets()
+{
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+    __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl");
+#else
+  return false;
+#endif
+}
+
+// A second, coloured directional light from the upper left, and VTK's headlight as a
+// positional light at the eye (fixed along rays through the eye in perspective).
+void AddLights(int trial, RayCastLighting& lighting)
+{
+  lighting.model.lights.emplace_back();
+  if (trial % 3 == 1)
+  {
+    SceneLight side;
+    const float axis[3] = { 0.48f, -0.6f, -0.64f };
+    std::copy(axis, axis + 3, side.axis);
+    const float diffuse[3] = { 0.9f, 0.6f, 0.3f };
+    std::copy(diffuse, diffuse + 3, side.diffuse);
+    side.ambient[0] = side.ambient[1] = side.ambient[2] = 0.2f;
+    lighting.model.lights.push_back(side);
+    lighting.model.twoSided = false;
+  }
+  if (trial % 3 == 2)
+  {
+    lighting.model.lights[0].positional = true;
+    lighting.model.anyPositional = true;
+    lighting.model.headlightOnly = true;
+    lighting.model.specularPower = 35.0f;
+  }
+}
+
+} // namespace
+
+TEST(RayCastPackets, SameImagesAsOneRayAtATime)
+{
+  std::mt19937 random(53);
+  // Cells not a whole number of 4^3 bricks along any axis (the packets' cell index).
+  const int dims[3] = { 47, 38, 43 };
+  const Vec3 centre{ 23, 18.5, 21 };
+  const ScalarType types[4] = { ScalarType::UInt8, ScalarType::UInt16, ScalarType::Int16,
+    ScalarType::Float32 };
+  std::uint64_t packetRays = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    const Scene scene = MakeScene(types[trial % 4], dims, 0.07 * trial);
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    if (trial % 5 == 1)
+    {
+      for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+      {
+        transfer.rgba[i] = std::min(1.0f, 6.0f * transfer.rgba[i]); // nearly opaque
+      }
+    }
+    RayCastLighting lighting;
+    lighting.shade = trial % 4 != 3;
+    AddLights(trial, lighting);
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = false;
+    settings.earlyTermination = trial != 5;
+    if (trial == 6 || trial == 7)
+    {
+      settings.regions = { { { 0, 0, 0 }, { 19, dims[1] - 1.0, dims[2] - 1.0 } },
+        { { 30, 2, 3 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 } } };
+    }
+    Camera camera = RandomCamera(random, dims, trial % 2 == 0);
+    if (trial >= 9)
+    {
+      // Close wide perspective views (rays of several octants), the last from inside.
+      camera.parallel = false;
+      camera.focalPoint = centre;
+      camera.position = centre + Vec3{ 40.0 - 20 * (trial - 9), 35.0, -15.0 };
+      camera.viewAngleDegrees = 70;
+      if (trial == 11)
+      {
+        camera.position = centre + Vec3{ -3, -2, -4 };
+      }
+    }
+    const RayCastView view = MakeView(camera, 71, 58, 0.5, 500.0);
+    const Result packets = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
+    packetRays += packets.counters.packetRays;
+    settings.rayPackets = false;
+    const Result alone = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;
+    EXPECT_EQ(packets.counters.rays, alone.counters.rays) << "trial " << trial;
+    EXPECT_EQ(alone.counters.packetRays, 0u) << "trial " << trial;
+    settings.batchedComposite = false;
+    const Result perSample = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(packets.rgba, perSample.rgba)) << "trial " << trial << ": per sample";
+    settings.rayPackets = true;
+    settings.batchedComposite = true;
+    const Result threaded = Cast(scene, transfer, lighting, view, settings, ThreadedFor(3, 1));
+    EXPECT_TRUE(Identical(packets.rgba, threaded.rgba)) << "trial " << trial << ": threads";
+    EXPECT_EQ(packets.counters.packetRays, threaded.counters.packetRays) << "trial " << trial;
+  }
+  if (!CpuHasPackets())
+  {
+    GTEST_SKIP() << "no AVX-512 on this CPU: the images were compared, the packets never ran";
+  }
+  EXPECT_GT(packetRays, 12u * 1000u);
+}
+
+// What the packets do not take goes the one-ray way, with the same images: cell leaping,
+// gradient opacity, a mask, nearest-voxel sampling.
+TEST(RayCastPackets, OtherCasesTakeTheOneRayPaths)
+{
+  std::mt19937 random(59);
+  const int dims[3] = { 33, 29, 31 };
+  const Scene scene = MakeScene(ScalarType::UInt16, dims, 0.3);
+  RayCastTransfer transfer;
+  transfer.rgba = RandomTable(random, 256, false);
+  RayCastLighting lighting;
+  lighting.shade = true;
+  lighting.model.lights.emplace_back();
+  RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+  settings.leap = LeapMode::DistanceMap;
+  settings.cellLeap = false;
+  const RayCastView view = MakeView(RandomCamera(random, dims, false), 40, 36, 0.5, 500.0);
+  const Result packets = Cast(scene, transfer, lighting, view, settings);
+  // Rays whose samples all lie outside the box of possibly opaque cells count without a lane.
+  EXPECT_LE(packets.counters.packetRays, packets.counters.rays);
+  if (CpuHasPackets())
+  {
+    EXPECT_GT(packets.counters.packetRays, packets.counters.rays / 4);
+  }
+  settings.cellLeap = true;
+  const Result cellLeap = Cast(scene, transfer, lighting, view, settings);
+  EXPECT_EQ(cellLeap.counters.packetRays, 0u);
+  EXPECT_TRUE(Identical(packets.rgba, cellLeap.rgba));
+  settings.cellLeap = false;
+  settings.nearest = true;
+  EXPECT_EQ(Cast(scene, transfer, lighting, view, settings).counters.packetRays, 0u);
+  settings.nearest = false;
+  settings.baselineLanes = true;
+  const Result baseline = Cast(scene, transfer, lighting, view, settings);
+  EXPECT_EQ(baseline.counters.packetRays, 0u);
+  EXPECT_TRUE(Identical(packets.rgba, baseline.rgba));
+}
