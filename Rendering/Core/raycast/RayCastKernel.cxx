@@ -492,7 +492,8 @@ private:
   ACCELVOLUME_AVX512 void CastPacket(int n);
   ACCELVOLUME_AVX512 void PacketLeap(
     __mmask16 leaping, const __m512i& d, const __m512 f[3], PacketWide& k, const PacketWide& last);
-  ACCELVOLUME_AVX512 void PacketShade(const __m512i& base, const __m512 f[3], __m512 rgb[3]);
+  ACCELVOLUME_AVX512 void PacketShade(
+    __mmask16 lanes, const __m512i& base, const __m512 f[3], __m512 rgb[3]);
 #endif
   bool ApproachInterval(int g);
   bool CanBatch() const;

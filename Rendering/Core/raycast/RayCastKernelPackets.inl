@@ -167,6 +167,62 @@ ACCELVOLUME_AVX512 inline void PacketLocate(const PacketWide& q, int n, __m512i&
   f = _mm512_insertf32x8(_mm512_castps256_ps512(fractions[0]), fractions[1], 1);
 }
 
+// Where the lanes' samples lie: the cells' fractions and base voxels, and the distance map there.
+struct PacketPlace
+{
+  __m512 f[3];
+  __m512i base;
+  __m512i d;
+};
+
+// The fixed geometry PacketPlaceAt needs (per frame and packet).
+struct PacketGrid
+{
+  PacketWide start[3], step[3];
+  int dims[3];
+  __m512i strideY, strideZ, bricksX, bricksY;
+  const std::uint8_t* distance;
+};
+
+// FixedSteps::At for samples k of the lanes `lanes` (the others keep q).
+ACCELVOLUME_AVX512 inline void PacketPositions(
+  const PacketGrid& grid, const PacketWide& k, __mmask16 lanes, PacketWide q[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int h = 0; h < 2; ++h)
+    {
+      q[a].half[h] = _mm512_mask_add_epi64(q[a].half[h], static_cast<__mmask8>(lanes >> (8 * h)),
+        grid.start[a].half[h], _mm512_mullo_epi64(k.half[h], grid.step[a].half[h]));
+    }
+  }
+}
+
+// Sampler::LocateFixedCell and CellBricks::Index for the lanes' positions q, and their
+// distance-map values.
+ACCELVOLUME_AVX512 inline void PacketPlaceAt(const PacketGrid& grid, const PacketWide q[3], PacketPlace& place)
+{
+  __m512i cell[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    PacketLocate(q[a], grid.dims[a], cell[a], place.f[a]);
+  }
+  const __m512i low2 = _mm512_set1_epi32(CellBricks::Size - 1);
+  const __m512i brick = _mm512_add_epi32(
+    _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(cell[2], 2), grid.bricksY),
+                         _mm512_srli_epi32(cell[1], 2)),
+      grid.bricksX),
+    _mm512_srli_epi32(cell[0], 2));
+  const __m512i inBrick = _mm512_or_si512(
+    _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(cell[2], low2), 4),
+      _mm512_slli_epi32(_mm512_and_si512(cell[1], low2), 2)),
+    _mm512_and_si512(cell[0], low2));
+  const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 6), inBrick);
+  place.d = _mm512_and_si512(PacketBytes(grid.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
+  place.base = _mm512_add_epi32(cell[0],
+    _mm512_add_epi32(_mm512_mullo_epi32(cell[1], grid.strideY), _mm512_mullo_epi32(cell[2], grid.strideZ)));
+}
+
 // Fills `packet` lane `n` with the ray whose intervals RayIntervals holds: 1 when added, 0 when
 // it has nothing to walk (its pixel is set), -1 when it needs the other paths (several
 // intervals, a distance map of another octant than the packet's, lights not fixed).
@@ -331,7 +387,7 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketLeap(
 // Shades the lanes' colours (ShadeBatchLanesIn's arithmetic) from their gradients.
 template <typename T>
 ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
-  const __m512i& base, const __m512 f[3], __m512 rgb[3])
+  __mmask16 lanes, const __m512i& base, const __m512 f[3], __m512 rgb[3])
 {
   const KernelFrame& frame = this->Frame;
   const PacketRays& packet = this->Packet;
@@ -342,14 +398,26 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
   const __m512 wy[2] = { _mm512_sub_ps(one, f[1]), f[1] };
   const __m512 wz[2] = { _mm512_sub_ps(one, f[2]), f[2] };
   __m512 g[3] = { zero, zero, zero };
-  const __m512i three = _mm512_set1_epi32(3);
+  const __m512i base3 = _mm512_mullo_epi32(base, _mm512_set1_epi32(3));
+  const __m512 wxy[4] = { _mm512_mul_ps(wx[0], wy[0]), _mm512_mul_ps(wx[1], wy[0]),
+    _mm512_mul_ps(wx[0], wy[1]), _mm512_mul_ps(wx[1], wy[1]) };
+  const __m512i evenWords =
+    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i oddWords = _mm512_add_epi32(evenWords, _mm512_set1_epi32(1));
   for (int c = 0; c < 8; ++c)
   {
-    const __m512 w = _mm512_mul_ps(_mm512_mul_ps(wx[c & 1], wy[(c >> 1) & 1]), wz[c >> 2]);
-    const __m512i at = _mm512_mullo_epi32(
-      _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c]))), three);
-    const __m512i xy = _mm512_i32gather_epi32(at, gradients, 2);
-    const __m512i zw = _mm512_i32gather_epi32(_mm512_add_epi32(at, _mm512_set1_epi32(2)), gradients, 2);
+    // InterpolateGradient's weight (wx * wy) * wz.
+    const __m512 w = _mm512_mul_ps(wxy[c & 3], wz[c >> 2]);
+    const __m512i at =
+      _mm512_add_epi32(base3, _mm512_set1_epi32(3 * static_cast<int>(this->PacketCorner[c])));
+    // A corner's three int16 (and one past them: Gradients has a spare at its end) as one
+    // 64-bit load per lane, the lanes not shaded left out; then x | y << 16 and z per lane.
+    const __m512i low = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
+      static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), gradients, 2);
+    const __m512i high = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
+      static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 2);
+    const __m512i xy = _mm512_permutex2var_epi32(low, evenWords, high);
+    const __m512i zw = _mm512_permutex2var_epi32(low, oddWords, high);
     const __m512 gx = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(xy, 16), 16));
     const __m512 gy = _mm512_cvtepi32_ps(_mm512_srai_epi32(xy, 16));
     const __m512 gz = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(zw, 16), 16));
@@ -449,18 +517,20 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
       }
     }
   }
-  const PacketWide start[3] = { PacketLoadWide(packet.start[0]), PacketLoadWide(packet.start[1]),
-    PacketLoadWide(packet.start[2]) };
-  const PacketWide step[3] = { PacketLoadWide(packet.step[0]), PacketLoadWide(packet.step[1]),
-    PacketLoadWide(packet.step[2]) };
+  PacketGrid grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.start[a] = PacketLoadWide(packet.start[a]);
+    grid.step[a] = PacketLoadWide(packet.step[a]);
+    grid.dims[a] = frame.volume.dims[a];
+  }
+  grid.strideY = _mm512_set1_epi32(grid.dims[0]);
+  grid.strideZ = _mm512_set1_epi32(grid.dims[0] * grid.dims[1]);
+  grid.bricksX = _mm512_set1_epi32(this->PacketBricks[0]);
+  grid.bricksY = _mm512_set1_epi32(this->PacketBricks[1]);
+  grid.distance = packet.distance;
   const PacketWide last = PacketLoadWide(packet.last);
   PacketWide k = PacketLoadWide(packet.sample);
-  const int* dims = frame.volume.dims;
-  const __m512i strideY = _mm512_set1_epi32(dims[0]);
-  const __m512i strideZ = _mm512_set1_epi32(dims[0] * dims[1]);
-  const __m512i bricksX = _mm512_set1_epi32(this->PacketBricks[0]);
-  const __m512i bricksY = _mm512_set1_epi32(this->PacketBricks[1]);
-  const __m512i low2 = _mm512_set1_epi32(3);
   const T* voxels = this->Sampling.Voxels();
   const bool shade = frame.lighting->shade;
   const bool terminate = this->Settings.earlyTermination;
@@ -471,6 +541,12 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
   __m512 alpha = zero;
   __mmask16 alive = static_cast<__mmask16>((1u << n) - 1);
   std::uint64_t samples = 0, terminated = 0;
+  // Software-pipelined: the lanes' next places (and their distance-map reads, which miss the
+  // caches after a leap) are asked for before this step's samples are worked on.
+  PacketWide q[3];
+  PacketPositions(grid, k, 0xffff, q);
+  PacketPlace place;
+  PacketPlaceAt(grid, q, place);
   for (;;)
   {
     const __mmask16 going = alive &
@@ -480,45 +556,34 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
     {
       break;
     }
-    // FixedSteps::At and Sampler::LocateFixedCell, lane by lane.
-    __m512i cell[3];
-    __m512 f[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      PacketWide q;
-      for (int h = 0; h < 2; ++h)
-      {
-        q.half[h] = _mm512_add_epi64(start[a].half[h], _mm512_mullo_epi64(k.half[h], step[a].half[h]));
-      }
-      PacketLocate(q, dims[a], cell[a], f[a]);
-    }
-    // CellBricks::Index.
-    const __m512i brick = _mm512_add_epi32(
-      _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(cell[2], 2), bricksY),
-                           _mm512_srli_epi32(cell[1], 2)),
-        bricksX),
-      _mm512_srli_epi32(cell[0], 2));
-    const __m512i inBrick = _mm512_or_si512(
-      _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(cell[2], low2), 4),
-        _mm512_slli_epi32(_mm512_and_si512(cell[1], low2), 2)),
-      _mm512_and_si512(cell[0], low2));
-    const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 6), inBrick);
-    const __m512i d =
-      _mm512_and_si512(PacketBytes(packet.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
-    const __mmask16 leaping = going & _mm512_cmpgt_epi32_mask(d, _mm512_setzero_si512());
+    const __m512* f = place.f;
+    const __m512i base = place.base;
+    const __mmask16 leaping = going & _mm512_cmpgt_epi32_mask(place.d, _mm512_setzero_si512());
     if (leaping)
     {
-      this->PacketLeap(leaping, d, f, k, last);
+      this->PacketLeap(leaping, place.d, f, k, last);
+      PacketPositions(grid, k, leaping, q);
     }
+    // The sampling lanes move on by one step: start + (k + 1) * step = q + step, exactly.
     const __mmask16 sampling = going & ~leaping;
+    for (int h = 0; h < 2; ++h)
+    {
+      const __mmask8 moving = static_cast<__mmask8>(sampling >> (8 * h));
+      k.half[h] = _mm512_mask_add_epi64(k.half[h], moving, k.half[h], _mm512_set1_epi64(1));
+      for (int a = 0; a < 3; ++a)
+      {
+        q[a].half[h] = _mm512_mask_add_epi64(q[a].half[h], moving, q[a].half[h], grid.step[a].half[h]);
+      }
+    }
+    const __m512 here[3] = { f[0], f[1], f[2] };
+    PacketPlaceAt(grid, q, place);
+    f = here;
     if (sampling == 0)
     {
       continue;
     }
     samples += static_cast<std::uint64_t>(__builtin_popcount(sampling));
     // Sampler::Trilinear.
-    const __m512i base = _mm512_add_epi32(cell[0],
-      _mm512_add_epi32(_mm512_mullo_epi32(cell[1], strideY), _mm512_mullo_epi32(cell[2], strideZ)));
     __m512 corner[8];
     for (int c = 0; c < 8; c += 2)
     {
@@ -556,13 +621,14 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
       for (int c = 0; c < 3; ++c)
       {
         const __m512i channel = _mm512_add_epi32(at, _mm512_set1_epi32(c));
-        rgb[c] = PacketLerp(_mm512_i32gather_ps(channel, frame.rgba, 4),
-          _mm512_i32gather_ps(_mm512_add_epi32(channel, _mm512_set1_epi32(4)), frame.rgba, 4),
+        rgb[c] = PacketLerp(_mm512_mask_i32gather_ps(zero, visible, channel, frame.rgba, 4),
+          _mm512_mask_i32gather_ps(
+            zero, visible, _mm512_add_epi32(channel, _mm512_set1_epi32(4)), frame.rgba, 4),
           fraction);
       }
       if (shade)
       {
-        this->PacketShade(base, f, rgb);
+        this->PacketShade(visible, base, f, rgb);
       }
       // BlendSample.
       const __m512 weight = _mm512_mul_ps(_mm512_sub_ps(one, alpha), a);
@@ -578,11 +644,6 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
         terminated += static_cast<std::uint64_t>(__builtin_popcount(done));
         alive &= static_cast<__mmask16>(~done);
       }
-    }
-    for (int h = 0; h < 2; ++h)
-    {
-      k.half[h] = _mm512_mask_add_epi64(k.half[h], static_cast<__mmask8>(sampling >> (8 * h)),
-        k.half[h], _mm512_set1_epi64(1));
     }
   }
   this->Counters.samples += samples;
