@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -488,6 +489,7 @@ private:
     const std::uint8_t* distance = nullptr; // every lane's distance map (DistanceMapOf)
   };
   int AddToPacket(int n, PixelRay& pixel, float* out);
+  void RememberLights(const PixelRay& pixel);
   void CastRowsInPackets(int j0, int j1, int x0, int x1, float* rgba);
   ACCELVOLUME_AVX512 void CastPacket(int n);
   ACCELVOLUME_AVX512 void PacketLeap(
@@ -783,6 +785,9 @@ private:
   PacketRays Packet;
   std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets
   int PacketBricks[3] = {};            // CellBricks per axis of the cell grid
+  PixelRay LitRay;                     // the lights of the last ray lit (RememberLights)
+  Vec3 LitDirection;
+  bool LitDirectionSet = false;
 #endif
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };

@@ -148,23 +148,26 @@ ACCELVOLUME_AVX512 inline PacketWide PacketLoadWide(const std::int64_t* lanes)
 }
 
 // Sampler::LocateFixedCell along one axis of n > 1 voxels for sixteen 32.32 positions: the
-// cell index and the fraction, with the same integer steps and the same conversion to float.
+// cell index and the fraction. The clamped position's high word is the cell and its low word
+// the fraction's numerator (converted to float as the int64 would be: the same integer),
+// except at the last voxel, which lies in cell n - 2 at fraction 1.
 ACCELVOLUME_AVX512 inline void PacketLocate(const PacketWide& q, int n, __m512i& cell, __m512& f)
 {
   const __m512i top = _mm512_set1_epi64(static_cast<std::int64_t>(n - 1) << 32);
-  const __m512i lastCell = _mm512_set1_epi64(n - 2);
-  __m256i cells[2];
-  __m256 fractions[2];
-  for (int h = 0; h < 2; ++h)
-  {
-    const __m512i clamped = _mm512_max_epi64(_mm512_min_epi64(q.half[h], top), _mm512_setzero_si512());
-    const __m512i i = _mm512_min_epi64(_mm512_srai_epi64(clamped, 32), lastCell);
-    const __m512i rest = _mm512_sub_epi64(clamped, _mm512_slli_epi64(i, 32));
-    cells[h] = _mm512_cvtepi64_epi32(i);
-    fractions[h] = _mm256_mul_ps(_mm512_cvtepi64_ps(rest), _mm256_set1_ps(1.0f / 4294967296.0f));
-  }
-  cell = _mm512_inserti64x4(_mm512_castsi256_si512(cells[0]), cells[1], 1);
-  f = _mm512_insertf32x8(_mm512_castps256_ps512(fractions[0]), fractions[1], 1);
+  const __m512i clamped[2] = {
+    _mm512_max_epi64(_mm512_min_epi64(q.half[0], top), _mm512_setzero_si512()),
+    _mm512_max_epi64(_mm512_min_epi64(q.half[1], top), _mm512_setzero_si512())
+  };
+  const __m512i lowWords =
+    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i highWords = _mm512_add_epi32(lowWords, _mm512_set1_epi32(1));
+  const __m512i low = _mm512_permutex2var_epi32(clamped[0], lowWords, clamped[1]);
+  const __m512i high = _mm512_permutex2var_epi32(clamped[0], highWords, clamped[1]);
+  const __mmask16 atTop = _mm512_cmpeq_epi32_mask(high, _mm512_set1_epi32(n - 1));
+  cell = _mm512_mask_blend_epi32(atTop, high, _mm512_set1_epi32(n - 2));
+  f = _mm512_mask_blend_ps(atTop,
+    _mm512_mul_ps(_mm512_cvtepu32_ps(low), _mm512_set1_ps(1.0f / 4294967296.0f)),
+    _mm512_set1_ps(1.0f));
 }
 
 // Where the lanes' samples lie: the cells' fractions and base voxels, and the distance map there.
@@ -200,7 +203,7 @@ ACCELVOLUME_AVX512 inline void PacketPositions(
 
 // Sampler::LocateFixedCell and CellBricks::Index for the lanes' positions q, and their
 // distance-map values.
-ACCELVOLUME_AVX512 inline void PacketPlaceAt(const PacketGrid& grid, const PacketWide q[3], PacketPlace& place)
+ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(const PacketGrid& grid, const PacketWide q[3], PacketPlace& place)
 {
   __m512i cell[3];
   for (int a = 0; a < 3; ++a)
@@ -236,10 +239,29 @@ int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
   {
     return -1;
   }
-  this->LightRay(pixel);
-  if (frame.lighting->shade && !pixel.fixedLights)
+  const PixelRay* lit = &pixel;
+  if (frame.lighting->shade)
   {
-    return -1;
+    // Without lights taken at the entry point a ray's lights depend on its direction alone:
+    // parallel rays share the last ray's.
+    const bool sameDirection = this->LitDirectionSet &&
+      std::memcmp(&this->LitDirection, &ray.direction, sizeof(Vec3)) == 0;
+    if (!frame.eyeLightsAtEntry && sameDirection)
+    {
+      lit = &this->LitRay;
+    }
+    else
+    {
+      this->LightRay(pixel);
+      if (!frame.eyeLightsAtEntry)
+      {
+        this->RememberLights(pixel);
+      }
+    }
+    if (!lit->fixedLights)
+    {
+      return -1;
+    }
   }
   ++this->Counters.rays;
   const double h = this->Settings.sampleDistance;
@@ -270,11 +292,26 @@ int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
   {
     for (int c = 0; c < 3; ++c)
     {
-      packet.toLight[l][c][n] = pixel.toLight[l][c];
-      packet.half[l][c][n] = pixel.half[l][c];
+      packet.toLight[l][c][n] = lit->toLight[l][c];
+      packet.half[l][c][n] = lit->half[l][c];
     }
   }
   return 1;
+}
+
+// Keeps a lit ray's lights for the rays of the same direction (AddToPacket).
+template <typename T>
+void RayCasterTile<T>::RememberLights(const PixelRay& pixel)
+{
+  this->LitDirection = pixel.index.direction;
+  this->LitDirectionSet = true;
+  this->LitRay.fixedLights = pixel.fixedLights;
+  const std::size_t lights = std::min(this->Frame.lighting->model.lights.size(), MaximumRayLights);
+  for (std::size_t l = 0; l < lights; ++l)
+  {
+    std::copy(pixel.toLight[l], pixel.toLight[l] + 3, this->LitRay.toLight[l]);
+    std::copy(pixel.half[l], pixel.half[l] + 3, this->LitRay.half[l]);
+  }
 }
 
 // CastRowTogether with packets, for rows [j0, j1) (at most PacketRows): the rays of blocks of
