@@ -1,6 +1,7 @@
 // RayCastKernel: per-tile ray loops, templated on the scalar type.
 #include "raycast/RayCastKernel.h"
 
+#include "raycast/RayCastPackets.h"
 #include "raycast/RayCastPixelRay.h"
 #include "raycast/RayCastSampler.h"
 
@@ -16,10 +17,6 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
-
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 namespace accelvolume
 {
@@ -48,33 +45,6 @@ inline bool LanesOnAvx2()
   return false;
 #endif
 }
-
-// Composite rays in packets of sixteen (RayCastKernelPackets.inl): an AVX-512 build on
-// x86-64, run where the CPU has it.
-#define ACCELVOLUME_PACKETS ACCELVOLUME_AVX2_LANES
-#if ACCELVOLUME_PACKETS
-#define ACCELVOLUME_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl")))
-
-inline bool PacketsOnAvx512()
-{
-  static const bool avx512 = __builtin_cpu_supports("avx512f") &&
-    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-    __builtin_cpu_supports("avx512vl");
-  return avx512;
-}
-
-// Sixteen int64 lanes as two registers of eight.
-struct PacketWide
-{
-  __m512i half[2];
-};
-
-// The scalar types whose corners the packets load (the others take the other paths).
-template <typename T>
-constexpr bool PacketScalar = std::is_same<T, std::uint8_t>::value ||
-  std::is_same<T, std::int8_t>::value || std::is_same<T, std::uint16_t>::value ||
-  std::is_same<T, std::int16_t>::value || std::is_same<T, float>::value;
-#endif
 
 // A hint to start loading the cache line at `address` (no effect on results).
 inline void Prefetch(const void* address)
@@ -472,22 +442,7 @@ private:
   // Composite rays sixteen at a time (RayCastKernelPackets.inl); false where they cannot.
   bool SetUpPackets();
 #if ACCELVOLUME_PACKETS
-  static constexpr int PacketSize = 16;
   static constexpr int PacketRows = 4, PacketColumns = 4; // a packet's pixels, when all cast
-  // The packet's rays, lane by lane (structure of arrays).
-  struct PacketRays
-  {
-    alignas(64) std::int64_t start[3][PacketSize];
-    alignas(64) std::int64_t step[3][PacketSize];
-    alignas(64) std::int64_t sample[PacketSize];
-    alignas(64) std::int64_t last[PacketSize];
-    alignas(64) double inverse[3][PacketSize]; // LeapSteps::inverse
-    alignas(64) float forward[3][PacketSize];  // 1 where LeapSteps::along > 0
-    alignas(64) float toLight[MaximumRayLights][3][PacketSize];
-    alignas(64) float half[MaximumRayLights][3][PacketSize];
-    float* out[PacketSize];
-    const std::uint8_t* distance = nullptr; // every lane's distance map (DistanceMapOf)
-  };
   int AddToPacket(int n, PixelRay& pixel, float* out);
   void RememberLights(const PixelRay& pixel);
   void CastRowsInPackets(int j0, int j1, int x0, int x1, float* rgba);

@@ -1,0 +1,68 @@
+// RayCastPackets: the types of the CPU ray caster's ray packets (internal to RayCastKernel;
+// the kernel is RayCastKernelPackets.inl): sixteen composite rays, one per AVX-512 lane, built
+// on x86-64 with GCC or Clang and run where the CPU has AVX-512 F, DQ, BW and VL.
+#ifndef accelvolume_RayCastPackets_h
+#define accelvolume_RayCastPackets_h
+
+#include "raycast/RayCastPixelRay.h"
+
+#include <cstdint>
+#include <type_traits>
+
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define ACCELVOLUME_PACKETS 1
+#include <immintrin.h>
+#else
+#define ACCELVOLUME_PACKETS 0
+#endif
+
+namespace accelvolume
+{
+namespace detail
+{
+
+#if ACCELVOLUME_PACKETS
+#define ACCELVOLUME_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl")))
+
+inline bool PacketsOnAvx512()
+{
+  static const bool avx512 = __builtin_cpu_supports("avx512f") &&
+    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+    __builtin_cpu_supports("avx512vl");
+  return avx512;
+}
+
+constexpr int PacketSize = 16;
+
+// Sixteen int64 lanes as two registers of eight.
+struct PacketWide
+{
+  __m512i half[2];
+};
+
+// The scalar types whose corners the packets load (the others take the other paths).
+template <typename T>
+constexpr bool PacketScalar = std::is_same<T, std::uint8_t>::value ||
+  std::is_same<T, std::int8_t>::value || std::is_same<T, std::uint16_t>::value ||
+  std::is_same<T, std::int16_t>::value || std::is_same<T, float>::value;
+
+// The packet's rays, lane by lane (structure of arrays).
+struct PacketRays
+{
+  alignas(64) std::int64_t start[3][PacketSize];
+  alignas(64) std::int64_t step[3][PacketSize];
+  alignas(64) std::int64_t sample[PacketSize];
+  alignas(64) std::int64_t last[PacketSize];
+  alignas(64) double inverse[3][PacketSize]; // LeapSteps::inverse
+  alignas(64) float forward[3][PacketSize];  // 1 where LeapSteps::along > 0
+  alignas(64) float toLight[MaximumRayLights][3][PacketSize];
+  alignas(64) float half[MaximumRayLights][3][PacketSize];
+  float* out[PacketSize];
+  const std::uint8_t* distance = nullptr; // every lane's distance map (DistanceMapOf)
+};
+#endif
+
+}
+}
+
+#endif
