@@ -443,6 +443,34 @@ void CastTiles(const detail::KernelFrame& frame, const RayCastView& view, int ti
 
 }
 
+// KernelFrame's (value, next - value) pairs of the opacity, colour and specular tables.
+void RayCaster::Internals::FillLerpPairs(
+  const RayCastTransfer& transfer, detail::KernelFrame& frame)
+{
+  const std::size_t entries =
+    frame.tableSize > 1 ? static_cast<std::size_t>(frame.tableSize - 1) : 0;
+  const std::size_t highlights = static_cast<std::size_t>(frame.specularTableSize - 1);
+  std::vector<float>& pairs = this->LerpPairs;
+  pairs.resize(2 * (4 * entries + highlights));
+  float* out = pairs.data();
+  const auto fill = [&out](std::size_t count, const float* values, std::size_t stride)
+  {
+    const float* start = out;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      *out++ = values[i * stride];
+      *out++ = values[(i + 1) * stride] - values[i * stride];
+    }
+    return start;
+  };
+  frame.alphaPairs = entries ? fill(entries, this->CorrectedAlpha.data(), 1) : nullptr;
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.colourPairs[c] = entries ? fill(entries, transfer.rgba.data() + c, 4) : nullptr;
+  }
+  frame.specularPairs = fill(highlights, this->SpecularTable.data(), 1);
+}
+
 void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rangeMin,
   double rangeMax, const RayCastTransfer& transfer, const RayCastLighting& lighting,
   const RayCastView& view, const RayCastSettings& settings, const LeapPlan& plan, bool useGradients,
@@ -496,6 +524,7 @@ void RayCaster::Internals::FillKernelFrame(const VolumeView& volume, double rang
   }
   frame.specularTable = this->SpecularTable.data();
   frame.specularTableSize = SpecularTableSize;
+  this->FillLerpPairs(transfer, frame);
   frame.view = &view;
   frame.settings = &settings;
   frame.octree = plan.useOctree ? &this->Octree : nullptr;

@@ -113,6 +113,7 @@ struct RayCaster::Internals
   std::vector<float> CorrectedAlpha;
   float MaximumCorrectedAlpha = 0;
   std::vector<float> SpecularTable;
+  std::vector<float> LerpPairs; // KernelFrame's alphaPairs, colourPairs and specularPairs
 
   // Multi-component scalars: each component's octree (Octree then holds their combined
   // classification) and each table's per-frame arrays.
@@ -157,6 +158,7 @@ struct RayCaster::Internals
   // index-space points to clip space.
   void UpdateFootprint(
     detail::KernelFrame& frame, const double indexToClip[4][4], const ParallelFor& parallel);
+  void FillLerpPairs(const RayCastTransfer& transfer, detail::KernelFrame& frame);
   void FillKernelFrame(const VolumeView& volume, double rangeMin, double rangeMax,
     const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
     const RayCastSettings& settings, const detail::LeapPlan& plan, bool useGradients, double exponent,

@@ -85,6 +85,12 @@ struct KernelFrame
   float normalMatrix[3][3] = {};
   const float* specularTable = nullptr;
   int specularTableSize = 0;
+  // The same tables as (value, next value - value) pairs per entry, for the ray packets: one
+  // 64-bit load gives what Lerp(table[i], table[i + 1], t) = value + t * difference reads, with
+  // the same bits (alphaPairs: correctedAlpha; colourPairs: rgba's r, g, b).
+  const float* alphaPairs = nullptr;
+  const float* colourPairs[3] = { nullptr, nullptr, nullptr };
+  const float* specularPairs = nullptr;
   const RayCastView* view = nullptr;
   const RayCastSettings* settings = nullptr;
   const MinMaxOctree* octree = nullptr; // built; classified for composite / additive

@@ -74,6 +74,25 @@ ACCELVOLUME_AVX512 inline __m512 PacketLerp(__m512 a, __m512 b, __m512 t)
   return _mm512_add_ps(a, _mm512_mul_ps(t, _mm512_sub_ps(b, a)));
 }
 
+// Lerp(table[i], table[i + 1], t) lane by lane from the table's (value, difference) pairs
+// (KernelFrame::alphaPairs...): value + t * difference, the same bits; lanes outside `lanes`
+// read nothing and give garbage.
+ACCELVOLUME_AVX512 inline __m512 PacketLerpPairs(
+  const float* pairs, const __m512i& i, const __m512& t, __mmask16 lanes)
+{
+  const __m512i lowWords =
+    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i highWords = _mm512_add_epi32(lowWords, _mm512_set1_epi32(1));
+  const __m512i first = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
+    static_cast<__mmask8>(lanes), _mm512_castsi512_si256(i), pairs, 8);
+  const __m512i second = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
+    static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(i, 1), pairs, 8);
+  const __m512 value = _mm512_castsi512_ps(_mm512_permutex2var_epi32(first, lowWords, second));
+  const __m512 difference =
+    _mm512_castsi512_ps(_mm512_permutex2var_epi32(first, highWords, second));
+  return _mm512_add_ps(value, _mm512_mul_ps(t, difference));
+}
+
 // The `width` (1 or 2) bytes at byte offsets `offset` of `base`, from the 32-bit word that ends
 // with them (or starts the buffer, of at least 4 bytes): no load passes the buffer's end.
 ACCELVOLUME_AVX512 inline __m512i PacketBytes(const void* base, __m512i offset, int width)
@@ -482,7 +501,6 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
     _mm512_mul_ps(eye[2], inverse) };
   __m512 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
   float ambient[3] = { 0, 0, 0 };
-  const float* table = frame.specularTable;
   const int size = frame.specularTableSize;
   std::size_t index = 0;
   for (const SceneLight& light : model.lights)
@@ -508,9 +526,8 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
     // Clamped below too: lanes not sampling (their light vectors unset) must stay in the table.
     const __m512i k = _mm512_max_epi32(
       _mm512_min_epi32(_mm512_cvttps_epi32(u), _mm512_set1_epi32(size - 2)), _mm512_setzero_si512());
-    const __m512 highlight = PacketLerp(_mm512_i32gather_ps(k, table, 4),
-      _mm512_i32gather_ps(_mm512_add_epi32(k, _mm512_set1_epi32(1)), table, 4),
-      _mm512_sub_ps(u, _mm512_cvtepi32_ps(k)));
+    const __m512 highlight =
+      PacketLerpPairs(frame.specularPairs, k, _mm512_sub_ps(u, _mm512_cvtepi32_ps(k)), lanes);
     const __m512 term =
       _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(nDotH, zero, _CMP_GT_OQ), highlight);
     for (int c = 0; c < 3; ++c)
@@ -646,22 +663,15 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
     const __m512i entry =
       _mm512_min_epi32(_mm512_cvttps_epi32(u), _mm512_set1_epi32(frame.tableSize - 2));
     const __m512 fraction = _mm512_sub_ps(u, _mm512_cvtepi32_ps(entry));
-    const __m512i next = _mm512_add_epi32(entry, _mm512_set1_epi32(1));
-    const __m512 a = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(value, value, _CMP_ORD_Q),
-      PacketLerp(_mm512_i32gather_ps(entry, frame.correctedAlpha, 4),
-        _mm512_i32gather_ps(next, frame.correctedAlpha, 4), fraction));
+    const __m512 a = _mm512_maskz_mov_ps(sampling & _mm512_cmp_ps_mask(value, value, _CMP_ORD_Q),
+      PacketLerpPairs(frame.alphaPairs, entry, fraction, sampling));
     const __mmask16 visible = sampling & _mm512_cmp_ps_mask(a, zero, _CMP_GT_OQ);
     if (visible)
     {
       __m512 rgb[3];
-      const __m512i at = _mm512_slli_epi32(entry, 2);
       for (int c = 0; c < 3; ++c)
       {
-        const __m512i channel = _mm512_add_epi32(at, _mm512_set1_epi32(c));
-        rgb[c] = PacketLerp(_mm512_mask_i32gather_ps(zero, visible, channel, frame.rgba, 4),
-          _mm512_mask_i32gather_ps(
-            zero, visible, _mm512_add_epi32(channel, _mm512_set1_epi32(4)), frame.rgba, 4),
-          fraction);
+        rgb[c] = PacketLerpPairs(frame.colourPairs[c], entry, fraction, visible);
       }
       if (shade)
       {
