@@ -735,7 +735,7 @@ private:
   bool LaneLights = true;               // the lanes can shade rays whose lights are not fixed
   BatchSample Batch[BatchSize];
   BatchLanes Lanes;
-  bool Packets = false; // composite rays take CastRowInPackets
+  bool Packets = false; // composite rays take CastRowsInPackets
 #if ACCELVOLUME_PACKETS
   PacketRays Packet;
   std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets

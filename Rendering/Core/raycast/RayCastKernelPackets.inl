@@ -6,7 +6,7 @@
 // empty cell leaps (the distance map, as the walks do) while the others sample. Every lane's
 // arithmetic is CompositeBatch's and ShadeBatchLanes' (the same operations in the same order,
 // no FMA contraction), so images are bit-identical to the other paths (tests compare them).
-// Used for the common case only (RayCasterTile::CanCastPackets); built only on x86-64 and run
+// Used for the common case only (RayCasterTile::SetUpPackets); built only on x86-64 and run
 // only on CPUs with AVX-512 (F, DQ, BW, VL).
 
 template <typename T>
