@@ -120,6 +120,50 @@ TEST(RayCastPackets, SameImagesAsOneRayAtATime)
   EXPECT_GT(packetRays, 12u * 1000u);
 }
 
+// Signed bytes (the packets' own corner loads, sign-extended), on a scene of its own: the
+// blobs phantom shifted to [-128, 127].
+TEST(RayCastPackets, SignedBytesGiveTheSameImages)
+{
+  std::mt19937 random(61);
+  const int dims[3] = { 37, 30, 34 };
+  const Scene unsignedScene = MakeScene(ScalarType::UInt8, dims, 0.2);
+  std::vector<std::int8_t> values(unsignedScene.u8.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    values[i] = static_cast<std::int8_t>(static_cast<int>(unsignedScene.u8[i]) - 128);
+  }
+  Scene scene;
+  scene.view = unsignedScene.view;
+  scene.view.type = ScalarType::Int8;
+  scene.view.data = values.data();
+  scene.range[0] = -128;
+  scene.range[1] = 127;
+  std::uint64_t packetRays = 0;
+  for (int trial = 0; trial < 4; ++trial)
+  {
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, false);
+    RayCastLighting lighting;
+    lighting.shade = trial != 3;
+    lighting.model.lights.emplace_back();
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = false;
+    const RayCastView view =
+      MakeView(RandomCamera(random, dims, trial % 2 == 0), 53, 47, 0.5, 500.0);
+    const Result packets = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
+    packetRays += packets.counters.packetRays;
+    settings.rayPackets = false;
+    const Result alone = Cast(scene, transfer, lighting, view, settings);
+    EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;
+  }
+  if (CpuHasPackets())
+  {
+    EXPECT_GT(packetRays, 4u * 300u);
+  }
+}
+
 // What the packets do not take goes the one-ray way, with the same images: cell leaping,
 // gradient opacity, a mask, nearest-voxel sampling.
 TEST(RayCastPackets, OtherCasesTakeTheOneRayPaths)
