@@ -118,13 +118,17 @@ public:
         this->ColumnCentres[static_cast<std::size_t>(i - x0)] = PixelCentre(i, width);
       }
 #if ACCELVOLUME_PACKETS
-      if (this->Packets)
+      // Only the scalar types the packets load instantiate them (SetUpPackets refuses the others).
+      if constexpr (PacketScalar<T>)
       {
-        for (int j = y0; j < y1; j += PacketRows)
+        if (this->Packets)
         {
-          this->CastRowsInPackets(j, std::min(j + PacketRows, y1), x0, x1, rgba);
+          for (int j = y0; j < y1; j += PacketRows)
+          {
+            this->CastRowsInPackets(j, std::min(j + PacketRows, y1), x0, x1, rgba);
+          }
+          return;
         }
-        return;
       }
 #endif
       for (int j = y0; j < y1; ++j)
