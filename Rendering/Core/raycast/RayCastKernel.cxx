@@ -553,6 +553,16 @@ private:
     }
   }
 
+  // Row j's blocks of the frame's screen footprint (nullptr without one): pixels of uncovered
+  // blocks stay empty without a ray.
+  const std::uint8_t* FootprintRow(int j) const
+  {
+    const KernelFrame& frame = this->Frame;
+    return frame.footprint
+      ? frame.footprint + static_cast<std::size_t>(j >> FootprintBlockShift) * frame.footprintBlocks
+      : nullptr;
+  }
+
   // The cell's leaping entry: its distance-map value in the low byte, its cell-leap
   // configuration above (the distance map alone when cell leaping is off).
   std::uint16_t LeapEntry(const SampleCell& cell) const
@@ -744,9 +754,8 @@ private:
   PacketRays Packet;
   std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets
   int PacketBricks[3] = {};            // CellBricks per axis of the cell grid
-  PixelRay LitRay;                     // the lights of the last ray lit (RememberLights)
-  Vec3 LitDirection;
-  bool LitDirectionSet = false;
+  PixelRay LitRay;                     // the direction and lights of the last ray lit
+  bool LitRaySet = false;              // (RememberLights)
 #endif
   std::uint64_t HiddenSamples = 0;      // samples Walk found masked (iso-surfaces restart there)
 };

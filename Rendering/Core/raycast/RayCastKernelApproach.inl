@@ -12,10 +12,7 @@ void RayCasterTile<T>::CastRowTogether(int j, int x0, int x1, float* row)
 {
   const KernelFrame& frame = this->Frame;
   const double y = PixelCentre(j, frame.view->height);
-  // The row's blocks of the screen footprint: pixels outside it stay empty without a ray.
-  const std::uint8_t* covered = frame.footprint
-    ? frame.footprint + static_cast<std::size_t>(j >> FootprintBlockShift) * frame.footprintBlocks
-    : nullptr;
+  const std::uint8_t* covered = this->FootprintRow(j);
   for (int i = x0; i < x1;)
   {
     int n = 0;

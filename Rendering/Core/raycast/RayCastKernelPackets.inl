@@ -43,7 +43,7 @@ bool RayCasterTile<T>::SetUpPackets()
   }
   for (int a = 0; a < 3; ++a)
   {
-    this->PacketBricks[a] = (cells[a] + CellBricks::Size - 1) >> CellBricks::Shift;
+    this->PacketBricks[a] = bricks.BricksAlong(a);
   }
   const std::ptrdiff_t oy = dims[0], oz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   const std::ptrdiff_t corners[8] = { 0, 1, oy, oy + 1, oz, oz + 1, oz + oy, oz + oy + 1 };
@@ -74,23 +74,31 @@ ACCELVOLUME_AVX512 inline __m512 PacketLerp(__m512 a, __m512 b, __m512 t)
   return _mm512_add_ps(a, _mm512_mul_ps(t, _mm512_sub_ps(b, a)));
 }
 
+// The low and high 32-bit words of sixteen 64-bit lanes (`first`: lanes 0-7, `second`: 8-15),
+// lane by lane.
+ACCELVOLUME_AVX512 inline void PacketSplitWords(
+  const __m512i& first, const __m512i& second, __m512i& low, __m512i& high)
+{
+  const __m512i lowWords =
+    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  low = _mm512_permutex2var_epi32(first, lowWords, second);
+  high = _mm512_permutex2var_epi32(first, _mm512_add_epi32(lowWords, _mm512_set1_epi32(1)), second);
+}
+
 // Lerp(table[i], table[i + 1], t) lane by lane from the table's (value, difference) pairs
 // (KernelFrame::alphaPairs...): value + t * difference, the same bits; lanes outside `lanes`
 // read nothing and give garbage.
 ACCELVOLUME_AVX512 inline __m512 PacketLerpPairs(
   const float* pairs, const __m512i& i, const __m512& t, __mmask16 lanes)
 {
-  const __m512i lowWords =
-    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i highWords = _mm512_add_epi32(lowWords, _mm512_set1_epi32(1));
   const __m512i first = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
     static_cast<__mmask8>(lanes), _mm512_castsi512_si256(i), pairs, 8);
   const __m512i second = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
     static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(i, 1), pairs, 8);
-  const __m512 value = _mm512_castsi512_ps(_mm512_permutex2var_epi32(first, lowWords, second));
-  const __m512 difference =
-    _mm512_castsi512_ps(_mm512_permutex2var_epi32(first, highWords, second));
-  return _mm512_add_ps(value, _mm512_mul_ps(t, difference));
+  __m512i value, difference;
+  PacketSplitWords(first, second, value, difference);
+  return _mm512_add_ps(
+    _mm512_castsi512_ps(value), _mm512_mul_ps(t, _mm512_castsi512_ps(difference)));
 }
 
 // The `width` (1 or 2) bytes at byte offsets `offset` of `base`, from the 32-bit word that ends
@@ -177,11 +185,8 @@ ACCELVOLUME_AVX512 inline void PacketLocate(const PacketWide& q, int n, __m512i&
     _mm512_max_epi64(_mm512_min_epi64(q.half[0], top), _mm512_setzero_si512()),
     _mm512_max_epi64(_mm512_min_epi64(q.half[1], top), _mm512_setzero_si512())
   };
-  const __m512i lowWords =
-    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i highWords = _mm512_add_epi32(lowWords, _mm512_set1_epi32(1));
-  const __m512i low = _mm512_permutex2var_epi32(clamped[0], lowWords, clamped[1]);
-  const __m512i high = _mm512_permutex2var_epi32(clamped[0], highWords, clamped[1]);
+  __m512i low, high;
+  PacketSplitWords(clamped[0], clamped[1], low, high);
   const __mmask16 atTop = _mm512_cmpeq_epi32_mask(high, _mm512_set1_epi32(n - 1));
   cell = _mm512_mask_blend_epi32(atTop, high, _mm512_set1_epi32(n - 2));
   f = _mm512_mask_blend_ps(atTop,
@@ -229,17 +234,19 @@ ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(cons
   {
     PacketLocate(q[a], grid.dims[a], cell[a], place.f[a]);
   }
-  const __m512i low2 = _mm512_set1_epi32(CellBricks::Size - 1);
+  constexpr int Shift = CellBricks::Shift;
+  const __m512i inside = _mm512_set1_epi32(CellBricks::Size - 1);
   const __m512i brick = _mm512_add_epi32(
-    _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(cell[2], 2), grid.bricksY),
-                         _mm512_srli_epi32(cell[1], 2)),
+    _mm512_mullo_epi32(
+      _mm512_add_epi32(_mm512_mullo_epi32(_mm512_srli_epi32(cell[2], Shift), grid.bricksY),
+        _mm512_srli_epi32(cell[1], Shift)),
       grid.bricksX),
-    _mm512_srli_epi32(cell[0], 2));
+    _mm512_srli_epi32(cell[0], Shift));
   const __m512i inBrick = _mm512_or_si512(
-    _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(cell[2], low2), 4),
-      _mm512_slli_epi32(_mm512_and_si512(cell[1], low2), 2)),
-    _mm512_and_si512(cell[0], low2));
-  const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 6), inBrick);
+    _mm512_or_si512(_mm512_slli_epi32(_mm512_and_si512(cell[2], inside), 2 * Shift),
+      _mm512_slli_epi32(_mm512_and_si512(cell[1], inside), Shift)),
+    _mm512_and_si512(cell[0], inside));
+  const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 3 * Shift), inBrick);
   place.d = _mm512_and_si512(PacketBytes(grid.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
   place.base = _mm512_add_epi32(cell[0],
     _mm512_add_epi32(_mm512_mullo_epi32(cell[1], grid.strideY), _mm512_mullo_epi32(cell[2], grid.strideZ)));
@@ -263,8 +270,8 @@ int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
   {
     // Without lights taken at the entry point a ray's lights depend on its direction alone:
     // parallel rays share the last ray's.
-    const bool sameDirection = this->LitDirectionSet &&
-      std::memcmp(&this->LitDirection, &ray.direction, sizeof(Vec3)) == 0;
+    const bool sameDirection = this->LitRaySet &&
+      std::memcmp(&this->LitRay.index.direction, &ray.direction, sizeof(Vec3)) == 0;
     if (!frame.eyeLightsAtEntry && sameDirection)
     {
       lit = &this->LitRay;
@@ -322,8 +329,8 @@ int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
 template <typename T>
 void RayCasterTile<T>::RememberLights(const PixelRay& pixel)
 {
-  this->LitDirection = pixel.index.direction;
-  this->LitDirectionSet = true;
+  this->LitRay.index.direction = pixel.index.direction;
+  this->LitRaySet = true;
   this->LitRay.fixedLights = pixel.fixedLights;
   const std::size_t lights = std::min(this->Frame.lighting->model.lights.size(), MaximumRayLights);
   for (std::size_t l = 0; l < lights; ++l)
@@ -346,9 +353,7 @@ void RayCasterTile<T>::CastRowsInPackets(int j0, int j1, int x0, int x1, float* 
   for (int j = j0; j < j1; ++j)
   {
     rowCentres[j - j0] = PixelCentre(j, frame.view->height);
-    covered[j - j0] = frame.footprint ? frame.footprint +
-        static_cast<std::size_t>(j >> FootprintBlockShift) * frame.footprintBlocks
-                                      : nullptr;
+    covered[j - j0] = this->FootprintRow(j);
   }
   PixelRay& pixel = this->GroupPixels[0];
   int n = 0;
@@ -457,9 +462,6 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
   const __m512i base3 = _mm512_mullo_epi32(base, _mm512_set1_epi32(3));
   const __m512 wxy[4] = { _mm512_mul_ps(wx[0], wy[0]), _mm512_mul_ps(wx[1], wy[0]),
     _mm512_mul_ps(wx[0], wy[1]), _mm512_mul_ps(wx[1], wy[1]) };
-  const __m512i evenWords =
-    _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i oddWords = _mm512_add_epi32(evenWords, _mm512_set1_epi32(1));
   for (int c = 0; c < 8; ++c)
   {
     // InterpolateGradient's weight (wx * wy) * wz.
@@ -472,8 +474,8 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
       static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), gradients, 2);
     const __m512i high = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
       static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 2);
-    const __m512i xy = _mm512_permutex2var_epi32(low, evenWords, high);
-    const __m512i zw = _mm512_permutex2var_epi32(low, oddWords, high);
+    __m512i xy, zw;
+    PacketSplitWords(low, high, xy, zw);
     const __m512 gx = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(xy, 16), 16));
     const __m512 gy = _mm512_cvtepi32_ps(_mm512_srai_epi32(xy, 16));
     const __m512 gz = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(zw, 16), 16));

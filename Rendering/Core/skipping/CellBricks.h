@@ -27,6 +27,9 @@ public:
     }
   }
 
+  // Bricks along axis a.
+  int BricksAlong(int a) const { return this->Bricks[a]; }
+
   // Entries the bricked array holds (bricks are padded to whole bricks).
   std::size_t Entries() const
   {
