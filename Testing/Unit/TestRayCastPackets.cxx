@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <utility>
 
 namespace
 {
@@ -45,6 +46,21 @@ void AddLights(int trial, RayCastLighting& lighting)
     lighting.model.headlightOnly = true;
     lighting.model.specularPower = 35.0f;
   }
+}
+
+// One frame with the packets and one without, otherwise alike: the same image, and samples to
+// compare. Returns both.
+std::pair<Result, Result> CastWithAndWithoutPackets(const Scene& scene,
+  const RayCastTransfer& transfer, const RayCastLighting& lighting, const RayCastView& view,
+  RayCastSettings settings, int trial)
+{
+  settings.rayPackets = true;
+  Result packets = Cast(scene, transfer, lighting, view, settings);
+  EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
+  settings.rayPackets = false;
+  Result alone = Cast(scene, transfer, lighting, view, settings);
+  EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;
+  return { std::move(packets), std::move(alone) };
 }
 
 } // namespace
@@ -96,14 +112,12 @@ TEST(RayCastPackets, SameImagesAsOneRayAtATime)
       }
     }
     const RayCastView view = MakeView(camera, 71, 58, 0.5, 500.0);
-    const Result packets = Cast(scene, transfer, lighting, view, settings);
-    EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
+    const auto [packets, alone] =
+      CastWithAndWithoutPackets(scene, transfer, lighting, view, settings, trial);
     packetRays += packets.counters.packetRays;
-    settings.rayPackets = false;
-    const Result alone = Cast(scene, transfer, lighting, view, settings);
-    EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;
     EXPECT_EQ(packets.counters.rays, alone.counters.rays) << "trial " << trial;
     EXPECT_EQ(alone.counters.packetRays, 0u) << "trial " << trial;
+    settings.rayPackets = false;
     settings.batchedComposite = false;
     const Result perSample = Cast(scene, transfer, lighting, view, settings);
     EXPECT_TRUE(Identical(packets.rgba, perSample.rgba)) << "trial " << trial << ": per sample";
@@ -151,12 +165,8 @@ TEST(RayCastPackets, SignedBytesGiveTheSameImages)
     settings.cellLeap = false;
     const RayCastView view =
       MakeView(RandomCamera(random, dims, trial % 2 == 0), 53, 47, 0.5, 500.0);
-    const Result packets = Cast(scene, transfer, lighting, view, settings);
-    EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
-    packetRays += packets.counters.packetRays;
-    settings.rayPackets = false;
-    const Result alone = Cast(scene, transfer, lighting, view, settings);
-    EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;
+    packetRays += CastWithAndWithoutPackets(scene, transfer, lighting, view, settings, trial)
+                    .first.counters.packetRays;
   }
   if (CpuHasPackets())
   {
@@ -165,7 +175,7 @@ TEST(RayCastPackets, SignedBytesGiveTheSameImages)
 }
 
 // What the packets do not take goes the one-ray way, with the same images: cell leaping,
-// gradient opacity, a mask, nearest-voxel sampling.
+// nearest-voxel sampling, the baseline (SSE2) lanes.
 TEST(RayCastPackets, OtherCasesTakeTheOneRayPaths)
 {
   std::mt19937 random(59);
