@@ -8,6 +8,7 @@
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
+#include "vtkActor2D.h"
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
@@ -19,6 +20,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPointData.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 #include "vtkTimerLog.h"
@@ -36,6 +38,23 @@
 
 namespace
 {
+// Whether the renderer shows a prop that may have drawn depth before the volumes: any visible
+// prop but volumes and 2D overlays (whatever pass drew it, unlike GetNumberOfPropsRendered).
+bool HasVisibleGeometry(vtkRenderer* renderer)
+{
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (prop->GetVisibility() && !vtkVolume::SafeDownCast(prop) && !vtkActor2D::SafeDownCast(prop))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 accelvolume::Blend ToBlend(int blendMode)
 {
   switch (blendMode)
@@ -326,8 +345,9 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::SetUpRays(vtkAccelVolumeRayCastM
     }
   }
   rays.worldToIndex = ToAffine(in.WorldToIndex);
-  // Opaque geometry drawn before the volume stops the rays.
-  if (self->IntermixIntersectingGeometry && renderer->VisibleActorCount() > 0)
+  // Opaque geometry drawn before the volume stops the rays. With none (VisibleActorCount
+  // counts the volumes too) the depth read-back would cost a full-window read every frame.
+  if (self->IntermixIntersectingGeometry && HasVisibleGeometry(renderer))
   {
     this->ReadSceneDepth(window, in);
   }
