@@ -57,6 +57,17 @@ std::pair<Result, Result> CastWithAndWithoutPackets(const Scene& scene,
   settings.rayPackets = true;
   Result packets = Cast(scene, transfer, lighting, view, settings);
   EXPECT_GT(packets.counters.samples, 100u) << "trial " << trial;
+  // Rays set up one by one: the same packets, so the same counts too (the opaque box's cut
+  // included, which no image shows).
+  settings.packetRaySetUp = false;
+  const Result oneByOne = Cast(scene, transfer, lighting, view, settings);
+  settings.packetRaySetUp = true;
+  EXPECT_TRUE(Identical(packets.rgba, oneByOne.rgba)) << "trial " << trial << ": set-up";
+  EXPECT_EQ(packets.counters.rays, oneByOne.counters.rays) << "trial " << trial;
+  EXPECT_EQ(packets.counters.samples, oneByOne.counters.samples) << "trial " << trial;
+  EXPECT_EQ(packets.counters.leapedDistance, oneByOne.counters.leapedDistance) << "trial " << trial;
+  EXPECT_EQ(packets.counters.packetRays, oneByOne.counters.packetRays) << "trial " << trial;
+  EXPECT_EQ(packets.counters.culledPixels, oneByOne.counters.culledPixels) << "trial " << trial;
   settings.rayPackets = false;
   Result alone = Cast(scene, transfer, lighting, view, settings);
   EXPECT_TRUE(Identical(packets.rgba, alone.rgba)) << "trial " << trial;

@@ -165,6 +165,9 @@ struct RayCastSettings
   // per AVX-512 lane, where the CPU has AVX-512 (RayCastKernelPackets.inl); false (or
   // baselineLanes): the other paths (tests: all give the same bits).
   bool rayPackets = true;
+  // The packets' rays set up eight at a time in AVX-512 lanes where the frame allows
+  // (RayCastKernelPacketRays.inl); false: one by one (tests: the same bits).
+  bool packetRaySetUp = true;
   // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).

@@ -450,6 +450,13 @@ private:
   int AddToPacket(int n, PixelRay& pixel, float* out);
   void RememberLights(const PixelRay& pixel);
   void CastRowsInPackets(int j0, int j1, int x0, int x1, float* rgba);
+  struct PacketBlock // pixels [x0, x1) x [j0, j1) of a tile whose columns start at tileX0
+  {
+    int x0, x1, j0, j1, tileX0;
+    const double* rowCentres;           // of rows j0...
+    const std::uint8_t* const* covered; // FootprintRow of rows j0...
+  };
+  int AddBlockToPackets(int n, const PacketBlock& block, float* rgba);
   ACCELVOLUME_AVX512 void CastPacket(int n);
   ACCELVOLUME_AVX512 void PacketLeap(
     __mmask16 leaping, const __m512i& d, const __m512 f[3], PacketWide& k, const PacketWide& last);
@@ -752,6 +759,8 @@ private:
   bool Packets = false; // composite rays take CastRowsInPackets
 #if ACCELVOLUME_PACKETS
   PacketRays Packet;
+  PacketCandidates Candidates;
+  bool PacketRaySetUp = false;         // packets set their rays up together (PacketRaysApply)
   std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets
   int PacketBricks[3] = {};            // CellBricks per axis of the cell grid
   PixelRay LitRay;                     // the direction and lights of the last ray lit
@@ -763,6 +772,7 @@ private:
 #include "raycast/RayCastKernelApproach.inl"
 #include "raycast/RayCastKernelBatch.inl"
 #include "raycast/RayCastKernelComponents.inl"
+#include "raycast/RayCastKernelPacketRays.inl"
 #include "raycast/RayCastKernelPackets.inl"
 #include "raycast/RayCastKernelPlanes.inl"
 #include "raycast/RayCastKernelProjections.inl"

@@ -48,6 +48,7 @@ bool RayCasterTile<T>::SetUpPackets()
   const std::ptrdiff_t oy = dims[0], oz = static_cast<std::ptrdiff_t>(dims[0]) * dims[1];
   const std::ptrdiff_t corners[8] = { 0, 1, oy, oy + 1, oz, oz + 1, oz + oy, oz + oy + 1 };
   std::copy(corners, corners + 8, this->PacketCorner);
+  this->PacketRaySetUp = settings.packetRaySetUp && PacketRaysApply(frame, settings);
   return true;
 #else
   return false;
@@ -360,6 +361,11 @@ void RayCasterTile<T>::CastRowsInPackets(int j0, int j1, int x0, int x1, float* 
   for (int block = x0; block < x1; block += PacketColumns)
   {
     const int blockEnd = std::min(block + PacketColumns, x1);
+    if (this->PacketRaySetUp)
+    {
+      n = this->AddBlockToPackets(n, PacketBlock{ block, blockEnd, j0, j1, x0, rowCentres, covered }, rgba);
+      continue;
+    }
     for (int j = j0; j < j1; ++j)
     {
       for (int i = block; i < blockEnd; ++i)

@@ -60,6 +60,25 @@ struct PacketRays
   float* out[PacketSize];
   const std::uint8_t* distance = nullptr; // every lane's distance map (DistanceMapOf)
 };
+
+// Sixteen pixels' rays set up together (SetUpPacketRays): per lane what AddToPacket takes from
+// SetPixelRay, Intervals, IntervalSamples, LightRay, FixedSteps and LeapSteps.
+struct PacketCandidates
+{
+  alignas(64) double x[PacketSize]; // the pixel centres (PixelCentre)
+  alignas(64) double y[PacketSize];
+  alignas(64) double direction[3][PacketSize]; // index space
+  alignas(64) std::int64_t start[3][PacketSize];
+  alignas(64) std::int64_t step[3][PacketSize];
+  alignas(64) std::int64_t first[PacketSize]; // IntervalSamples
+  alignas(64) std::int64_t last[PacketSize];
+  alignas(64) std::int64_t cut[PacketSize]; // samples the opaque box cuts off
+  alignas(64) double inverse[3][PacketSize];
+  alignas(64) float forward[3][PacketSize];
+  alignas(64) float toLight[MaximumRayLights][3][PacketSize];
+  alignas(64) float half[MaximumRayLights][3][PacketSize];
+  std::uint32_t hits = 0; // bit l: lane l's ray meets the region
+};
 #endif
 
 }
