@@ -3,6 +3,7 @@
 // when the scalars or the transfer function change.
 #include "raycast/RayCastEngineInternals.h"
 #include "raycast/RayCastKernel.h"
+#include "raycast/RayCastSampler.h"
 #include "skipping/CellBricks.h"
 
 #include "skipping/DistanceMap.h"
@@ -133,15 +134,21 @@ Box NonTransparentLeafBox(const MinMaxOctree& octree, const int dims[3])
 // branch-free interior, since this runs over every voxel when the scalars change.
 template <typename T>
 void ComputeGradients(
-  const T* data, const int dims[3], float scale, std::int16_t* out, const ParallelFor& parallel)
+  const T* data, const int dims[3], float scale, std::uint32_t* out, const ParallelFor& parallel)
 {
   const std::ptrdiff_t nx = dims[0], ny = dims[1], nz = dims[2];
   const float inverse = 0.5f / scale;
-  auto quantise = [](float g) -> std::int16_t
+  auto encode = [](float gx, float gy, float gz)
   {
-    // NaN fails both comparisons and becomes 0; round half away from zero.
-    g = g > -32767.0f ? (g < 32767.0f ? g : 32767.0f) : (g <= -32767.0f ? -32767.0f : 0.0f);
-    return static_cast<std::int16_t>(g + (g >= 0 ? 0.5f : -0.5f));
+    // NaN fails both comparisons and becomes 0.
+    const float g[3] = { gx, gy, gz };
+    float clamped[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      clamped[k] = g[k] > -32767.0f ? (g[k] < 32767.0f ? g[k] : 32767.0f)
+                                    : (g[k] <= -32767.0f ? -32767.0f : 0.0f);
+    }
+    return detail::EncodeGradient(clamped);
   };
   parallel(static_cast<std::size_t>(nz),
     [&](std::size_t begin, std::size_t end)
@@ -158,16 +165,13 @@ void ComputeGradients(
           const T* rowYUp = data + (z * ny + yUp) * nx;
           const T* rowZDown = data + (zDown * ny + y) * nx;
           const T* rowZUp = data + (zUp * ny + y) * nx;
-          std::int16_t* o = out + 3 * (z * ny + y) * nx;
+          std::uint32_t* o = out + (z * ny + y) * nx;
           for (std::ptrdiff_t x = 0; x < nx; ++x)
           {
             const std::ptrdiff_t xDown = x > 0 ? x - 1 : x, xUp = x + 1 < nx ? x + 1 : x;
-            o[3 * x] =
-              quantise((static_cast<float>(row[xUp]) - static_cast<float>(row[xDown])) * inverse);
-            o[3 * x + 1] =
-              quantise((static_cast<float>(rowYUp[x]) - static_cast<float>(rowYDown[x])) * inverse);
-            o[3 * x + 2] =
-              quantise((static_cast<float>(rowZUp[x]) - static_cast<float>(rowZDown[x])) * inverse);
+            o[x] = encode((static_cast<float>(row[xUp]) - static_cast<float>(row[xDown])) * inverse,
+              (static_cast<float>(rowYUp[x]) - static_cast<float>(rowYDown[x])) * inverse,
+              (static_cast<float>(rowZUp[x]) - static_cast<float>(rowZDown[x])) * inverse);
           }
         }
       }
@@ -539,14 +543,16 @@ bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64
     static_cast<std::size_t>(volume.dims[0]) * volume.dims[1] * volume.dims[2];
   constexpr std::size_t GradientBudget = std::size_t(1) << 30; // bytes
   const bool useGradients =
-    needGradients && settings.precomputeGradients && 6 * voxels <= GradientBudget;
+    needGradients && settings.precomputeGradients && 4 * voxels <= GradientBudget;
   if (useGradients && (!this->GradientsBuilt || this->GradientsVolume != volumeVersion))
   {
-    // |central difference| <= the range width, so this step keeps every value in int16.
-    this->GradientScale = static_cast<float>(width / 32767.0);
-    // One spare element: the shading lanes load each voxel's gradient as four int16.
-    ResizeWithHugePages(this->Gradients, 3 * voxels + 1);
-    this->Gradients.back() = 0;
+    // |central difference| <= the range width: in these units every component is within
+    // +-32767 (EncodeGradient's exponent at most 8). Integer scalars take half-voxel-value
+    // units where the range allows: their differences are integers, exact up to 255.
+    const bool integral = volume.type != ScalarType::Float32 && volume.type != ScalarType::Float64;
+    this->GradientScale =
+      static_cast<float>(integral ? std::max(0.5, width / 32767.0) : width / 32767.0);
+    ResizeWithHugePages(this->Gradients, voxels);
     DispatchScalarType(volume,
       [&](const auto* data) {
         ComputeGradients(data, volume.dims, this->GradientScale, this->Gradients.data(), parallel);

@@ -47,7 +47,7 @@ std::size_t RayCaster::GetAccelerationBytes() const
 {
   const Internals& impl = *this->Impl;
   std::size_t bytes = impl.CellInfo.size() * sizeof(std::uint16_t) + impl.DistanceOnly.size() +
-    impl.Gradients.size() * sizeof(std::int16_t) + impl.Macro.nonEmpty.size() +
+    impl.Gradients.size() * sizeof(std::uint32_t) + impl.Macro.nonEmpty.size() +
     impl.Footprint.covered.size();
   for (const std::vector<std::uint8_t>& map : impl.OctantDistance)
   {

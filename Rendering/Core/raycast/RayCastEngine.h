@@ -168,7 +168,7 @@ struct RayCastSettings
   // The packets' rays set up eight at a time in AVX-512 lanes where the frame allows
   // (RayCastKernelPacketRays.inl); false: one by one (tests: the same bits).
   bool packetRaySetUp = true;
-  // Shading / gradient opacity: per-voxel central differences precomputed (6 bytes per voxel,
+  // Shading / gradient opacity: per-voxel central differences precomputed (4 bytes per voxel,
   // rebuilt when the scalars change; volumes past 1 GiB of them fall back to six extra samples
   // per shaded sample).
   bool precomputeGradients = true;

@@ -105,7 +105,7 @@ struct RayCaster::Internals
   std::uint64_t MacroBuild = 0;
   ScreenFootprint Footprint;
 
-  std::vector<std::int16_t> Gradients;
+  std::vector<std::uint32_t> Gradients; // EncodeGradient's words, one per voxel
   bool GradientsBuilt = false;
   std::uint64_t GradientsVolume = 0;
   float GradientScale = 1;

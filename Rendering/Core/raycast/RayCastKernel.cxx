@@ -552,11 +552,11 @@ private:
     Prefetch(voxel + cell.offset[1] + cell.offset[2]);
     if (gradients)
     {
-      const std::int16_t* g = this->Frame.gradients + 3 * cell.base;
+      const std::uint32_t* g = this->Frame.gradients + cell.base;
       Prefetch(g);
-      Prefetch(g + 3 * cell.offset[1]);
-      Prefetch(g + 3 * cell.offset[2]);
-      Prefetch(g + 3 * (cell.offset[1] + cell.offset[2]));
+      Prefetch(g + cell.offset[1]);
+      Prefetch(g + cell.offset[2]);
+      Prefetch(g + cell.offset[1] + cell.offset[2]);
     }
   }
 
@@ -627,12 +627,11 @@ private:
   // The eye-space gradient and the index-space one it comes from (in the gradients' units).
   void Gradient(const double p[3], const SampleCell& cell, float eyeGradient[3], float g[3]) const
   {
-    if (const std::int16_t* gradients = this->Frame.gradients)
+    if (const std::uint32_t* gradients = this->Frame.gradients)
     {
       // Interpolated per-voxel differences; their scale is folded into the normal matrix.
-      const std::ptrdiff_t ox = 3 * cell.offset[0], oy = 3 * cell.offset[1],
-                           oz = 3 * cell.offset[2];
-      const std::int16_t* d = gradients + 3 * cell.base;
+      const std::ptrdiff_t ox = cell.offset[0], oy = cell.offset[1], oz = cell.offset[2];
+      const std::uint32_t* d = gradients + cell.base;
       // The 8 trilinear weights once for the three components.
       const float fx = cell.f[0], fy = cell.f[1], fz = cell.f[2];
       const float wy[2] = { (1 - fy), fy };

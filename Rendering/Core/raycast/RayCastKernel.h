@@ -78,7 +78,7 @@ struct KernelFrame
   const RayCastLighting* lighting = nullptr;
   // Optional per-voxel central differences (x, y, z interleaved, raw units times
   // 1 / gradientScale), interpolated trilinearly instead of six extra samples per shaded one.
-  const std::int16_t* gradients = nullptr;
+  const std::uint32_t* gradients = nullptr; // EncodeGradient's words
   float gradientScale = 1;
   // Shading, prepared once per frame: the gradient-to-eye matrix in float with the gradient
   // scale folded in, and the specular term pow(x, power) tabulated over x in [0, 1].

@@ -304,13 +304,13 @@ ACCELVOLUME_INLINE_LANES bool RayCasterTile<T>::ShadeBatchLanesIn(
     const LightModel& model = frame.lighting->model;
     if (frame.lighting->shade)
     {
-      const std::ptrdiff_t ox = 3 * batch[0].cell.offset[0], oy = 3 * batch[0].cell.offset[1],
-                           oz = 3 * batch[0].cell.offset[2];
+      const std::ptrdiff_t ox = batch[0].cell.offset[0], oy = batch[0].cell.offset[1],
+                           oz = batch[0].cell.offset[2];
       const std::ptrdiff_t at[8] = { 0, ox, oy, oy + ox, oz, oz + ox, oz + oy, oz + oy + ox };
       const float(*m)[3] = frame.normalMatrix;
       for (int v = first; v < last; ++v)
       {
-        const std::int16_t* d = frame.gradients + 3 * batch[lanes.visible[v]].cell.base;
+        const std::uint32_t* d = frame.gradients + batch[lanes.visible[v]].cell.base;
         const float fx = lanes.fx[v], fy = lanes.fy[v], fz = lanes.fz[v];
         const float wy[2] = { (1 - fy), fy };
         const float wz[2] = { (1 - fz), fz };

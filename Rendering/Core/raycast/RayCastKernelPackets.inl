@@ -1,6 +1,6 @@
 // RayCastKernelPackets.inl: composite rays sixteen at a time, one per lane of an AVX-512
 // register (ray packets), included after RayCasterTile. One ray at a time, a sample is a chain
-// of dependent steps (locate, read the map, load eight corners, classify, load 24 gradient
+// of dependent steps (locate, read the map, load eight corners, classify, load eight gradient
 // values, shade, blend) that leaves most of the core idle; sixteen neighbouring rays take each
 // step together, their loads as gathers. Each lane leaps or samples on its own: a lane in an
 // empty cell leaps (the distance map, as the walks do) while the others sample. Every lane's
@@ -34,7 +34,7 @@ bool RayCasterTile<T>::SetUpPackets()
   if (!PacketScalar<T> || !settings.rayPackets || settings.baselineLanes || !PacketsOnAvx512() ||
     !this->ApproachTogether || settings.nearest || frame.mask != nullptr ||
     frame.gradientOpacity != nullptr || frame.useCellLeap || frame.tableSize < 2 ||
-    3 * voxels + 8 > Lanes32 || static_cast<std::int64_t>(bricks.Entries()) > Lanes32 ||
+    voxels + 8 > Lanes32 || static_cast<std::int64_t>(bricks.Entries()) > Lanes32 ||
     (lighting.shade &&
       (frame.gradients == nullptr || frame.specularTableSize < 2 ||
         lighting.model.lights.size() > MaximumRayLights)))
@@ -459,35 +459,44 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
   const KernelFrame& frame = this->Frame;
   const PacketRays& packet = this->Packet;
   const LightModel& model = frame.lighting->model;
-  const std::int16_t* gradients = frame.gradients;
+  const std::uint32_t* gradients = frame.gradients;
   const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
   const __m512 wx[2] = { _mm512_sub_ps(one, f[0]), f[0] };
   const __m512 wy[2] = { _mm512_sub_ps(one, f[1]), f[1] };
   const __m512 wz[2] = { _mm512_sub_ps(one, f[2]), f[2] };
   __m512 g[3] = { zero, zero, zero };
-  const __m512i base3 = _mm512_mullo_epi32(base, _mm512_set1_epi32(3));
   const __m512 wxy[4] = { _mm512_mul_ps(wx[0], wy[0]), _mm512_mul_ps(wx[1], wy[0]),
     _mm512_mul_ps(wx[0], wy[1]), _mm512_mul_ps(wx[1], wy[1]) };
-  for (int c = 0; c < 8; ++c)
+  for (int c = 0; c < 8; c += 2)
   {
-    // InterpolateGradient's weight (wx * wy) * wz.
-    const __m512 w = _mm512_mul_ps(wxy[c & 3], wz[c >> 2]);
+    // Corners c and c + 1 (x neighbours) as one 64-bit load per lane, the lanes not shaded
+    // left out.
     const __m512i at =
-      _mm512_add_epi32(base3, _mm512_set1_epi32(3 * static_cast<int>(this->PacketCorner[c])));
-    // A corner's three int16 (and one past them: Gradients has a spare at its end) as one
-    // 64-bit load per lane, the lanes not shaded left out; then x | y << 16 and z per lane.
+      _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c])));
     const __m512i low = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
-      static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), gradients, 2);
+      static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), gradients, 4);
     const __m512i high = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
-      static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 2);
-    __m512i xy, zw;
-    PacketSplitWords(low, high, xy, zw);
-    const __m512 gx = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(xy, 16), 16));
-    const __m512 gy = _mm512_cvtepi32_ps(_mm512_srai_epi32(xy, 16));
-    const __m512 gz = _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(zw, 16), 16));
-    g[0] = _mm512_add_ps(g[0], _mm512_mul_ps(w, gx));
-    g[1] = _mm512_add_ps(g[1], _mm512_mul_ps(w, gy));
-    g[2] = _mm512_add_ps(g[2], _mm512_mul_ps(w, gz));
+      static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 4);
+    __m512i words[2];
+    PacketSplitWords(low, high, words[0], words[1]);
+    for (int k = 0; k < 2; ++k)
+    {
+      // InterpolateGradient's weight (wx * wy) * wz and DecodeGradient.
+      const __m512 w = _mm512_mul_ps(wxy[(c + k) & 3], wz[(c + k) >> 2]);
+      const __m512 scale = _mm512_castsi512_ps(_mm512_slli_epi32(
+        _mm512_add_epi32(_mm512_and_si512(_mm512_srli_epi32(words[k], 29), _mm512_set1_epi32(6)),
+          _mm512_set1_epi32(127)),
+        23)); // 2^(2e)
+      const __m512 gx = _mm512_mul_ps(
+        _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(words[k], 22), 22)), scale);
+      const __m512 gy = _mm512_mul_ps(
+        _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(words[k], 12), 22)), scale);
+      const __m512 gz = _mm512_mul_ps(
+        _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(words[k], 2), 22)), scale);
+      g[0] = _mm512_add_ps(g[0], _mm512_mul_ps(w, gx));
+      g[1] = _mm512_add_ps(g[1], _mm512_mul_ps(w, gy));
+      g[2] = _mm512_add_ps(g[2], _mm512_mul_ps(w, gz));
+    }
   }
   const float(*m)[3] = frame.normalMatrix;
   __m512 eye[3];

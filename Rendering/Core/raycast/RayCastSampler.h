@@ -12,10 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include <cstring>
 
 // Inlined into each SIMD build of its callers (RayCastKernelBatch.inl's lanes).
 #if defined(__GNUC__) || defined(__clang__)
@@ -45,38 +42,65 @@ struct SampleCell
   std::size_t cell = 0; // index into the CellBricks layout of per-cell arrays
 };
 
-// Gradient's trilinear interpolation of one sample's int16 gradients (`at`: the corners'
-// offsets), corner by corner in Gradient's order, x, y and z side by side in one vector
-// register where SSE2 is there (each component sees the same multiplies and adds: same bits).
-// Reads one int16 past a corner's three (Gradients has a spare element at its end).
-ACCELVOLUME_ALWAYS_INLINE void InterpolateGradient(const std::int16_t* d,
+// A voxel's precomputed gradient (its central differences in the ray caster's gradient units,
+// within +-32767) in 32 bits: three 10-bit two's-complement mantissas (x in bits 0-9, y 10-19,
+// z 20-29) sharing a 2-bit exponent e (30-31), each component mantissa * 4^e. e is the smallest
+// that keeps every |mantissa| <= 511: integer differences up to 511 units are exact, and a
+// component is within half a step (half a unit while all are within 511 units, else under
+// 1/255 of the largest component: the direction within ~0.3 degree).
+// Two of them (x neighbours) are one 64-bit load: half the ray packets' gradient gathers.
+inline std::uint32_t EncodeGradient(const float g[3])
+{
+  float largest = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    largest = std::max(largest, std::abs(g[k]));
+  }
+  int exponent = 0;
+  while (exponent < 3 && largest > std::ldexp(511.0f, 2 * exponent))
+  {
+    ++exponent;
+  }
+  std::uint32_t word = static_cast<std::uint32_t>(exponent) << 30;
+  for (int k = 0; k < 3; ++k)
+  {
+    // Round half away from zero; only values past 511 * 64 clamp.
+    const float value = std::ldexp(g[k], -2 * exponent);
+    const int mantissa =
+      std::min(511, std::max(-511, static_cast<int>(value + (value >= 0 ? 0.5f : -0.5f))));
+    word |= (static_cast<std::uint32_t>(mantissa) & 0x3ffu) << (10 * k);
+  }
+  return word;
+}
+
+// EncodeGradient's components as floats (exact: a 10-bit mantissa times a power of two).
+ACCELVOLUME_ALWAYS_INLINE void DecodeGradient(std::uint32_t word, float g[3])
+{
+  const std::uint32_t scaleBits = (2 * (word >> 30) + 127u) << 23;
+  float scale;
+  std::memcpy(&scale, &scaleBits, sizeof(scale));
+  g[0] = static_cast<float>(static_cast<std::int32_t>(word << 22) >> 22) * scale;
+  g[1] = static_cast<float>(static_cast<std::int32_t>(word << 12) >> 22) * scale;
+  g[2] = static_cast<float>(static_cast<std::int32_t>(word << 2) >> 22) * scale;
+}
+
+// Gradient's trilinear interpolation of one sample's precomputed gradients (`at`: the corners'
+// offsets), corner by corner in Gradient's order; each component sees the same multiplies and
+// adds as the ray packets' lanes (same bits).
+ACCELVOLUME_ALWAYS_INLINE void InterpolateGradient(const std::uint32_t* d,
   const std::ptrdiff_t at[8], float fx, const float wy[2], const float wz[2], float g[3])
 {
-#if defined(__SSE2__)
-  __m128 sum = _mm_setzero_ps();
-  for (int c = 0; c < 8; ++c)
-  {
-    const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
-    const __m128i four = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(d + at[c]));
-    const __m128i wide = _mm_srai_epi32(_mm_unpacklo_epi16(four, four), 16);
-    sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(w), _mm_cvtepi32_ps(wide)));
-  }
-  alignas(16) float out[4];
-  _mm_store_ps(out, sum);
-  g[0] = out[0];
-  g[1] = out[1];
-  g[2] = out[2];
-#else
   g[0] = g[1] = g[2] = 0;
   for (int c = 0; c < 8; ++c)
   {
     const float w = ((c & 1) ? fx : 1 - fx) * wy[(c >> 1) & 1] * wz[c >> 2];
+    float corner[3];
+    DecodeGradient(d[at[c]], corner);
     for (int k = 0; k < 3; ++k)
     {
-      g[k] += w * static_cast<float>(d[at[c] + k]);
+      g[k] += w * corner[k];
     }
   }
-#endif
 }
 
 // A ray's step per sample along each axis and its inverse |1 / step| (0 for axes the ray
