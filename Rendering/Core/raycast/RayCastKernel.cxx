@@ -589,7 +589,7 @@ private:
   }
   // The distance map a ray reads: its octant's where built, else the chessboard map alone
   // (nullptr with cell leaping: the packed table's own byte, or without distance leaping).
-  const std::uint8_t* DistanceMapOf(const IndexRay& ray) const
+  const std::uint8_t* DistanceMapOf(const Vec3& direction) const
   {
     const KernelFrame& frame = this->Frame;
     if (!frame.useDistance)
@@ -597,7 +597,7 @@ private:
       return nullptr;
     }
     const std::uint8_t* octant =
-      frame.octantDistance[DirectionOctant(ray.direction.x, ray.direction.y, ray.direction.z)];
+      frame.octantDistance[DirectionOctant(direction.x, direction.y, direction.z)];
     return octant ? octant : frame.distanceOnly;
   }
 

@@ -93,7 +93,7 @@ void RayCasterTile<T>::Approach(int n)
     if (lane.going)
     {
       lane.leap = LeapSteps(this->GroupPixels[g].index.direction * h);
-      lane.distance = this->DistanceMapOf(this->GroupPixels[g].index);
+      lane.distance = this->DistanceMapOf(this->GroupPixels[g].index.direction);
       ++pending;
     }
     else

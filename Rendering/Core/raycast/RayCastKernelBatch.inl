@@ -35,7 +35,7 @@ void RayCasterTile<T>::CompositeBatched(const PixelRay& pixel, float* out)
   const bool distance = frame.useDistance;
   const bool cellLeap = frame.useCellLeap;
   const bool opaqueBox = frame.useOpaqueBox && (distance || octree);
-  this->RayDistance = this->DistanceMapOf(ray);
+  this->RayDistance = this->DistanceMapOf(ray.direction);
   this->ForgetRejectedLeaf();
   BatchedRay state;
   int n = 0;

@@ -45,8 +45,7 @@ ACCELVOLUME_AVX512 inline Lanes Negate(Lanes a)
 // (m[0] * x + m[1] * y) + m[2] * z: Affine::ApplyLinear's and Dot's order.
 ACCELVOLUME_AVX512 inline Lanes Linear(const double* m, Lanes x, Lanes y, Lanes z)
 {
-  return _mm512_add_pd(
-    _mm512_add_pd(_mm512_mul_pd(Set(m[0]), x), _mm512_mul_pd(Set(m[1]), y)),
+  return _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(Set(m[0]), x), _mm512_mul_pd(Set(m[1]), y)),
     _mm512_mul_pd(Set(m[2]), z));
 }
 
@@ -58,8 +57,8 @@ ACCELVOLUME_AVX512 inline Lanes Row(const double* m, Lanes x, Lanes y, Lanes z)
 
 ACCELVOLUME_AVX512 inline Lanes SquaredLength(const Lanes v[3])
 {
-  return _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(v[0], v[0]), _mm512_mul_pd(v[1], v[1])),
-    _mm512_mul_pd(v[2], v[2]));
+  return _mm512_add_pd(
+    _mm512_add_pd(_mm512_mul_pd(v[0], v[0]), _mm512_mul_pd(v[1], v[1])), _mm512_mul_pd(v[2], v[2]));
 }
 
 // std::floor(x) as an int64 (static_cast's truncation of an integral value).
@@ -77,7 +76,8 @@ ACCELVOLUME_AVX512 inline __m512i CeilToInt(Lanes x)
 ACCELVOLUME_AVX512 inline __m512i ToFixed(Lanes x)
 {
   constexpr double Limit = 1073741824.0;
-  const Lanes below = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(x, Set(Limit), _CMP_LT_OQ), Set(Limit), x);
+  const Lanes below =
+    _mm512_mask_blend_pd(_mm512_cmp_pd_mask(x, Set(Limit), _CMP_LT_OQ), Set(Limit), x);
   const Lanes c =
     _mm512_mask_blend_pd(_mm512_cmp_pd_mask(x, Set(-Limit), _CMP_GT_OQ), Set(-Limit), below);
   return FloorToInt(_mm512_add_pd(_mm512_mul_pd(c, Set(FixedSteps::Scale)), Set(0.5)));
@@ -98,8 +98,8 @@ struct Slab
     this->leave = _mm512_mask_min_pd(this->leave, negative, t, this->leave);
     const __mmask8 outside = static_cast<__mmask8>(~(positive | negative)) &
       _mm512_cmp_pd_mask(value, _mm512_setzero_pd(), _CMP_LT_OQ);
-    this->ok &= static_cast<__mmask8>(~outside) &
-      _mm512_cmp_pd_mask(this->enter, this->leave, _CMP_LE_OQ);
+    this->ok &=
+      static_cast<__mmask8>(~outside) & _mm512_cmp_pd_mask(this->enter, this->leave, _CMP_LE_OQ);
   }
 };
 
@@ -123,8 +123,8 @@ ACCELVOLUME_AVX512 inline __mmask8 Intersect(const Lanes o[3], const Lanes d[3],
   for (const HalfSpace& halfSpace : clip)
   {
     const double n[4] = { halfSpace.normal.x, halfSpace.normal.y, halfSpace.normal.z, 0 };
-    slab.NarrowBy(
-      Linear(n, d[0], d[1], d[2]), _mm512_add_pd(Linear(n, o[0], o[1], o[2]), Set(halfSpace.offset)));
+    slab.NarrowBy(Linear(n, d[0], d[1], d[2]),
+      _mm512_add_pd(Linear(n, o[0], o[1], o[2]), Set(halfSpace.offset)));
   }
   enter = slab.enter;
   leave = slab.leave;
@@ -132,15 +132,17 @@ ACCELVOLUME_AVX512 inline __mmask8 Intersect(const Lanes o[3], const Lanes d[3],
 }
 
 // FixLights' half vector of every light (floats): normalize(toLight + toViewer).
-ACCELVOLUME_AVX512 inline void HalfVector(const __m256 toLight[3], const __m256 toViewer[3], float* half[3], int at)
+ACCELVOLUME_AVX512 inline void HalfVector(
+  const __m256 toLight[3], const __m256 toViewer[3], float* half[3], int at)
 {
   __m256 h[3];
   for (int c = 0; c < 3; ++c)
   {
     h[c] = _mm256_add_ps(toLight[c], toViewer[c]);
   }
-  const __m256 length = _mm256_sqrt_ps(_mm256_add_ps(
-    _mm256_add_ps(_mm256_mul_ps(h[0], h[0]), _mm256_mul_ps(h[1], h[1])), _mm256_mul_ps(h[2], h[2])));
+  const __m256 length = _mm256_sqrt_ps(
+    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(h[0], h[0]), _mm256_mul_ps(h[1], h[1])),
+      _mm256_mul_ps(h[2], h[2])));
   const __m256 inverse = _mm256_maskz_div_ps(
     _mm256_cmp_ps_mask(length, _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f), length);
   for (int c = 0; c < 3; ++c)
@@ -149,6 +151,67 @@ ACCELVOLUME_AVX512 inline void HalfVector(const __m256 toLight[3], const __m256 
   }
 }
 } // namespace packet_rays
+
+// LightRay for lanes [at, at + 8): LightPixelRay's direction to the viewer and FixLights'
+// lights (directional ones, the headlight through the eye or from the entry point at t0).
+ACCELVOLUME_AVX512 inline void LightPacketRayLanes(const KernelFrame& frame,
+  const packet_rays::Lanes o[3], const packet_rays::Lanes d[3], packet_rays::Lanes t0,
+  PacketCandidates& rays, int at)
+{
+  using namespace packet_rays;
+  const RayCastLighting& lighting = *frame.lighting;
+  // LightRay: LightPixelRay's direction to the viewer, FixLights' lights.
+  Lanes eye[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    const double m[3] = { lighting.indexToEye[r][0], lighting.indexToEye[r][1],
+      lighting.indexToEye[r][2] };
+    eye[r] = Linear(m, d[0], d[1], d[2]);
+  }
+  const Lanes eyeLength = _mm512_sqrt_pd(SquaredLength(eye));
+  const Lanes eyeInverse = _mm512_maskz_div_pd(
+    _mm512_cmp_pd_mask(eyeLength, _mm512_setzero_pd(), _CMP_GT_OQ), Set(1.0), eyeLength);
+  __m256 toViewer[3];
+  for (int r = 0; r < 3; ++r)
+  {
+    toViewer[r] = _mm512_cvtpd_ps(_mm512_mul_pd(Negate(eye[r]), eyeInverse));
+  }
+  __m256 fromEntry[3]; // towards a light at the eye from the entry point (eyeLightsAtEntry)
+  if (frame.eyeLightsAtEntry)
+  {
+    Lanes entry[3], entryEye[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      entry[a] = _mm512_add_pd(o[a], _mm512_mul_pd(t0, d[a]));
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      const double m[4] = { lighting.indexToEye[r][0], lighting.indexToEye[r][1],
+        lighting.indexToEye[r][2], lighting.indexToEyeOffset[r] };
+      entryEye[r] = Row(m, entry[0], entry[1], entry[2]);
+    }
+    const Lanes distance = _mm512_sqrt_pd(SquaredLength(entryEye));
+    const __mmask8 away = _mm512_cmp_pd_mask(distance, _mm512_setzero_pd(), _CMP_GT_OQ);
+    for (int c = 0; c < 3; ++c)
+    {
+      fromEntry[c] = _mm512_cvtpd_ps(_mm512_maskz_div_pd(away, Negate(entryEye[c]), distance));
+    }
+  }
+  std::size_t index = 0;
+  for (const SceneLight& light : lighting.model.lights)
+  {
+    __m256 toLight[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      toLight[c] = !light.positional ? _mm256_set1_ps(-light.axis[c])
+                                     : (frame.raysThroughEye ? toViewer[c] : fromEntry[c]);
+      _mm256_store_ps(rays.toLight[index][c] + at, toLight[c]);
+    }
+    float* half[3] = { rays.half[index][0], rays.half[index][1], rays.half[index][2] };
+    HalfVector(toLight, toViewer, half, at);
+    ++index;
+  }
+}
 
 // The rays of lanes [at, at + 8) of `rays` from their pixel centres (PacketCandidates).
 ACCELVOLUME_AVX512 inline void SetUpPacketRayLanes(
@@ -197,7 +260,8 @@ ACCELVOLUME_AVX512 inline void SetUpPacketRayLanes(
     _mm512_cmp_pd_mask(_mm512_abs_pd(t1), Set(std::numeric_limits<double>::infinity()), _CMP_LT_OQ);
   // IntervalSamples and OpaqueSamples.
   const double h = settings.sampleDistance;
-  const __m512i count = FloorToInt(_mm512_add_pd(_mm512_div_pd(_mm512_sub_pd(t1, t0), Set(h)), Set(0.5)));
+  const __m512i count =
+    FloorToInt(_mm512_add_pd(_mm512_div_pd(_mm512_sub_pd(t1, t0), Set(h)), Set(0.5)));
   __m512i first = _mm512_setzero_si512(), last = count, cut = _mm512_setzero_si512();
   if (frame.useOpaqueBox)
   {
@@ -207,7 +271,8 @@ ACCELVOLUME_AVX512 inline void SetUpPacketRayLanes(
     const __m512i from = _mm512_max_epi64(_mm512_setzero_si512(),
       FloorToInt(_mm512_sub_pd(_mm512_div_pd(_mm512_sub_pd(enter, t0), Set(h)), Set(0.5))));
     const __m512i to = _mm512_min_epi64(count,
-      _mm512_add_epi64(CeilToInt(_mm512_sub_pd(_mm512_div_pd(_mm512_sub_pd(leave, t0), Set(h)), Set(0.5))),
+      _mm512_add_epi64(
+        CeilToInt(_mm512_sub_pd(_mm512_div_pd(_mm512_sub_pd(leave, t0), Set(h)), Set(0.5))),
         _mm512_set1_epi64(1)));
     first = _mm512_mask_blend_epi64(meets, count, _mm512_min_epi64(from, count));
     last = _mm512_mask_blend_epi64(meets, count, _mm512_max_epi64(to, first));
@@ -225,65 +290,15 @@ ACCELVOLUME_AVX512 inline void SetUpPacketRayLanes(
     _mm512_store_si512(rays.start[a] + at, ToFixed(_mm512_add_pd(o[a], _mm512_mul_pd(t, d[a]))));
     _mm512_store_si512(rays.step[a] + at, ToFixed(step));
     const __mmask8 moves = _mm512_cmp_pd_mask(step, _mm512_setzero_pd(), _CMP_NEQ_UQ);
-    _mm512_store_pd(rays.inverse[a] + at, _mm512_maskz_div_pd(moves, Set(1.0), _mm512_abs_pd(step)));
+    _mm512_store_pd(
+      rays.inverse[a] + at, _mm512_maskz_div_pd(moves, Set(1.0), _mm512_abs_pd(step)));
     const __mmask8 forward = _mm512_cmp_pd_mask(step, _mm512_setzero_pd(), _CMP_GT_OQ);
     _mm256_store_ps(rays.forward[a] + at, _mm256_maskz_mov_ps(forward, _mm256_set1_ps(1.0f)));
   }
   rays.hits |= static_cast<std::uint32_t>(hits) << at;
-  const RayCastLighting& lighting = *frame.lighting;
-  if (!lighting.shade)
+  if (frame.lighting->shade)
   {
-    return;
-  }
-  // LightRay: LightPixelRay's direction to the viewer, FixLights' lights.
-  Lanes eye[3];
-  for (int r = 0; r < 3; ++r)
-  {
-    const double m[3] = { lighting.indexToEye[r][0], lighting.indexToEye[r][1], lighting.indexToEye[r][2] };
-    eye[r] = Linear(m, d[0], d[1], d[2]);
-  }
-  const Lanes eyeLength = _mm512_sqrt_pd(SquaredLength(eye));
-  const Lanes eyeInverse = _mm512_maskz_div_pd(
-    _mm512_cmp_pd_mask(eyeLength, _mm512_setzero_pd(), _CMP_GT_OQ), Set(1.0), eyeLength);
-  __m256 toViewer[3];
-  for (int r = 0; r < 3; ++r)
-  {
-    toViewer[r] = _mm512_cvtpd_ps(_mm512_mul_pd(Negate(eye[r]), eyeInverse));
-  }
-  __m256 fromEntry[3]; // towards a light at the eye from the entry point (eyeLightsAtEntry)
-  if (frame.eyeLightsAtEntry)
-  {
-    Lanes entry[3], entryEye[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      entry[a] = _mm512_add_pd(o[a], _mm512_mul_pd(t0, d[a]));
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      const double m[4] = { lighting.indexToEye[r][0], lighting.indexToEye[r][1],
-        lighting.indexToEye[r][2], lighting.indexToEyeOffset[r] };
-      entryEye[r] = Row(m, entry[0], entry[1], entry[2]);
-    }
-    const Lanes distance = _mm512_sqrt_pd(SquaredLength(entryEye));
-    const __mmask8 away = _mm512_cmp_pd_mask(distance, _mm512_setzero_pd(), _CMP_GT_OQ);
-    for (int c = 0; c < 3; ++c)
-    {
-      fromEntry[c] = _mm512_cvtpd_ps(_mm512_maskz_div_pd(away, Negate(entryEye[c]), distance));
-    }
-  }
-  std::size_t index = 0;
-  for (const SceneLight& light : lighting.model.lights)
-  {
-    __m256 toLight[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      toLight[c] = !light.positional ? _mm256_set1_ps(-light.axis[c])
-                                     : (frame.raysThroughEye ? toViewer[c] : fromEntry[c]);
-      _mm256_store_ps(rays.toLight[index][c] + at, toLight[c]);
-    }
-    float* half[3] = { rays.half[index][0], rays.half[index][1], rays.half[index][2] };
-    HalfVector(toLight, toViewer, half, at);
-    ++index;
+    LightPacketRayLanes(frame, o, d, t0, rays, at);
   }
 }
 
@@ -335,8 +350,8 @@ int RayCasterTile<T>::AddBlockToPackets(int n, const PacketBlock& block, float* 
         out[0] = out[1] = out[2] = out[3] = 0.0f;
         continue;
       }
-      const std::uint8_t* distance = this->DistanceMapOf(IndexRay{ {},
-        Vec3{ rays.direction[0][l], rays.direction[1][l], rays.direction[2][l] }, 0.0 });
+      const std::uint8_t* distance = this->DistanceMapOf(
+        Vec3{ rays.direction[0][l], rays.direction[1][l], rays.direction[2][l] });
       if (n > 0 && distance != packet.distance)
       {
         // Another octant's map than the packet's: one ray at a time.

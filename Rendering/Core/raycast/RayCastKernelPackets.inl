@@ -228,7 +228,8 @@ ACCELVOLUME_AVX512 inline void PacketPositions(
 
 // Sampler::LocateFixedCell and CellBricks::Index for the lanes' positions q, and their
 // distance-map values.
-ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(const PacketGrid& grid, const PacketWide q[3], PacketPlace& place)
+ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(
+  const PacketGrid& grid, const PacketWide q[3], PacketPlace& place)
 {
   __m512i cell[3];
   for (int a = 0; a < 3; ++a)
@@ -250,7 +251,8 @@ ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(cons
   const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 3 * Shift), inBrick);
   place.d = _mm512_and_si512(PacketBytes(grid.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
   place.base = _mm512_add_epi32(cell[0],
-    _mm512_add_epi32(_mm512_mullo_epi32(cell[1], grid.strideY), _mm512_mullo_epi32(cell[2], grid.strideZ)));
+    _mm512_add_epi32(
+      _mm512_mullo_epi32(cell[1], grid.strideY), _mm512_mullo_epi32(cell[2], grid.strideZ)));
 }
 
 // Fills `packet` lane `n` with the ray whose intervals RayIntervals holds: 1 when added, 0 when
@@ -261,7 +263,7 @@ int RayCasterTile<T>::AddToPacket(int n, PixelRay& pixel, float* out)
 {
   const KernelFrame& frame = this->Frame;
   const IndexRay& ray = pixel.index;
-  const std::uint8_t* distance = this->DistanceMapOf(ray);
+  const std::uint8_t* distance = this->DistanceMapOf(ray.direction);
   if (this->RayIntervals.size() != 1 || (n > 0 && distance != this->Packet.distance))
   {
     return -1;
@@ -363,7 +365,8 @@ void RayCasterTile<T>::CastRowsInPackets(int j0, int j1, int x0, int x1, float* 
     const int blockEnd = std::min(block + PacketColumns, x1);
     if (this->PacketRaySetUp)
     {
-      n = this->AddBlockToPackets(n, PacketBlock{ block, blockEnd, j0, j1, x0, rowCentres, covered }, rgba);
+      const PacketBlock pixels{ block, blockEnd, j0, j1, x0, rowCentres, covered };
+      n = this->AddBlockToPackets(n, pixels, rgba);
       continue;
     }
     for (int j = j0; j < j1; ++j)

@@ -14,7 +14,7 @@ void RayCasterTile<T>::Walk(const PixelRay& pixel, bool leapTransparent, Visit&&
   const bool octree = leapTransparent && this->Frame.useOctree;
   const bool distance = leapTransparent && this->Frame.useDistance;
   const bool cellLeap = leapTransparent && this->Frame.useCellLeap;
-  this->RayDistance = this->DistanceMapOf(ray);
+  this->RayDistance = this->DistanceMapOf(ray.direction);
   this->ForgetRejectedLeaf();
   this->LastContributed = false;
   SampleCell cell;
