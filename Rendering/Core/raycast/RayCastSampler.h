@@ -51,13 +51,16 @@ struct SampleCell
 // Two of them (x neighbours) are one 64-bit load: half the ray packets' gradient gathers.
 inline std::uint32_t EncodeGradient(const float g[3])
 {
+  // 511 * 4^e and 4^-e (exact powers of two: the same as std::ldexp, without its call).
+  static constexpr float Limit[4] = { 511.0f, 2044.0f, 8176.0f, 32704.0f };
+  static constexpr float Inverse[4] = { 1.0f, 0.25f, 0.0625f, 0.015625f };
   float largest = 0;
   for (int k = 0; k < 3; ++k)
   {
     largest = std::max(largest, std::abs(g[k]));
   }
   int exponent = 0;
-  while (exponent < 3 && largest > std::ldexp(511.0f, 2 * exponent))
+  while (exponent < 3 && largest > Limit[exponent])
   {
     ++exponent;
   }
@@ -65,7 +68,7 @@ inline std::uint32_t EncodeGradient(const float g[3])
   for (int k = 0; k < 3; ++k)
   {
     // Round half away from zero; only values past 511 * 64 clamp.
-    const float value = std::ldexp(g[k], -2 * exponent);
+    const float value = g[k] * Inverse[exponent];
     const int mantissa =
       std::min(511, std::max(-511, static_cast<int>(value + (value >= 0 ? 0.5f : -0.5f))));
     word |= (static_cast<std::uint32_t>(mantissa) & 0x3ffu) << (10 * k);
