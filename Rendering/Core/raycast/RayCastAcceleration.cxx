@@ -140,15 +140,8 @@ void ComputeGradients(
   const float inverse = 0.5f / scale;
   auto encode = [](float gx, float gy, float gz)
   {
-    // NaN fails both comparisons and becomes 0.
     const float g[3] = { gx, gy, gz };
-    float clamped[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      clamped[k] = g[k] > -32767.0f ? (g[k] < 32767.0f ? g[k] : 32767.0f)
-                                    : (g[k] <= -32767.0f ? -32767.0f : 0.0f);
-    }
-    return detail::EncodeGradient(clamped);
+    return detail::EncodeGradient(g);
   };
   parallel(static_cast<std::size_t>(nz),
     [&](std::size_t begin, std::size_t end)
@@ -547,8 +540,8 @@ bool RayCaster::Internals::UpdateGradients(const VolumeView& volume, std::uint64
   if (useGradients && (!this->GradientsBuilt || this->GradientsVolume != volumeVersion))
   {
     // |central difference| <= the range width: in these units every component is within
-    // +-32767 (EncodeGradient's exponent at most 8). Integer scalars take half-voxel-value
-    // units where the range allows: their differences are integers, exact up to 255.
+    // +-32767, EncodeGradient's range. Integer scalars take half-voxel-value units where the
+    // range allows: their differences are integers, exact up to 511.
     const bool integral = volume.type != ScalarType::Float32 && volume.type != ScalarType::Float64;
     this->GradientScale =
       static_cast<float>(integral ? std::max(0.5, width / 32767.0) : width / 32767.0);

@@ -321,13 +321,12 @@ int RayCasterTile<T>::AddBlockToPackets(int n, const PacketBlock& block, float* 
   const int width = frame.view->width;
   PacketCandidates& rays = this->Candidates;
   const int columns = block.x1 - block.x0;
+  const int pixels = columns * (block.j1 - block.j0);
   for (int l = 0; l < PacketSize; ++l)
   {
-    // Lanes past the block repeat its last pixel (set up, never used).
-    const int row = std::min(l / columns, block.j1 - block.j0 - 1);
-    const int column = l / columns < block.j1 - block.j0 ? l % columns : columns - 1;
-    rays.x[l] = this->ColumnCentres[block.x0 + column - block.tileX0];
-    rays.y[l] = block.rowCentres[row];
+    const int k = std::min(l, pixels - 1); // lanes past the block repeat its last pixel (unused)
+    rays.x[l] = this->ColumnCentres[block.x0 + k % columns - block.tileX0];
+    rays.y[l] = block.rowCentres[k / columns];
   }
   SetUpPacketRays(frame, this->Settings, rays);
   PacketRays& packet = this->Packet;

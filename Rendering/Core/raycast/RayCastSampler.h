@@ -42,10 +42,10 @@ struct SampleCell
   std::size_t cell = 0; // index into the CellBricks layout of per-cell arrays
 };
 
-// A voxel's precomputed gradient (its central differences in the ray caster's gradient units,
-// within +-32767) in 32 bits: three 10-bit two's-complement mantissas (x in bits 0-9, y 10-19,
-// z 20-29) sharing a 2-bit exponent e (30-31), each component mantissa * 4^e. e is the smallest
-// that keeps every |mantissa| <= 511: integer differences up to 511 units are exact, and a
+// A voxel's precomputed gradient (its central differences in the ray caster's gradient units;
+// any floats, NaN as 0) in 32 bits: three 10-bit two's-complement mantissas (x in bits 0-9, y
+// 10-19, z 20-29) sharing a 2-bit exponent e (30-31), each component mantissa * 4^e. e is the
+// smallest that keeps every |mantissa| <= 511: integer differences up to 511 units are exact, and a
 // component is within half a step (half a unit while all are within 511 units, else under
 // 1/255 of the largest component: the direction within ~0.3 degree).
 // Two of them (x neighbours) are one 64-bit load: half the ray packets' gradient gathers.
@@ -67,10 +67,12 @@ inline std::uint32_t EncodeGradient(const float g[3])
   std::uint32_t word = static_cast<std::uint32_t>(exponent) << 30;
   for (int k = 0; k < 3; ++k)
   {
-    // Round half away from zero; only values past 511 * 64 clamp.
-    const float value = g[k] * Inverse[exponent];
-    const int mantissa =
-      std::min(511, std::max(-511, static_cast<int>(value + (value >= 0 ? 0.5f : -0.5f))));
+    // Values past 511 * 64 (infinities too) clamp; NaN fails both comparisons and becomes 0.
+    // Then round half away from zero.
+    const float scaled = g[k] * Inverse[exponent];
+    const float value =
+      scaled > -511.0f ? (scaled < 511.0f ? scaled : 511.0f) : (scaled <= -511.0f ? -511.0f : 0.0f);
+    const int mantissa = static_cast<int>(value + (value >= 0 ? 0.5f : -0.5f));
     word |= (static_cast<std::uint32_t>(mantissa) & 0x3ffu) << (10 * k);
   }
   return word;
