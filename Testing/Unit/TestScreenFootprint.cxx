@@ -247,6 +247,68 @@ TEST(ScreenFootprint, NoneWhenACornerIsBehindTheCamera)
   EXPECT_TRUE(footprint.covered.empty());
 }
 
+// The corners projected in lanes give ProjectBox's pixels (and failures) to the bit: random
+// projective maps (perspective ones with corners behind the eye, parallel ones, degenerate and
+// huge entries) and boxes.
+TEST(ScreenFootprint, BoxesProjectedInLanesMatchProjectBox)
+{
+  std::mt19937 random(19);
+  std::uniform_real_distribution<double> entry(-2.0, 2.0), coordinate(-50.0, 300.0);
+  std::uniform_int_distribution<int> kind(0, 9), size(1, 700);
+  int succeeded = 0, failed = 0;
+  for (int trial = 0; trial < 200000; ++trial)
+  {
+    double m[4][4];
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        m[r][c] = entry(random);
+      }
+    }
+    switch (kind(random))
+    {
+      case 0: // parallel: w = 1
+        m[3][0] = m[3][1] = m[3][2] = 0.0;
+        m[3][3] = 1.0;
+        break;
+      case 1: // in front of the eye for most boxes
+        m[3][3] = 400.0;
+        break;
+      case 2: // an entry that overflows the division
+        m[0][0] = 1.0e308;
+        break;
+      case 3: // w = 0 for every point
+        m[3][0] = m[3][1] = m[3][2] = m[3][3] = 0.0;
+        break;
+      default:
+        break;
+    }
+    Vec3 a{ coordinate(random), coordinate(random), coordinate(random) };
+    Vec3 b{ coordinate(random), coordinate(random), coordinate(random) };
+    const Box box{ { std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z) },
+      { std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z) } };
+    const int width = size(random), height = size(random);
+    int expected[4] = { 7, 7, 7, 7 }, lanes[4] = { 7, 7, 7, 7 };
+    const bool projects = ProjectBox(box, m, width, height, expected);
+    ASSERT_EQ(ProjectBoxFast(box, m, width, height, lanes), projects) << "trial " << trial;
+    if (projects)
+    {
+      ++succeeded;
+      for (int k = 0; k < 4; ++k)
+      {
+        ASSERT_EQ(lanes[k], expected[k]) << "trial " << trial << " k " << k;
+      }
+    }
+    else
+    {
+      ++failed;
+    }
+  }
+  EXPECT_GT(succeeded, 20000);
+  EXPECT_GT(failed, 20000);
+}
+
 TEST(ScreenFootprint, MacroCellsGrowToStayFew)
 {
   std::mt19937 random(9);

@@ -46,6 +46,9 @@ void ComputeMacroCells(const int cellDims[3], const std::uint16_t* distance,
 // projection of the box is then not bounded by its corners'.
 bool ProjectBox(
   const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4]);
+// ProjectBox with the corners projected together where the CPU has AVX-512: the same pixels.
+bool ProjectBoxFast(
+  const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4]);
 
 // Pixel blocks of a width x height image (blocks[0] x blocks[1], row-major): covered[b] = 1 when
 // a pixel centre's ray of block b may meet a non-empty cell, i.e. the block meets the projection
