@@ -9,6 +9,7 @@ set(_av_core_sources
   common/Geometry
   common/ParallelFor
   common/Progress
+  common/Unorm16
   skipping/CellClassification
   skipping/CellLeapTable
   skipping/DistanceMap
@@ -69,10 +70,11 @@ if (NOT TARGET AccelVolumeCore)
     set_source_files_properties("${_av_core_root}/raycast/RayCastKernel.cxx"
       PROPERTIES COMPILE_OPTIONS "-fno-math-errno;-fno-trapping-math;-ffp-contract=off")
     # The packets set rays up in AVX-512 lanes with the operations of Affine::Apply and
-    # IntersectRayRegion, the footprint projects box corners in lanes as ProjectBox does: those
-    # must not contract either (only an -march build could).
+    # IntersectRayRegion, the footprint projects box corners in lanes as ProjectBox does and the
+    # displayed images convert to 16 bits in lanes: those must not contract either (only an
+    # -march build could).
     set_source_files_properties("${_av_core_root}/common/Affine.cxx"
-      "${_av_core_root}/common/Geometry.cxx" "${_av_core_root}/skipping/ScreenFootprint.cxx"
-      PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
+      "${_av_core_root}/common/Geometry.cxx" "${_av_core_root}/common/Unorm16.cxx"
+      "${_av_core_root}/skipping/ScreenFootprint.cxx" PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
   endif ()
 endif ()

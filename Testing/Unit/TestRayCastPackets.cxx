@@ -97,6 +97,14 @@ TEST(RayCastPackets, SameImagesAsOneRayAtATime)
         transfer.rgba[i] = std::min(1.0f, 6.0f * transfer.rgba[i]); // nearly opaque
       }
     }
+    else if (trial % 5 == 3 || trial % 5 == 4)
+    {
+      // Faint: long rays of many visible samples before early termination.
+      for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+      {
+        transfer.rgba[i] *= 0.15f;
+      }
+    }
     RayCastLighting lighting;
     lighting.shade = trial % 4 != 3;
     AddLights(trial, lighting);

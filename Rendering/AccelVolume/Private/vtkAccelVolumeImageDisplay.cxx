@@ -9,6 +9,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "common/Unorm16.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -33,16 +35,12 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   const int rectangleWidth = x1 - x0 + 1, rectangleHeight = y1 - y0 + 1;
   // 16-bit normalised channels (as VTK's CPU mapper uses): a quarter of the float upload, in
   // 1/65535 steps, far below the 8-bit framebuffer's; only the rectangle the rays covered.
-  this->Pixels.resize(4 * static_cast<std::size_t>(rectangleWidth) * rectangleHeight);
-  unsigned short* out = this->Pixels.data();
+  const std::size_t rowValues = 4 * static_cast<std::size_t>(rectangleWidth);
+  this->Pixels.resize(rowValues * rectangleHeight);
   for (int y = y0; y <= y1; ++y)
   {
-    const float* in = rgba + 4 * (static_cast<std::size_t>(y) * imageWidth + x0);
-    for (int i = 0; i < 4 * rectangleWidth; ++i)
-    {
-      const float v = std::min(std::max(in[i], 0.0f), 1.0f);
-      *out++ = static_cast<unsigned short>(v * 65535.0f + 0.5f);
-    }
+    accelvolume::ConvertToUnorm16(rgba + 4 * (static_cast<std::size_t>(y) * imageWidth + x0),
+      rowValues, this->Pixels.data() + rowValues * (y - y0));
   }
   vtkOpenGLState* state = window->GetState();
   state->Push();
