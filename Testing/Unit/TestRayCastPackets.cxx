@@ -153,6 +153,46 @@ TEST(RayCastPackets, SameImagesAsOneRayAtATime)
   EXPECT_GT(packetRays, 12u * 1000u);
 }
 
+// 8-bit volumes take the interior cells' gradients from the voxels (PacketVoxelGradients) and
+// the cells at the faces from the gradient words: a volume visible up to its faces (the blobs
+// phantom plus noise everywhere) mixes both in one packet. Same images as one ray at a time.
+TEST(RayCastPackets, VoxelGradientsMeetTheFaces)
+{
+  std::mt19937 random(71);
+  const int dims[3] = { 29, 34, 23 };
+  Scene scene = MakeScene(ScalarType::UInt8, dims, 0.3);
+  std::uniform_int_distribution<int> noise(0, 90);
+  for (std::uint8_t& v : scene.u8)
+  {
+    v = static_cast<std::uint8_t>(std::min(255, v + noise(random)));
+  }
+  std::uint64_t packetRays = 0;
+  for (int trial = 0; trial < 6; ++trial)
+  {
+    RayCastTransfer transfer;
+    transfer.rgba = RandomTable(random, 256, trial % 2 == 0);
+    for (std::size_t i = 3; i < transfer.rgba.size(); i += 4)
+    {
+      transfer.rgba[i] *= 0.3f; // rays cross the faces and the inside
+    }
+    RayCastLighting lighting;
+    lighting.shade = true;
+    AddLights(trial, lighting);
+    RayCastSettings settings = BaseSettings(dims, Blend::Composite);
+    settings.leap = LeapMode::DistanceMap;
+    settings.cellLeap = false;
+    const Camera camera = RandomCamera(random, dims, trial % 2 == 1);
+    const RayCastView view = MakeView(camera, 64, 52, 0.5, 500.0);
+    packetRays += CastWithAndWithoutPackets(scene, transfer, lighting, view, settings, trial)
+                    .first.counters.packetRays;
+  }
+  if (!CpuHasPackets())
+  {
+    GTEST_SKIP() << "no AVX-512 on this CPU: the images were compared, the packets never ran";
+  }
+  EXPECT_GT(packetRays, 6u * 1000u);
+}
+
 // Signed bytes (the packets' own corner loads, sign-extended), on a scene of its own: the
 // blobs phantom shifted to [-128, 127].
 TEST(RayCastPackets, SignedBytesGiveTheSameImages)

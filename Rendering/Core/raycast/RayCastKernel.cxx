@@ -460,8 +460,8 @@ private:
   ACCELVOLUME_AVX512 void CastPacket(int n);
   ACCELVOLUME_AVX512 void PacketLeap(
     __mmask16 leaping, const __m512i& d, const __m512 f[3], PacketWide& k, const PacketWide& last);
-  ACCELVOLUME_AVX512 void PacketShade(
-    __mmask16 lanes, const __m512i& base, const __m512 f[3], __m512 rgb[3]);
+  ACCELVOLUME_AVX512 void PacketShade(__mmask16 lanes, const __m512i& base, __mmask16 interior,
+    const __m512i sampleRows[4], const __m512 f[3], __m512 rgb[3]);
 #endif
   bool ApproachInterval(int g);
   bool CanBatch() const;
@@ -760,6 +760,7 @@ private:
   PacketRays Packet;
   PacketCandidates Candidates;
   bool PacketRaySetUp = false;         // packets set their rays up together (PacketRaysApply)
+  bool PacketGradientsFromVoxels = false; // (PacketVoxelGradients)
   std::ptrdiff_t PacketCorner[8] = {}; // the corners' voxel offsets
   int PacketBricks[3] = {};            // CellBricks per axis of the cell grid
   PixelRay LitRay;                     // the direction and lights of the last ray lit

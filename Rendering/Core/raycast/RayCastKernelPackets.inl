@@ -49,6 +49,9 @@ bool RayCasterTile<T>::SetUpPackets()
   const std::ptrdiff_t corners[8] = { 0, 1, oy, oy + 1, oz, oz + 1, oz + oy, oz + oy + 1 };
   std::copy(corners, corners + 8, this->PacketCorner);
   this->PacketRaySetUp = settings.packetRaySetUp && PacketRaysApply(frame, settings);
+  // 8-bit differences in half-value units are EncodeGradient's exact integers.
+  this->PacketGradientsFromVoxels = std::is_same<T, std::uint8_t>::value && lighting.shade &&
+    frame.gradients != nullptr && frame.gradientScale == 0.5f;
   return true;
 #else
   return false;
@@ -116,16 +119,20 @@ ACCELVOLUME_AVX512 inline __m512i PacketBytes(const void* base, __m512i offset, 
 template <typename T>
 struct PacketCorners;
 
-template <>
-struct PacketCorners<std::uint8_t>
+// Corners `at` and `at + 1` of 8-bit voxels from the 32-bit word of bytes at - 1 ... at + 2
+// (moved inside the buffer of `voxels` bytes at its ends), kept in `word` for
+// PacketVoxelGradients.
+ACCELVOLUME_AVX512 inline void PacketByteCorners(
+  const std::uint8_t* v, __m512i at, int voxels, __m512i& word, __m512& lo, __m512& hi)
 {
-  ACCELVOLUME_AVX512 static void Load(const std::uint8_t* v, __m512i at, __m512& lo, __m512& hi)
-  {
-    const __m512i pair = PacketBytes(v, at, 2);
-    lo = _mm512_cvtepi32_ps(_mm512_and_si512(pair, _mm512_set1_epi32(0xff)));
-    hi = _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(pair, 8), _mm512_set1_epi32(0xff)));
-  }
-};
+  const __m512i start = _mm512_min_epi32(
+    _mm512_max_epi32(_mm512_sub_epi32(at, _mm512_set1_epi32(1)), _mm512_setzero_si512()),
+    _mm512_set1_epi32(voxels - 4));
+  word = _mm512_i32gather_epi32(start, v, 1);
+  const __m512i pair = _mm512_srlv_epi32(word, _mm512_slli_epi32(_mm512_sub_epi32(at, start), 3));
+  lo = _mm512_cvtepi32_ps(_mm512_and_si512(pair, _mm512_set1_epi32(0xff)));
+  hi = _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_srli_epi32(pair, 8), _mm512_set1_epi32(0xff)));
+}
 
 template <>
 struct PacketCorners<std::int8_t>
@@ -201,6 +208,7 @@ struct PacketPlace
   __m512 f[3];
   __m512i base;
   __m512i d;
+  __mmask16 interior; // cells with a voxel of margin around their corners (PacketGradientsFromVoxels)
 };
 
 // The fixed geometry PacketPlaceAt needs (per frame and packet).
@@ -250,6 +258,13 @@ ACCELVOLUME_AVX512 __attribute__((always_inline)) inline void PacketPlaceAt(
     _mm512_and_si512(cell[0], inside));
   const __m512i cellIndex = _mm512_or_si512(_mm512_slli_epi32(brick, 3 * Shift), inBrick);
   place.d = _mm512_and_si512(PacketBytes(grid.distance, cellIndex, 1), _mm512_set1_epi32(0xff));
+  // Cells [1, n - 3] along every axis: their corners' neighbours lie inside the volume.
+  place.interior = 0xffff;
+  for (int a = 0; a < 3; ++a)
+  {
+    place.interior &= _mm512_cmpge_epi32_mask(cell[a], _mm512_set1_epi32(1)) &
+      _mm512_cmple_epi32_mask(cell[a], _mm512_set1_epi32(grid.dims[a] - 3));
+  }
   place.base = _mm512_add_epi32(cell[0],
     _mm512_add_epi32(
       _mm512_mullo_epi32(cell[1], grid.strideY), _mm512_mullo_epi32(cell[2], grid.strideZ)));
@@ -454,10 +469,61 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketLeap(
   this->Counters.distanceLeaps += static_cast<std::uint64_t>(__builtin_popcount(leaping));
 }
 
+// Byte `i` of each lane's 32-bit word, as an integer.
+ACCELVOLUME_AVX512 inline __m512i PacketByte(__m512i word, int i)
+{
+  return _mm512_and_si512(_mm512_srli_epi32(word, 8 * i), _mm512_set1_epi32(0xff));
+}
+
+// For 8-bit volumes whose gradients EncodeGradient keeps exact (half-value units: every central
+// difference is an integer up to 255), the lanes `lanes` (cells with a voxel of margin) take the
+// eight corners' central differences from the voxels instead of the gradient words: the same
+// values, read from rows next to those the sample read (the gradient words, 4 bytes a voxel,
+// miss the caches far more). g accumulates InterpolateGradient's sums in its order.
+ACCELVOLUME_AVX512 inline void PacketVoxelGradients(const std::uint8_t* voxels, const __m512i& base,
+  const __m512i sampleRows[4], int rowStride, int sliceStride, __mmask16 lanes,
+  const __m512 wxy[4], const __m512 wz[2], __m512 g[3])
+{
+  // Rows (y + dy, z + dz), bytes x - 1 ... x + 2: window[dy + 1][dz + 1] for dy, dz in [-1, 2]
+  // (the twelve the corners' differences read; the four corners of the 4 x 4 are unused). The
+  // sample's own four rows came with its corners (PacketByteCorners, in PacketCorner's order).
+  __m512i window[4][4];
+  for (int dz = -1; dz <= 2; ++dz)
+  {
+    for (int dy = -1; dy <= 2; ++dy)
+    {
+      const bool sampled = dy >= 0 && dy <= 1 && dz >= 0 && dz <= 1;
+      const bool used = (dy >= 0 && dy <= 1) || (dz >= 0 && dz <= 1);
+      window[dy + 1][dz + 1] = sampled ? sampleRows[dy + 2 * dz]
+        : used
+        ? _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes,
+            _mm512_add_epi32(base, _mm512_set1_epi32(dy * rowStride + dz * sliceStride - 1)),
+            voxels, 1)
+        : _mm512_setzero_si512();
+    }
+  }
+  for (int c = 0; c < 8; ++c)
+  {
+    const int cx = c & 1, cy = (c >> 1) & 1, cz = c >> 2;
+    const __m512i& row = window[cy + 1][cz + 1];
+    const __m512 gx = _mm512_cvtepi32_ps(
+      _mm512_sub_epi32(PacketByte(row, 2 + cx), PacketByte(row, cx)));
+    const __m512 gy = _mm512_cvtepi32_ps(_mm512_sub_epi32(
+      PacketByte(window[cy + 2][cz + 1], 1 + cx), PacketByte(window[cy][cz + 1], 1 + cx)));
+    const __m512 gz = _mm512_cvtepi32_ps(_mm512_sub_epi32(
+      PacketByte(window[cy + 1][cz + 2], 1 + cx), PacketByte(window[cy + 1][cz], 1 + cx)));
+    const __m512 w = _mm512_mul_ps(wxy[c & 3], wz[c >> 2]);
+    g[0] = _mm512_add_ps(g[0], _mm512_mul_ps(w, gx));
+    g[1] = _mm512_add_ps(g[1], _mm512_mul_ps(w, gy));
+    g[2] = _mm512_add_ps(g[2], _mm512_mul_ps(w, gz));
+  }
+}
+
 // Shades the lanes' colours (ShadeBatchLanesIn's arithmetic) from their gradients.
 template <typename T>
 ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
-  __mmask16 lanes, const __m512i& base, const __m512 f[3], __m512 rgb[3])
+  __mmask16 lanes, const __m512i& base, __mmask16 interior, const __m512i sampleRows[4],
+  const __m512 f[3], __m512 rgb[3])
 {
   const KernelFrame& frame = this->Frame;
   const PacketRays& packet = this->Packet;
@@ -470,16 +536,35 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
   __m512 g[3] = { zero, zero, zero };
   const __m512 wxy[4] = { _mm512_mul_ps(wx[0], wy[0]), _mm512_mul_ps(wx[1], wy[0]),
     _mm512_mul_ps(wx[0], wy[1]), _mm512_mul_ps(wx[1], wy[1]) };
-  for (int c = 0; c < 8; c += 2)
+  __mmask16 fromVoxels = 0;
+  if constexpr (std::is_same<T, std::uint8_t>::value)
+  {
+    if (this->PacketGradientsFromVoxels)
+    {
+      fromVoxels = lanes & interior;
+      if (fromVoxels)
+      {
+        __m512 fromRows[3] = { zero, zero, zero };
+        PacketVoxelGradients(this->Sampling.Voxels(), base, sampleRows, frame.volume.dims[0],
+          frame.volume.dims[0] * frame.volume.dims[1], fromVoxels, wxy, wz, fromRows);
+        for (int a = 0; a < 3; ++a)
+        {
+          g[a] = _mm512_maskz_mov_ps(fromVoxels, fromRows[a]); // the others' rows are not theirs
+        }
+      }
+    }
+  }
+  const __mmask16 fromWords = lanes & ~fromVoxels;
+  for (int c = 0; c < 8 && fromWords; c += 2)
   {
     // Corners c and c + 1 (x neighbours) as one 64-bit load per lane, the lanes not shaded
     // left out.
     const __m512i at =
       _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c])));
     const __m512i low = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
-      static_cast<__mmask8>(lanes), _mm512_castsi512_si256(at), gradients, 4);
+      static_cast<__mmask8>(fromWords), _mm512_castsi512_si256(at), gradients, 4);
     const __m512i high = _mm512_mask_i32gather_epi64(_mm512_setzero_si512(),
-      static_cast<__mmask8>(lanes >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 4);
+      static_cast<__mmask8>(fromWords >> 8), _mm512_extracti64x4_epi64(at, 1), gradients, 4);
     __m512i words[2];
     PacketSplitWords(low, high, words[0], words[1]);
     for (int k = 0; k < 2; ++k)
@@ -496,9 +581,9 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::PacketShade(
         _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(words[k], 12), 22)), scale);
       const __m512 gz = _mm512_mul_ps(
         _mm512_cvtepi32_ps(_mm512_srai_epi32(_mm512_slli_epi32(words[k], 2), 22)), scale);
-      g[0] = _mm512_add_ps(g[0], _mm512_mul_ps(w, gx));
-      g[1] = _mm512_add_ps(g[1], _mm512_mul_ps(w, gy));
-      g[2] = _mm512_add_ps(g[2], _mm512_mul_ps(w, gz));
+      g[0] = _mm512_mask_add_ps(g[0], fromWords, g[0], _mm512_mul_ps(w, gx));
+      g[1] = _mm512_mask_add_ps(g[1], fromWords, g[1], _mm512_mul_ps(w, gy));
+      g[2] = _mm512_mask_add_ps(g[2], fromWords, g[2], _mm512_mul_ps(w, gz));
     }
   }
   const float(*m)[3] = frame.normalMatrix;
@@ -606,6 +691,7 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
   const PacketWide last = PacketLoadWide(packet.last);
   PacketWide k = PacketLoadWide(packet.sample);
   const T* voxels = this->Sampling.Voxels();
+  const int voxelCount = grid.dims[0] * grid.dims[1] * grid.dims[2]; // (SetUpPackets: < 2^31)
   const bool shade = frame.lighting->shade;
   const bool terminate = this->Settings.earlyTermination;
   const __m512 threshold = _mm512_set1_ps(static_cast<float>(this->Settings.terminationThreshold));
@@ -632,6 +718,7 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
     }
     const __m512* f = place.f;
     const __m512i base = place.base;
+    const __mmask16 interior = place.interior;
     const __mmask16 leaping = going & _mm512_cmpgt_epi32_mask(place.d, _mm512_setzero_si512());
     if (leaping)
     {
@@ -659,13 +746,18 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
     samples += static_cast<std::uint64_t>(__builtin_popcount(sampling));
     // Sampler::Trilinear.
     __m512 corner[8];
+    __m512i sampleRows[4];
     for (int c = 0; c < 8; c += 2)
     {
-      if constexpr (PacketScalar<T>) // the others never get here (SetUpPackets)
+      const __m512i at =
+        _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c])));
+      if constexpr (std::is_same<T, std::uint8_t>::value)
       {
-        PacketCorners<T>::Load(voxels,
-          _mm512_add_epi32(base, _mm512_set1_epi32(static_cast<int>(this->PacketCorner[c]))),
-          corner[c], corner[c + 1]);
+        PacketByteCorners(voxels, at, voxelCount, sampleRows[c / 2], corner[c], corner[c + 1]);
+      }
+      else if constexpr (PacketScalar<T>) // the others never get here (SetUpPackets)
+      {
+        PacketCorners<T>::Load(voxels, at, corner[c], corner[c + 1]);
       }
     }
     const __m512 c00 = PacketLerp(corner[0], corner[1], f[0]);
@@ -695,7 +787,7 @@ ACCELVOLUME_AVX512 void RayCasterTile<T>::CastPacket(int n)
       }
       if (shade)
       {
-        this->PacketShade(visible, base, f, rgb);
+        this->PacketShade(visible, base, interior, sampleRows, f, rgb);
       }
       // BlendSample.
       const __m512 weight = _mm512_mul_ps(_mm512_sub_ps(one, alpha), a);
