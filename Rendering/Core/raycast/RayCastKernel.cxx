@@ -774,6 +774,7 @@ private:
 #include "raycast/RayCastKernelComponents.inl"
 #include "raycast/RayCastKernelPacketRays.inl"
 #include "raycast/RayCastKernelPackets.inl"
+#include "raycast/RayCastKernelPacketShade.inl"
 #include "raycast/RayCastKernelPlanes.inl"
 #include "raycast/RayCastKernelProjections.inl"
 #include "raycast/RayCastKernelWalk.inl"
