@@ -28,13 +28,21 @@ ACCELVOLUME_AVX512 inline void PacketVoxelGradients(const std::uint8_t* voxels, 
   {
     for (int dy = -1; dy <= 2; ++dy)
     {
-      const bool sampled = dy >= 0 && dy <= 1 && dz >= 0 && dz <= 1;
-      const bool used = (dy >= 0 && dy <= 1) || (dz >= 0 && dz <= 1);
-      window[dy + 1][dz + 1] = sampled ? sampleRows[dy + 2 * dz]
-        : used                         ? _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes,
-                                           _mm512_add_epi32(base, _mm512_set1_epi32(dy * rowStride + dz * sliceStride - 1)),
-                                           voxels, 1)
-                                       : _mm512_setzero_si512();
+      __m512i& row = window[dy + 1][dz + 1];
+      if (dy >= 0 && dy <= 1 && dz >= 0 && dz <= 1)
+      {
+        row = sampleRows[dy + 2 * dz];
+      }
+      else if ((dy >= 0 && dy <= 1) || (dz >= 0 && dz <= 1))
+      {
+        const __m512i at =
+          _mm512_add_epi32(base, _mm512_set1_epi32(dy * rowStride + dz * sliceStride - 1));
+        row = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, at, voxels, 1);
+      }
+      else
+      {
+        row = _mm512_setzero_si512();
+      }
     }
   }
   for (int c = 0; c < 8; ++c)
