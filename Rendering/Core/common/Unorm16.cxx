@@ -1,13 +1,8 @@
 #include "common/Unorm16.h"
 
-#include <algorithm>
+#include "common/Avx512.h"
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#include <immintrin.h>
-#define ACCELVOLUME_UNORM16_AVX512 1
-#else
-#define ACCELVOLUME_UNORM16_AVX512 0
-#endif
+#include <algorithm>
 
 namespace accelvolume
 {
@@ -21,11 +16,10 @@ inline std::uint16_t ToUnorm16(float v)
   return static_cast<std::uint16_t>(v * 65535.0f + 0.5f);
 }
 
-#if ACCELVOLUME_UNORM16_AVX512
+#if ACCELVOLUME_AVX512_BUILD
 // This file never contracts v * 65535 + 0.5 into FMA (the CMake module's options), so the lanes
 // round as the scalar code does.
-__attribute__((target("avx512f"))) void ConvertInLanes(
-  const float* in, std::size_t count, std::uint16_t* out)
+ACCELVOLUME_AVX512 void ConvertInLanes(const float* in, std::size_t count, std::uint16_t* out)
 {
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
   std::size_t i = 0;
@@ -49,9 +43,8 @@ __attribute__((target("avx512f"))) void ConvertInLanes(
 
 void ConvertToUnorm16(const float* in, std::size_t count, std::uint16_t* out)
 {
-#if ACCELVOLUME_UNORM16_AVX512
-  static const bool avx512 = __builtin_cpu_supports("avx512f");
-  if (avx512)
+#if ACCELVOLUME_AVX512_BUILD
+  if (CpuHasAvx512())
   {
     ConvertInLanes(in, count, out);
     return;

@@ -31,7 +31,7 @@ bool RayCasterTile<T>::SetUpPackets()
   const CellBricks bricks(cells);
   // Voxel, gradient and cell indices are 32-bit lanes.
   constexpr std::int64_t Lanes32 = std::numeric_limits<std::int32_t>::max();
-  if (!PacketScalar<T> || !settings.rayPackets || settings.baselineLanes || !PacketsOnAvx512() ||
+  if (!PacketScalar<T> || !settings.rayPackets || settings.baselineLanes || !CpuHasAvx512() ||
     !this->ApproachTogether || settings.nearest || frame.mask != nullptr ||
     frame.gradientOpacity != nullptr || frame.useCellLeap || frame.tableSize < 2 ||
     voxels + 8 > Lanes32 || static_cast<std::int64_t>(bricks.Entries()) > Lanes32 ||

@@ -4,17 +4,13 @@
 #ifndef accelvolume_RayCastPackets_h
 #define accelvolume_RayCastPackets_h
 
+#include "common/Avx512.h"
 #include "raycast/RayCastPixelRay.h"
 
 #include <cstdint>
 #include <type_traits>
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#define ACCELVOLUME_PACKETS 1
-#include <immintrin.h>
-#else
-#define ACCELVOLUME_PACKETS 0
-#endif
+#define ACCELVOLUME_PACKETS ACCELVOLUME_AVX512_BUILD
 
 namespace accelvolume
 {
@@ -22,16 +18,6 @@ namespace detail
 {
 
 #if ACCELVOLUME_PACKETS
-#define ACCELVOLUME_AVX512 __attribute__((target("avx512f,avx512dq,avx512bw,avx512vl")))
-
-inline bool PacketsOnAvx512()
-{
-  static const bool avx512 = __builtin_cpu_supports("avx512f") &&
-    __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-    __builtin_cpu_supports("avx512vl");
-  return avx512;
-}
-
 constexpr int PacketSize = 16;
 
 // Sixteen int64 lanes as two registers of eight.

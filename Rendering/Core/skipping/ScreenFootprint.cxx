@@ -1,14 +1,11 @@
 #include "skipping/ScreenFootprint.h"
 
+#include "common/Avx512.h"
 #include "skipping/CellBricks.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#include <immintrin.h>
-#endif
 
 namespace accelvolume
 {
@@ -164,12 +161,11 @@ bool ProjectBox(
 namespace
 {
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#define ACCELVOLUME_FOOTPRINT_AVX512 1
+#if ACCELVOLUME_AVX512_BUILD
 // ProjectBox with the eight corners in the lanes of AVX-512 registers: the same operations in
 // the same order per corner (this file never contracts them into FMA), so the same pixels. A
 // frame projects every non-empty macro cell (tens of thousands on a noisy volume).
-__attribute__((target("avx512f,avx512dq"))) bool ProjectBoxInLanes(
+ACCELVOLUME_AVX512 bool ProjectBoxInLanes(
   const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4])
 {
   const Vec3& lo = box.lower;
@@ -211,15 +207,6 @@ __attribute__((target("avx512f,avx512dq"))) bool ProjectBoxInLanes(
   PixelRanges(low, high, size, pixels);
   return true;
 }
-
-bool HasAvx512()
-{
-  static const bool avx512 =
-    __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-  return avx512;
-}
-#else
-#define ACCELVOLUME_FOOTPRINT_AVX512 0
 #endif
 
 } // namespace
@@ -227,8 +214,8 @@ bool HasAvx512()
 bool ProjectBoxFast(
   const Box& box, const double indexToClip[4][4], int width, int height, int pixels[4])
 {
-#if ACCELVOLUME_FOOTPRINT_AVX512
-  if (HasAvx512())
+#if ACCELVOLUME_AVX512_BUILD
+  if (CpuHasAvx512())
   {
     return ProjectBoxInLanes(box, indexToClip, width, height, pixels);
   }
