@@ -64,15 +64,18 @@ struct ScanlineCounters
   }
 };
 
-// Scratch space per worker: skip links per scanline, open pixels per scanline, the two shaded
-// voxel scanlines of the current slice.
+// Scratch space per worker: skip links per scanline, open pixels per scanline, and the two
+// voxel scanlines of the current slice (voxel scanline j in buffer j & 1), shaded on first use:
+// a cell is valid while its stamp equals its buffer's.
 struct ScanlineWorkspace
 {
   std::vector<std::int32_t> next;
   std::vector<std::int32_t> open;
   std::vector<float> rows[2];
-  std::vector<std::int32_t> written[2];
-  int rowIndex[2] = { 0, 0 }; // voxel scanline each buffer holds (set by the band loop)
+  std::vector<std::uint32_t> stamps[2];
+  int rowIndex[2] = { 0, 0 };           // voxel scanline each buffer holds (set by the band loop)
+  std::uint32_t rowStamp[2] = { 0, 0 }; // the stamp of that scanline's valid cells
+  std::uint32_t lastStamp = 0;
 };
 
 // Composites every slice, front to back and slice by slice (the encoding is streamed in
