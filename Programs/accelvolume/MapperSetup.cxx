@@ -80,6 +80,7 @@ void ConfigureShearWarp(
   shearWarp->SetEarlyRayTermination(options.earlyRayTermination);
   shearWarp->SetRunLengthEncoding(options.runLengthEncoding);
   shearWarp->SetLoadBalancing(options.balance);
+  shearWarp->SetWarpOnGPU(options.warpOnGPU);
   shearWarp->SetShadingMode(options.phongShading
       ? vtkAccelVolumeShearWarpMapper::SHADING_PHONG
       : vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE);
@@ -155,6 +156,7 @@ void ReadShearWarpResult(vtkAccelVolumeShearWarpMapper* mapper, vtkImageData* im
   out.runLengthEncoding = mapper->GetRunLengthEncoding() != 0;
   out.earlyRayTermination = mapper->GetEarlyRayTermination() != 0;
   out.balance = mapper->GetLoadBalancing() != 0;
+  out.warpOnGPU = mapper->GetWarpOnGPU() != 0;
   out.phongShading = mapper->GetShadingMode() == vtkAccelVolumeShearWarpMapper::SHADING_PHONG;
   out.threads = mapper->GetNumberOfThreads();
   out.ranks = mpi ? mpi->GetNumberOfRanks() : 1;

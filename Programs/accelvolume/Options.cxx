@@ -428,6 +428,15 @@ void AddShearWarpFlags(CLI::App& command, Options& options)
       options.phongShading = phong;
       options.haveShading = true;
     });
+  AddChoice<bool>(command, "--warp", "gpu|cpu",
+    "shear-warp's warp: while drawing the intermediate image on\n"
+    "the GPU (default), or on the CPU into a viewport-sized image",
+    { { "gpu", true }, { "cpu", false } },
+    [&](bool gpu)
+    {
+      options.warpOnGPU = gpu;
+      options.haveWarp = true;
+    });
   AddSwitch(command, "--mpi",
     "run under mpirun: every rank renders the same frames and\n"
     "composites its bands, rank 0 gathers them and alone writes\n"
@@ -597,6 +606,7 @@ void CheckRender(Options& options)
   onlyFor(
     options.haveRunLengthEncoding, "--rle", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
+  onlyFor(options.haveWarp, "--warp", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
   const bool slice = options.mapper == MapperKind::Slice || smart;
   onlyFor(options.gpuBudgetMiB > 0, "--gpu-budget", slice, "--mapper slice and smart");

@@ -75,6 +75,7 @@ struct ShearWarpResult
   bool earlyRayTermination = true;
   bool balance = true;
   bool phongShading = false;
+  bool warpOnGPU = true;
   int threads = 0; // as set (0 = all cores)
   int ranks = 1;
   double renderMs = 0;

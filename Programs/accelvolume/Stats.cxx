@@ -117,6 +117,7 @@ JsonDocument ShearWarpObject(const RenderResult& result)
   o["ert"] = w.earlyRayTermination;
   o["balance"] = w.balance;
   o["shading"] = w.phongShading ? "phong" : "table";
+  o["warp"] = w.warpOnGPU ? "gpu" : "cpu";
   o["threads"] = w.threads;
   o["ranks"] = w.ranks;
   o["render_ms"] = JsonNumber(w.renderMs);

@@ -174,6 +174,11 @@ public:
   bool GatherBands(const std::vector<int>& rankBounds, const std::vector<double>& bandSeconds,
     bool composited, int ranks, int threads, ShearWarpFrameResult& out);
   void RecordCounters(vtkAccelVolumeShearWarpMapper* self, const ShearWarpFrameResult& out);
+  // Draws the frame: the intermediate image warped by the GPU, or (WarpOnGPU off, or past the
+  // texture size limit) the image warped here.
+  bool Show(vtkOpenGLRenderWindow* window, const int lowerLeft[2], const ShearWarpFrameInputs& in,
+    ShearWarpFrameResult& out, float colourScale, float colourBias, int selectionMode,
+    const float selectionColour[3], bool peeling);
 };
 
 vtkStandardNewMacro(vtkAccelVolumeShearWarpMapper);
@@ -196,6 +201,7 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadingMode: " << this->ShadingMode << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "LoadBalancing: " << this->LoadBalancing << "\n";
+  os << indent << "WarpOnGPU: " << this->WarpOnGPU << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "CommunicationTimeout: " << this->CommunicationTimeout << "\n";
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
@@ -300,6 +306,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
     : accelvolume::ShearWarpShading::LookupTable;
   settings.bands = in.threads;
   settings.balance = self->LoadBalancing != 0;
+  settings.warp = self->WarpOnGPU == 0;
   return FrameReady;
 }
 
@@ -397,13 +404,43 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
   }
   progress.Report(0.9);
   engine.GetCounters(out.stats);
-  if (rank == 0)
+  if (rank == 0 && in.settings.warp)
   {
     const double warpStart = Now();
     engine.Warp(parallel, this->Image, out.rectangle);
     out.stats.warpSeconds = Now() - warpStart;
   }
+  else if (rank == 0)
+  {
+    accelvolume::WarpedRectangle(engine.GetFactorization(), in.width, in.height, out.rectangle);
+  }
   progress.Report(0.95);
+}
+
+bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* window,
+  const int lowerLeft[2], const ShearWarpFrameInputs& in, ShearWarpFrameResult& out,
+  float colourScale, float colourBias, int selectionMode, const float selectionColour[3],
+  bool peeling)
+{
+  if (!in.settings.warp)
+  {
+    const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
+    if (this->Display.DrawWarped(window, lowerLeft, in.width, in.height, in.width, in.height,
+          this->Renderer.GetIntermediateImage(), f.intermediateSize[0], f.intermediateSize[1],
+          f.inverseWarp, out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
+          peeling))
+    {
+      return true;
+    }
+    const double warpStart = Now();
+    const auto warp = [&]()
+    { this->Renderer.Warp(vtkAccelVolumeSMPParallelFor(), this->Image, out.rectangle); };
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, warp);
+    out.stats.warpSeconds = Now() - warpStart;
+  }
+  return this->Display.Draw(window, lowerLeft, in.width, in.height, in.width, in.height,
+    this->Image.data(), out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
+    peeling);
 }
 
 bool vtkAccelVolumeShearWarpMapper::vtkInternals::GatherBands(const std::vector<int>& rankBounds,
@@ -546,11 +583,11 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   const bool peeling = peel == vtkAccelVolumePeelStage::OutsideRange;
   const int origin[2] = { 0, 0 }; // the pass's targets are viewport-sized
   if (rank == 0 && peel != vtkAccelVolumePeelStage::Later &&
-    !internals.Display.Draw(window, peeling ? origin : in.lowerLeft, in.width, in.height, in.width,
-      in.height, internals.Image.data(), out.rectangle, colourScale, colourBias, selectionMode,
-      selectionColour, peeling))
+    !internals.Show(window, peeling ? origin : in.lowerLeft, in, out, colourScale, colourBias,
+      selectionMode, selectionColour, peeling))
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }
+  this->LastWarpTime = out.stats.warpSeconds; // the CPU warp when the GPU could not take it
   this->LastRenderTime = Now() - start;
 }

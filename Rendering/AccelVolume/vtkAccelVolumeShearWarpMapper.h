@@ -104,6 +104,19 @@ public:
 
   ///@{
   /**
+   * Warp the intermediate image into the view while drawing it, on the GPU (default on): only
+   * the intermediate image (one pixel per voxel) is uploaded and the texture unit resamples it
+   * bilinearly. Off: the CPU warps into an image of the viewport's size, which is uploaded
+   * (LastWarpTime measures it). Intermediate images past the texture size limit are warped on
+   * the CPU either way. The two differ by the texture unit's filtering precision.
+   */
+  vtkSetMacro(WarpOnGPU, vtkTypeBool);
+  vtkGetMacro(WarpOnGPU, vtkTypeBool);
+  vtkBooleanMacro(WarpOnGPU, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Multi-process controller (default none: this process renders alone). With more than one
    * process every rank must call Render for the same scene; rank 0 shows the image.
    */
@@ -175,6 +188,7 @@ protected:
   int ShadingMode = SHADING_LOOKUP_TABLE;
   int NumberOfThreads = 0;
   vtkTypeBool LoadBalancing = 1;
+  vtkTypeBool WarpOnGPU = 1;
   vtkMultiProcessController* Controller = nullptr;
   double CommunicationTimeout = 60;
 

@@ -1,4 +1,4 @@
-// vtkAccelVolumeImageDisplay: shows the CPU ray caster's image in the OpenGL scene.
+// vtkAccelVolumeImageDisplay: shows the CPU mappers' images in the OpenGL scene.
 #include "vtkAccelVolumeImageDisplay.h"
 
 #include "vtkOpenGLRenderWindow.h"
@@ -13,6 +13,24 @@
 
 #include <algorithm>
 #include <cmath>
+
+// Where and how a texture's pixels land: the image of imageWidth x imageHeight pixels stretched
+// over the viewport, drawn over `rectangle` only; the texture holds uploadWidth x uploadHeight
+// pixels (Pixels) from the rectangle's corner, or, with inverseWarp, the intermediate image.
+struct vtkAccelVolumeImageDisplay::Placement
+{
+  const int* lowerLeft;
+  int width, height;
+  int imageWidth, imageHeight;
+  const int* rectangle;
+  int uploadWidth, uploadHeight;
+  float colourScale, colourBias;
+  int selectionMode;
+  const float* selectionColour;
+  bool clearSecondTarget;
+  const double (*inverseWarp)[3];
+  int intermediateSize[2] = { 0, 0 };
+};
 
 #include "AccelVolumeImageFS.h"
 #include "AccelVolumeResolveVS.h"
@@ -42,10 +60,6 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
     accelvolume::ConvertToUnorm16(rgba + 4 * (static_cast<std::size_t>(y) * imageWidth + x0),
       rowValues, this->Pixels.data() + rowValues * (y - y0));
   }
-  vtkOpenGLState* state = window->GetState();
-  state->Push();
-  this->Image->SetContext(window);
-  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
   // With one ray per pixel the shader fetches texels by index, so a texture of the whole image
   // serves every rectangle: it is made once, not anew whenever the rectangle's size changes
   // (every frame of a turning camera). Filtered lookups (fewer rays than pixels) clamp at the
@@ -54,66 +68,150 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   const unsigned textureWidth = static_cast<unsigned>(texelPerPixel ? imageWidth : rectangleWidth);
   const unsigned textureHeight =
     static_cast<unsigned>(texelPerPixel ? imageHeight : rectangleHeight);
-  bool ok = (this->Image->GetHandle() && this->Image->GetWidth() == textureWidth &&
-              this->Image->GetHeight() == textureHeight) ||
-    this->Image->Create2D(textureWidth, textureHeight, 4, VTK_UNSIGNED_SHORT, false);
-  if (ok)
+  this->Image->SetContext(window);
+  if (!((this->Image->GetHandle() && this->Image->GetWidth() == textureWidth &&
+          this->Image->GetHeight() == textureHeight) ||
+        this->Image->Create2D(textureWidth, textureHeight, 4, VTK_UNSIGNED_SHORT, false)))
   {
-    this->Image->Activate();
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, rectangleWidth, rectangleHeight, GL_RGBA,
-      GL_UNSIGNED_SHORT, this->Pixels.data());
-    this->Image->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->Image->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->Image->SetMinificationFilter(vtkTextureObject::Linear);
-    this->Image->SetMagnificationFilter(vtkTextureObject::Linear);
-    this->Image->SendParameters();
-    vtkShaderProgram* program =
-      window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
-    ok = program != nullptr;
-    if (ok)
-    {
-      state->vtkglViewport(lowerLeft[0], lowerLeft[1], width, height);
-      // Only fragments over the rectangle (one image pixel of margin for the magnification).
-      const double scaleX = static_cast<double>(width) / imageWidth;
-      const double scaleY = static_cast<double>(height) / imageHeight;
-      const int left = lowerLeft[0] + static_cast<int>(std::floor((x0 - 1) * scaleX));
-      const int bottom = lowerLeft[1] + static_cast<int>(std::floor((y0 - 1) * scaleY));
-      const int right = lowerLeft[0] + static_cast<int>(std::ceil((x1 + 2) * scaleX));
-      const int top = lowerLeft[1] + static_cast<int>(std::ceil((y1 + 2) * scaleY));
-      state->vtkglEnable(GL_SCISSOR_TEST);
-      state->vtkglScissor(left, bottom, right - left, top - bottom);
-      state->vtkglDisable(GL_DEPTH_TEST);
-      state->vtkglDepthMask(GL_FALSE);
-      state->vtkglEnable(GL_BLEND);
-      state->vtkglBlendEquation(GL_FUNC_ADD);
-      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      program->SetUniformi("image", this->Image->GetTextureUnit());
-      const float origin[2] = { static_cast<float>(lowerLeft[0]),
-        static_cast<float>(lowerLeft[1]) };
-      const float size[2] = { static_cast<float>(width), static_cast<float>(height) };
-      const float image[2] = { static_cast<float>(imageWidth), static_cast<float>(imageHeight) };
-      const float rectangleOrigin[2] = { static_cast<float>(x0), static_cast<float>(y0) };
-      const float rectangleSize[2] = { static_cast<float>(rectangleWidth),
-        static_cast<float>(rectangleHeight) };
-      program->SetUniform2f("viewportOrigin", origin);
-      program->SetUniform2f("viewportSize", size);
-      program->SetUniform2f("imageSize", image);
-      program->SetUniform2f("rectangleOrigin", rectangleOrigin);
-      program->SetUniform2f("rectangleSize", rectangleSize);
-      program->SetUniformf("colourScale", colourScale);
-      program->SetUniformf("colourBias", colourBias);
-      const float noColour[3] = { 0, 0, 0 };
-      program->SetUniformi("selectionMode", selectionMode);
-      program->SetUniformi("clearSecondTarget", clearSecondTarget ? 1 : 0);
-      program->SetUniform3f("selectionColour", selectionColour ? selectionColour : noColour);
-      this->Array->Bind();
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      this->Array->Release();
-    }
-    this->Image->Deactivate();
+    return false;
   }
+  this->Image->SetWrapS(vtkTextureObject::ClampToEdge);
+  this->Image->SetWrapT(vtkTextureObject::ClampToEdge);
+  Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, rectangleWidth,
+    rectangleHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
+    nullptr };
+  return this->Show(window, this->Image, placement);
+}
+
+bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
+  int width, int height, int imageWidth, int imageHeight, const float* intermediate,
+  int intermediateWidth, int intermediateHeight, const double inverseWarp[2][3],
+  const int rectangle[4], float colourScale, float colourBias, int selectionMode,
+  const float selectionColour[3], bool clearSecondTarget)
+{
+  if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
+  {
+    return true; // nothing visible
+  }
+  // One zero column and row past the image: a bilinear lookup between the last pixel and the
+  // next reads zero there, as the CPU warp; lookups before the first read the zero border.
+  const int uploadWidth = intermediateWidth + 1;
+  const int uploadHeight = intermediateHeight + 1;
+  const int limit = vtkTextureObject::GetMaximumTextureSize(window);
+  if (uploadWidth > limit || uploadHeight > limit)
+  {
+    return false;
+  }
+  const std::size_t rowValues = 4 * static_cast<std::size_t>(uploadWidth);
+  this->Pixels.resize(rowValues * uploadHeight);
+  for (int v = 0; v < intermediateHeight; ++v)
+  {
+    unsigned short* row = this->Pixels.data() + rowValues * v;
+    accelvolume::ConvertToUnorm16(
+      intermediate + 4 * static_cast<std::size_t>(v) * intermediateWidth, rowValues - 4, row);
+    std::fill(row + rowValues - 4, row + rowValues, 0);
+  }
+  std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
+  // The view turns the intermediate image's size a little every frame: the texture keeps room
+  // to spare (in steps of 64) so that it is not made anew each frame.
+  this->Intermediate->SetContext(window);
+  const auto room = [limit](int size) { return std::min(limit, (size + 63) / 64 * 64); };
+  if (!this->Intermediate->GetHandle() ||
+    static_cast<int>(this->Intermediate->GetWidth()) < uploadWidth ||
+    static_cast<int>(this->Intermediate->GetHeight()) < uploadHeight)
+  {
+    if (!this->Intermediate->Create2D(static_cast<unsigned>(room(uploadWidth)),
+          static_cast<unsigned>(room(uploadHeight)), 4, VTK_UNSIGNED_SHORT, false))
+    {
+      return false;
+    }
+  }
+  this->Intermediate->SetWrapS(vtkTextureObject::ClampToBorder);
+  this->Intermediate->SetWrapT(vtkTextureObject::ClampToBorder);
+  this->Intermediate->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
+  Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
+    uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
+    inverseWarp };
+  placement.intermediateSize[0] = intermediateWidth;
+  placement.intermediateSize[1] = intermediateHeight;
+  return this->Show(window, this->Intermediate, placement);
+}
+
+bool vtkAccelVolumeImageDisplay::Show(
+  vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& p)
+{
+  const int x0 = std::max(p.rectangle[0], 0), x1 = std::min(p.rectangle[1], p.imageWidth - 1);
+  const int y0 = std::max(p.rectangle[2], 0), y1 = std::min(p.rectangle[3], p.imageHeight - 1);
+  vtkOpenGLState* state = window->GetState();
+  state->Push();
+  texture->Activate();
+  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, p.uploadWidth, p.uploadHeight, GL_RGBA, GL_UNSIGNED_SHORT,
+    this->Pixels.data());
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SendParameters();
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
+  if (program)
+  {
+    state->vtkglViewport(p.lowerLeft[0], p.lowerLeft[1], p.width, p.height);
+    // Only fragments over the rectangle (one image pixel of margin for the magnification).
+    const double scaleX = static_cast<double>(p.width) / p.imageWidth;
+    const double scaleY = static_cast<double>(p.height) / p.imageHeight;
+    const int left = p.lowerLeft[0] + static_cast<int>(std::floor((x0 - 1) * scaleX));
+    const int bottom = p.lowerLeft[1] + static_cast<int>(std::floor((y0 - 1) * scaleY));
+    const int right = p.lowerLeft[0] + static_cast<int>(std::ceil((x1 + 2) * scaleX));
+    const int top = p.lowerLeft[1] + static_cast<int>(std::ceil((y1 + 2) * scaleY));
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(left, bottom, right - left, top - bottom);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendEquation(GL_FUNC_ADD);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    program->SetUniformi("image", texture->GetTextureUnit());
+    const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
+      static_cast<float>(p.lowerLeft[1]) };
+    const float size[2] = { static_cast<float>(p.width), static_cast<float>(p.height) };
+    const float image[2] = { static_cast<float>(p.imageWidth), static_cast<float>(p.imageHeight) };
+    const float rectangleOrigin[2] = { static_cast<float>(x0), static_cast<float>(y0) };
+    const float rectangleSize[2] = { static_cast<float>(p.uploadWidth),
+      static_cast<float>(p.uploadHeight) };
+    program->SetUniform2f("viewportOrigin", origin);
+    program->SetUniform2f("viewportSize", size);
+    program->SetUniform2f("imageSize", image);
+    program->SetUniform2f("rectangleOrigin", rectangleOrigin);
+    program->SetUniform2f("rectangleSize", rectangleSize);
+    program->SetUniformi("warped", p.inverseWarp ? 1 : 0);
+    if (p.inverseWarp)
+    {
+      const float warpU[3] = { static_cast<float>(p.inverseWarp[0][0]),
+        static_cast<float>(p.inverseWarp[0][1]), static_cast<float>(p.inverseWarp[0][2]) };
+      const float warpV[3] = { static_cast<float>(p.inverseWarp[1][0]),
+        static_cast<float>(p.inverseWarp[1][1]), static_cast<float>(p.inverseWarp[1][2]) };
+      const float limits[2] = { static_cast<float>(p.intermediateSize[0]),
+        static_cast<float>(p.intermediateSize[1]) };
+      const float extent[2] = { static_cast<float>(texture->GetWidth()),
+        static_cast<float>(texture->GetHeight()) };
+      program->SetUniform3f("warpU", warpU);
+      program->SetUniform3f("warpV", warpV);
+      program->SetUniform2f("warpLimit", limits);
+      program->SetUniform2f("textureExtent", extent);
+    }
+    program->SetUniformf("colourScale", p.colourScale);
+    program->SetUniformf("colourBias", p.colourBias);
+    const float noColour[3] = { 0, 0, 0 };
+    program->SetUniformi("selectionMode", p.selectionMode);
+    program->SetUniformi("clearSecondTarget", p.clearSecondTarget ? 1 : 0);
+    program->SetUniform3f("selectionColour", p.selectionColour ? p.selectionColour : noColour);
+    this->Array->Bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    this->Array->Release();
+  }
+  texture->Deactivate();
   state->Pop();
-  return ok;
+  return program != nullptr;
 }
 
 bool vtkAccelVolumeImageDisplay::ReadDepth(

@@ -1,5 +1,5 @@
 //VTK::System::Dec
-// Shows the CPU ray caster's premultiplied RGBA image over the scene (the image already stops
+// Shows a CPU mapper's premultiplied RGBA image over the scene (the image already stops
 // at opaque geometry, so no depth test). With an image sample distance of 1 every fragment
 // reads its own texel centre exactly; larger distances interpolate bilinearly.
 //VTK::Output::Dec
@@ -17,6 +17,14 @@ uniform float colourBias;
 uniform int clearSecondTarget;
 uniform int selectionMode;     // vtkHardwareSelector, as the slice mapper's resolve pass
 uniform vec3 selectionColour;
+// Shear-warp's intermediate image warped here: (u, v) = (warpU, warpV) . (x, y, 1) of the image
+// position, pixel i of the intermediate image at i, zero outside (-1, warpLimit), as the CPU
+// warp; the texture of textureExtent texels holds the image and one zero column and row.
+uniform int warped;
+uniform vec3 warpU;
+uniform vec3 warpV;
+uniform vec2 warpLimit;
+uniform vec2 textureExtent;
 
 void main()
 {
@@ -26,7 +34,16 @@ void main()
   }
   vec2 imagePosition = (gl_FragCoord.xy - viewportOrigin) / viewportSize * imageSize;
   vec4 colour;
-  if (imageSize == viewportSize)
+  if (warped != 0)
+  {
+    vec2 uv = vec2(dot(warpU, vec3(imagePosition, 1.0)), dot(warpV, vec3(imagePosition, 1.0)));
+    if (any(lessThanEqual(uv, vec2(-1.0))) || any(greaterThanEqual(uv, warpLimit)))
+    {
+      discard;
+    }
+    colour = texture(image, (uv + 0.5) / textureExtent);
+  }
+  else if (imageSize == viewportSize)
   {
     // One ray per pixel: fetch the texel itself (a filtered lookup could mix in a trace of its
     // neighbours through rounding, so images would depend on the rectangle's size).

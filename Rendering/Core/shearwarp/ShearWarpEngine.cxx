@@ -369,29 +369,9 @@ void ShearWarpRenderer::Warp(
   rgba.resize(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   const int iw = f.intermediateSize[0];
   const int ih = f.intermediateSize[1];
-  // The final pixels the intermediate image (with its one-pixel bilinear fringe) can reach.
-  double lower[2] = { std::numeric_limits<double>::infinity(),
-    std::numeric_limits<double>::infinity() };
-  double upper[2] = { -lower[0], -lower[1] };
-  for (int corner = 0; corner < 4; ++corner)
-  {
-    const double u = (corner & 1) ? iw : -1.0;
-    const double v = (corner & 2) ? ih : -1.0;
-    for (int r = 0; r < 2; ++r)
-    {
-      const double x = f.warp[r][0] * u + f.warp[r][1] * v + f.warp[r][2];
-      lower[r] = std::min(lower[r], x);
-      upper[r] = std::max(upper[r], x);
-    }
-  }
-  rectangle[0] = static_cast<int>(std::max(0.0, std::floor(lower[0])));
-  rectangle[1] = static_cast<int>(std::min(width - 1.0, std::ceil(upper[0])));
-  rectangle[2] = static_cast<int>(std::max(0.0, std::floor(lower[1])));
-  rectangle[3] = static_cast<int>(std::min(height - 1.0, std::ceil(upper[1])));
+  WarpedRectangle(f, width, height, rectangle);
   if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
   {
-    rectangle[0] = rectangle[2] = 0;
-    rectangle[1] = rectangle[3] = -1;
     std::fill(rgba.begin(), rgba.end(), 0.0f);
     return;
   }
@@ -548,14 +528,50 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   {
     progress(CompositeEnd);
   }
-  const Clock::time_point warpStart = Clock::now();
-  this->Warp(parallel, rgba, rectangle);
-  stats.warpSeconds = Seconds(warpStart);
+  if (settings.warp)
+  {
+    const Clock::time_point warpStart = Clock::now();
+    this->Warp(parallel, rgba, rectangle);
+    stats.warpSeconds = Seconds(warpStart);
+  }
+  else
+  {
+    WarpedRectangle(this->Impl->factorization, view.width, view.height, rectangle);
+  }
   if (progress)
   {
     progress(1.0);
   }
   return true;
+}
+
+void WarpedRectangle(const ShearWarpFactorization& f, int width, int height, int rectangle[4])
+{
+  const int iw = f.intermediateSize[0];
+  const int ih = f.intermediateSize[1];
+  double lower[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  double upper[2] = { -lower[0], -lower[1] };
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    const double u = (corner & 1) ? iw : -1.0;
+    const double v = (corner & 2) ? ih : -1.0;
+    for (int r = 0; r < 2; ++r)
+    {
+      const double x = f.warp[r][0] * u + f.warp[r][1] * v + f.warp[r][2];
+      lower[r] = std::min(lower[r], x);
+      upper[r] = std::max(upper[r], x);
+    }
+  }
+  rectangle[0] = static_cast<int>(std::max(0.0, std::floor(lower[0])));
+  rectangle[1] = static_cast<int>(std::min(width - 1.0, std::ceil(upper[0])));
+  rectangle[2] = static_cast<int>(std::max(0.0, std::floor(lower[1])));
+  rectangle[3] = static_cast<int>(std::min(height - 1.0, std::ceil(upper[1])));
+  if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
+  {
+    rectangle[0] = rectangle[2] = 0;
+    rectangle[1] = rectangle[3] = -1;
+  }
 }
 
 void ParallelVoxelToImage(const double indexToWorld[3][4], const double worldToView[4][4],

@@ -48,6 +48,9 @@ struct ShearWarpSettings
   ShearWarpShading shading = ShearWarpShading::LookupTable;
   int bands = 1;        // scanline bands composited in parallel (>= 1)
   bool balance = true;  // bands from the previous frame's per-scanline times; else equal sizes
+  // false: Render stops after compositing and leaves the warp to the caller (the mapper draws
+  // the intermediate image through the warp on the GPU); rgba is then left as it was.
+  bool warp = true;
 };
 
 struct ShearWarpView
@@ -141,6 +144,10 @@ private:
 
   std::unique_ptr<Internals> Impl;
 };
+
+// The final pixels [x0, x1] x [y0, y1] the intermediate image (with its one-pixel bilinear
+// fringe) can reach in a width x height image (x1 < x0 or y1 < y0: none).
+void WarpedRectangle(const ShearWarpFactorization& f, int width, int height, int rectangle[4]);
 
 // Voxel index -> image map for a VTK-style parallel camera (tests, benchmarks and tools):
 // indexToWorld (row-major 3x4), the camera's world -> view matrix (row-major 4x4), its parallel
