@@ -139,11 +139,12 @@ double CaseResult::MpiEfficiency() const
   return SafeRatio(one->MedianMs(), most->Ranks * most->MedianMs());
 }
 
-double CaseResult::VolPackRatio() const
+double CaseResult::VolPackRatio(bool wholeFrame, int threads) const
 {
-  const RunResult* ours = this->Find("balanced", 1);
-  return this->VolPack.Ran && ours ? PairedRatio(this->VolPack.RenderMs, ours->EngineMs)
-                                   : std::nan("");
+  const RunResult* ours = this->Find("balanced", threads);
+  return this->VolPack.Ran && ours
+    ? PairedRatio(this->VolPack.RenderMs, wholeFrame ? ours->WallMs : ours->EngineMs)
+    : std::nan("");
 }
 
 bool CaseResult::ChecksOk() const
@@ -217,7 +218,8 @@ bool ReadRunJson(const Json& v, RunResult& r)
 Json CaseJson(const CaseResult& c)
 {
   const RunResult* all = c.Find("balanced", c.Threads);
-  const double ratio = c.VolPackRatio();
+  const double ratio = c.VolPackRatio(true);
+  const double engineRatio = c.VolPackRatio(false);
   const double efficiency = c.Efficiency("balanced");
   const double imbalance = all && c.Threads > 1 ? all->MeanImbalance() : std::nan("");
   const double mpi = c.MpiEfficiency();
@@ -245,8 +247,10 @@ Json CaseJson(const CaseResult& c)
   return { { "key", c.Key() }, { "dataset", c.Dataset }, { "tf", c.Tf }, { "shade", c.Shade },
     { "size", c.Size }, { "frames", c.Frames }, { "threads", c.Threads },
     { "total_voxels", c.TotalVoxels }, { "seconds", Round(c.Seconds, 2) },
-    { "volpack_ratio", Round(ratio, 3) }, { "efficiency", Round(efficiency, 4) },
-    { "efficiency_rle", Round(c.Efficiency("rle"), 4) },
+    { "volpack_ratio", Round(ratio, 3) }, { "volpack_ratio_engine", Round(engineRatio, 3) },
+    { "volpack_ratio_all_threads", Round(c.VolPackRatio(true, c.Threads), 3) },
+    { "volpack_ratio_engine_all_threads", Round(c.VolPackRatio(false, c.Threads), 3) },
+    { "efficiency", Round(efficiency, 4) }, { "efficiency_rle", Round(c.Efficiency("rle"), 4) },
     { "efficiency_dense", Round(c.Efficiency("dense"), 4) }, { "imbalance", Round(imbalance, 4) },
     { "mpi_efficiency", Round(mpi, 4) },
     { "targets_met",

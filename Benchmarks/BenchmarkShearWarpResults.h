@@ -147,8 +147,10 @@ struct CaseResult
   // T(1 thread) / (threads x T(all threads)) of a configuration, paired per frame.
   double Efficiency(const std::string& id) const;
   double MpiEfficiency() const; // the largest rank count against 1 rank
-  // VolPack's frame over ours (3) on one thread (engine time: neither shows the image).
-  double VolPackRatio() const;
+  // VolPack's frame (its image in memory) over ours, (3) on `threads` threads, paired per frame:
+  // ours as a user sees it (wall: the window's Render with our image shown and read back), or
+  // the engine alone (encode + tables + composite + gather + CPU warp; no display).
+  double VolPackRatio(bool wholeFrame, int threads = 1) const;
   bool ChecksOk() const;
 };
 

@@ -52,6 +52,8 @@ set(_av_shaders
   AccelVolumeResolveVS
   AccelVolumeResolveFS
   AccelVolumeImageFS
+  AccelVolumeWarpVS
+  AccelVolumeWarpFS
   AccelVolumeTerminationFS
   AccelVolumeDepthDownsampleFS
   AccelVolumeOctreeLeafCS

@@ -34,6 +34,8 @@ struct vtkAccelVolumeImageDisplay::Placement
 
 #include "AccelVolumeImageFS.h"
 #include "AccelVolumeResolveVS.h"
+#include "AccelVolumeWarpFS.h"
+#include "AccelVolumeWarpVS.h"
 
 vtkAccelVolumeImageDisplay::vtkAccelVolumeImageDisplay() = default;
 
@@ -151,9 +153,27 @@ bool vtkAccelVolumeImageDisplay::Show(
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
   texture->SendParameters();
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
-  if (program)
+  // Plain warped frames take the lean shader over the warped parallelogram only; selection and
+  // depth peeling the general one.
+  const bool lean = p.inverseWarp && p.selectionMode == 0 && !p.clearSecondTarget;
+  vtkShaderProgram* program = lean
+    ? window->GetShaderCache()->ReadyShaderProgram(AccelVolumeWarpVS, AccelVolumeWarpFS, "")
+    : window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
+  if (program && lean)
+  {
+    state->vtkglViewport(p.lowerLeft[0], p.lowerLeft[1], p.width, p.height);
+    state->vtkglDisable(GL_SCISSOR_TEST);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendEquation(GL_FUNC_ADD);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    this->SetWarpUniforms(program, texture, p);
+    this->Array->Bind();
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    this->Array->Release();
+  }
+  else if (program)
   {
     state->vtkglViewport(p.lowerLeft[0], p.lowerLeft[1], p.width, p.height);
     // Only fragments over the rectangle (one image pixel of margin for the magnification).
@@ -186,18 +206,7 @@ bool vtkAccelVolumeImageDisplay::Show(
     program->SetUniformi("warped", p.inverseWarp ? 1 : 0);
     if (p.inverseWarp)
     {
-      const float warpU[3] = { static_cast<float>(p.inverseWarp[0][0]),
-        static_cast<float>(p.inverseWarp[0][1]), static_cast<float>(p.inverseWarp[0][2]) };
-      const float warpV[3] = { static_cast<float>(p.inverseWarp[1][0]),
-        static_cast<float>(p.inverseWarp[1][1]), static_cast<float>(p.inverseWarp[1][2]) };
-      const float limits[2] = { static_cast<float>(p.intermediateSize[0]),
-        static_cast<float>(p.intermediateSize[1]) };
-      const float extent[2] = { static_cast<float>(texture->GetWidth()),
-        static_cast<float>(texture->GetHeight()) };
-      program->SetUniform3f("warpU", warpU);
-      program->SetUniform3f("warpV", warpV);
-      program->SetUniform2f("warpLimit", limits);
-      program->SetUniform2f("textureExtent", extent);
+      this->SetWarpUniforms(program, texture, p);
     }
     program->SetUniformf("colourScale", p.colourScale);
     program->SetUniformf("colourBias", p.colourBias);
@@ -212,6 +221,49 @@ bool vtkAccelVolumeImageDisplay::Show(
   texture->Deactivate();
   state->Pop();
   return program != nullptr;
+}
+
+void vtkAccelVolumeImageDisplay::SetWarpUniforms(
+  vtkShaderProgram* program, vtkTextureObject* texture, const Placement& p)
+{
+  const double(*m)[3] = p.inverseWarp;
+  const float warpU[3] = { static_cast<float>(m[0][0]), static_cast<float>(m[0][1]),
+    static_cast<float>(m[0][2]) };
+  const float warpV[3] = { static_cast<float>(m[1][0]), static_cast<float>(m[1][1]),
+    static_cast<float>(m[1][2]) };
+  const float limits[2] = { static_cast<float>(p.intermediateSize[0]),
+    static_cast<float>(p.intermediateSize[1]) };
+  const float extent[2] = { static_cast<float>(texture->GetWidth()),
+    static_cast<float>(texture->GetHeight()) };
+  const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
+    static_cast<float>(p.lowerLeft[1]) };
+  const float viewportToImage[2] = { static_cast<float>(p.imageWidth) / p.width,
+    static_cast<float>(p.imageHeight) / p.height };
+  program->SetUniform3f("warpU", warpU);
+  program->SetUniform3f("warpV", warpV);
+  program->SetUniform2f("warpLimit", limits);
+  program->SetUniform2f("textureExtent", extent);
+  program->SetUniform2f("viewportOrigin", origin);
+  program->SetUniform2f("viewportToImage", viewportToImage);
+  program->SetUniformf("colourScale", p.colourScale);
+  program->SetUniformf("colourBias", p.colourBias);
+  program->SetUniformi("image", texture->GetTextureUnit());
+  // The parallelogram (-1, limit) of the intermediate image in normalized device coordinates:
+  // the forward warp is the inverse of the 2 x 3 map.
+  const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  float corners[4][2] = {};
+  for (int corner = 0; corner < 4; ++corner)
+  {
+    const double u = (corner & 1) ? p.intermediateSize[0] : -1.0;
+    const double v = (corner & 2) ? p.intermediateSize[1] : -1.0;
+    const double du = u - m[0][2];
+    const double dv = v - m[1][2];
+    const double x = (m[1][1] * du - m[0][1] * dv) / det;
+    const double y = (m[0][0] * dv - m[1][0] * du) / det;
+    corners[corner][0] = static_cast<float>(2.0 * x / p.imageWidth - 1.0);
+    corners[corner][1] = static_cast<float>(2.0 * y / p.imageHeight - 1.0);
+  }
+  program->SetUniform2fv("corners", 4, corners);
 }
 
 bool vtkAccelVolumeImageDisplay::ReadDepth(

@@ -10,6 +10,7 @@
 
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -55,6 +56,8 @@ private:
 
   struct Placement; // where and how the texture's pixels land (ImageDisplay.cxx)
   bool Show(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& placement);
+  void SetWarpUniforms(
+    vtkShaderProgram* program, vtkTextureObject* texture, const Placement& placement);
 
   vtkNew<vtkTextureObject> Image;
   vtkNew<vtkTextureObject> Intermediate; // shear-warp's, with room to spare (DrawWarped)
