@@ -26,6 +26,7 @@ set(_av_core_sources
   raycast/RayCastEngine
   raycast/RayCastKernel
   shearwarp/RunLengthVolume
+  shearwarp/RunLengthTranspose
   shearwarp/ShearWarpEncodings
   shearwarp/ShearWarpCompositor
   shearwarp/ShearWarpEngine

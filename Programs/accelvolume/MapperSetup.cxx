@@ -81,6 +81,7 @@ void ConfigureShearWarp(
   shearWarp->SetRunLengthEncoding(options.runLengthEncoding);
   shearWarp->SetLoadBalancing(options.balance);
   shearWarp->SetWarpOnGPU(options.warpOnGPU);
+  shearWarp->SetBackgroundEncoding(options.backgroundEncoding);
   shearWarp->SetShadingMode(options.phongShading
       ? vtkAccelVolumeShearWarpMapper::SHADING_PHONG
       : vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE);

@@ -437,6 +437,14 @@ void AddShearWarpFlags(CLI::App& command, Options& options)
       options.warpOnGPU = gpu;
       options.haveWarp = true;
     });
+  AddOnOff(command, "--background-encoding",
+    "composite: encode the other two principal axes in a\n"
+    "background thread (default on); off: when a view needs them",
+    [&](bool on)
+    {
+      options.backgroundEncoding = on;
+      options.haveBackgroundEncoding = true;
+    });
   AddSwitch(command, "--mpi",
     "run under mpirun: every rank renders the same frames and\n"
     "composites its bands, rank 0 gathers them and alone writes\n"
@@ -607,6 +615,8 @@ void CheckRender(Options& options)
     options.haveRunLengthEncoding, "--rle", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.haveShading, "--shading", shearWarp || smart, "--mapper shearwarp and smart");
   onlyFor(options.haveWarp, "--warp", shearWarp || smart, "--mapper shearwarp and smart");
+  onlyFor(options.haveBackgroundEncoding, "--background-encoding", shearWarp || smart,
+    "--mapper shearwarp and smart");
   onlyFor(options.mpi, "--mpi", shearWarp, "--mapper shearwarp");
   const bool slice = options.mapper == MapperKind::Slice || smart;
   onlyFor(options.gpuBudgetMiB > 0, "--gpu-budget", slice, "--mapper slice and smart");

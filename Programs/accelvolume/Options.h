@@ -134,6 +134,8 @@ struct Options
   bool phongShading = false; // --shading phong (else the lookup table)
   bool haveWarp = false;
   bool warpOnGPU = true;     // --warp gpu (else cpu)
+  bool haveBackgroundEncoding = false;
+  bool backgroundEncoding = true; // --background-encoding on|off
   bool mpi = false;          // --mpi: vtkMPIController for the shear-warp mapper
   bool haveMpiTimeout = false;
   double mpiTimeout = 60; // --mpi-timeout: longest wait for another rank, seconds (0 = forever)

@@ -202,6 +202,7 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "LoadBalancing: " << this->LoadBalancing << "\n";
   os << indent << "WarpOnGPU: " << this->WarpOnGPU << "\n";
+  os << indent << "BackgroundEncoding: " << this->BackgroundEncoding << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "CommunicationTimeout: " << this->CommunicationTimeout << "\n";
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
@@ -307,6 +308,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
   settings.bands = in.threads;
   settings.balance = self->LoadBalancing != 0;
   settings.warp = self->WarpOnGPU == 0;
+  settings.backgroundEncodings = self->BackgroundEncoding != 0;
   return FrameReady;
 }
 

@@ -117,6 +117,19 @@ public:
 
   ///@{
   /**
+   * Composite blending: once a frame has the encoding of its principal axis, build the other two
+   * axes' encodings in a background thread, from that one (the stored voxels re-sorted, nothing
+   * classified again), so that a view turning across an axis does not stall on the encoding
+   * (default on). All three encodings are then held. Off: each axis is encoded when a frame first
+   * needs it, and only those are held.
+   */
+  vtkSetMacro(BackgroundEncoding, vtkTypeBool);
+  vtkGetMacro(BackgroundEncoding, vtkTypeBool);
+  vtkBooleanMacro(BackgroundEncoding, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Multi-process controller (default none: this process renders alone). With more than one
    * process every rank must call Render for the same scene; rank 0 shows the image.
    */
@@ -189,6 +202,7 @@ protected:
   int NumberOfThreads = 0;
   vtkTypeBool LoadBalancing = 1;
   vtkTypeBool WarpOnGPU = 1;
+  vtkTypeBool BackgroundEncoding = 1;
   vtkMultiProcessController* Controller = nullptr;
   double CommunicationTimeout = 60;
 

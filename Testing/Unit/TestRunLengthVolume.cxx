@@ -216,6 +216,27 @@ void CompositeTrial(std::mt19937& random, double low, double high, Totals& total
   RunLengthVolume<ShadedVoxel> threaded;
   ASSERT_TRUE(EncodeComposite(volume.view, c, axis, dense, UnevenThreadedFor(3), threaded, error));
   ExpectSameArrays(encoded, threaded, SameVoxel);
+
+  // Every other axis from this encoding alone (the renderer's background encodings): the same
+  // arrays as classifying the volume for that axis.
+  for (int other = 0; other < 3; ++other)
+  {
+    if (other == axis)
+    {
+      continue;
+    }
+    RunLengthVolume<ShadedVoxel> direct;
+    RunLengthVolume<ShadedVoxel> transposed;
+    ASSERT_TRUE(EncodeComposite(volume.view, c, other, dense, UnevenThreadedFor(2), direct, error));
+    ASSERT_TRUE(TransposeEncoding(encoded, other, transposed, error)) << error;
+    EXPECT_EQ(transposed.axis, other);
+    EXPECT_EQ(transposed.dense, dense);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(transposed.sliceDims[a], direct.sliceDims[a]);
+    }
+    ExpectSameArrays(direct, transposed, SameVoxel);
+  }
 }
 
 } // namespace
@@ -315,6 +336,26 @@ TEST(RunLengthVolume, CompositeEncodingDecodesToTheBruteForceClassification)
   EXPECT_LT(totals.stored, totals.total * 9 / 10);
   EXPECT_GT(totals.nanVoxels, 0u);
   EXPECT_GT(totals.runs, 100u);
+}
+
+TEST(RunLengthVolume, TransposeRejectsItsOwnAxisAndAnEmptyEncoding)
+{
+  RunLengthVolume<ShadedVoxel> empty;
+  RunLengthVolume<ShadedVoxel> out;
+  std::string error;
+  EXPECT_FALSE(TransposeEncoding(empty, 1, out, error));
+  EXPECT_FALSE(error.empty());
+  RunLengthVolume<ShadedVoxel> one;
+  one.axis = 2;
+  one.sliceDims[0] = one.sliceDims[1] = one.sliceDims[2] = 1;
+  one.rowStart = { 0, 0 };
+  error.clear();
+  EXPECT_FALSE(TransposeEncoding(one, 2, out, error));
+  EXPECT_FALSE(error.empty());
+  error.clear();
+  EXPECT_TRUE(TransposeEncoding(one, 0, out, error)) << error;
+  EXPECT_EQ(out.rowStart.size(), 2u);
+  EXPECT_TRUE(out.runs.empty());
 }
 
 TEST(RunLengthVolume, BadInputFails)

@@ -108,6 +108,15 @@ bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, b
   std::uint16_t threshold, int axis, bool dense, const ParallelFor& parallel,
   RunLengthVolume<ScalarVoxel>& encoded, std::string& error);
 
+// The encoding of the same classified volume for principal axis `axis` (not from.axis), from
+// `from` alone: its stored voxels re-sorted into the other layout, never classified again. Equal
+// to encoding the volume for that axis whenever the stored set does not depend on the axis (the
+// composite encodings, dense or not; not MIP / MinIP, which keep in-slice neighbours). Holds
+// only the two encodings (no copy in between). False with error on bad arguments or overflow.
+template <typename Voxel>
+bool TransposeEncoding(
+  const RunLengthVolume<Voxel>& from, int axis, RunLengthVolume<Voxel>& to, std::string& error);
+
 // The voxel at (i, j, k) of an encoding, or nullptr when not stored (tests and tools).
 template <typename Voxel>
 const Voxel* FindVoxel(const RunLengthVolume<Voxel>& encoded, int i, int j, int k)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 namespace accelvolume
@@ -56,9 +57,83 @@ bool MakeCompositeClassification(double rangeMin, double rangeMax, const RayCast
 
 } // namespace
 
+ShearWarpRenderer::Internals::~Internals()
+{
+  this->backgroundCancelled = true;
+  this->FinishBackgroundEncodings();
+}
+
+double ShearWarpRenderer::Internals::FinishBackgroundEncodings()
+{
+  if (!this->background.joinable())
+  {
+    return 0;
+  }
+  const Clock::time_point start = Clock::now();
+  this->background.join();
+  return Seconds(start);
+}
+
+void ShearWarpRenderer::Internals::StartBackgroundEncodings(
+  int dense, int axis, const EncodingKey& key)
+{
+  if (this->background.joinable())
+  {
+    return; // one job at a time; the next frame starts the next
+  }
+  std::vector<int> missing;
+  for (int other = 0; other < 3; ++other)
+  {
+    if (other != axis && !(this->composite[dense][other].key == key))
+    {
+      missing.push_back(other);
+    }
+  }
+  if (missing.empty())
+  {
+    return;
+  }
+  this->backgroundKey = key;
+  this->backgroundCancelled = false;
+  this->background = std::thread(
+    [this, dense, axis, key, missing]()
+    {
+      const RunLengthVolume<ShadedVoxel>& from = this->composite[dense][axis].encoded;
+      for (int other : missing)
+      {
+        if (this->backgroundCancelled)
+        {
+          return;
+        }
+        EncodingSlot<ShadedVoxel> slot;
+        std::string error;
+        try
+        {
+          if (!TransposeEncoding(from, other, slot.encoded, error))
+          {
+            return; // the frame that needs it encodes it and reports the error
+          }
+        }
+        catch (const std::bad_alloc&)
+        {
+          return; // no room for another axis now: encoded when a frame needs it
+        }
+        slot.key = key;
+        const std::lock_guard<std::mutex> lock(this->slotsMutex);
+        this->composite[dense][other] = std::move(slot);
+      }
+    });
+}
+
 void ShearWarpRenderer::Internals::DropStaleEncodings(
   std::uint64_t volumeVersion, std::uint64_t transferVersion)
 {
+  if (this->background.joinable() &&
+    (this->backgroundKey.volumeVersion != volumeVersion ||
+      this->backgroundKey.transferVersion != transferVersion))
+  {
+    this->FinishBackgroundEncodings(); // its encodings are stale too: dropped below
+  }
   auto stale = [&](const EncodingKey& key)
   {
     return key.valid &&
@@ -88,7 +163,18 @@ bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& vol
 {
   key.normals = lighting.shade;
   EncodingSlot<ShadedVoxel>& slot = this->composite[dense][axis];
-  if (!(slot.key == key))
+  bool ready = false;
+  {
+    const std::lock_guard<std::mutex> lock(this->slotsMutex);
+    ready = slot.key == key;
+  }
+  if (!ready && this->background.joinable())
+  {
+    // The job may be building this axis, and must not read a slot while it changes.
+    stats.encodeSeconds = this->FinishBackgroundEncodings();
+    ready = slot.key == key;
+  }
+  if (!ready)
   {
     CompositeClassification classification;
     if (!MakeCompositeClassification(
@@ -106,6 +192,10 @@ bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& vol
     stats.encodeSeconds = Seconds(encodeStart);
   }
   this->compositeSlot = &slot;
+  if (this->settings.backgroundEncodings)
+  {
+    this->StartBackgroundEncodings(dense, axis, key);
+  }
   return true;
 }
 

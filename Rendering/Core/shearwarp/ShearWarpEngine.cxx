@@ -627,6 +627,7 @@ void ShearWarpRenderer::GetCounters(ShearWarpStats& stats) const
 
 std::size_t ShearWarpRenderer::GetEncodedBytes() const
 {
+  const std::lock_guard<std::mutex> lock(this->Impl->slotsMutex); // background publications
   std::size_t bytes = 0;
   for (int d = 0; d < 2; ++d)
   {

@@ -51,6 +51,11 @@ struct ShearWarpSettings
   // false: Render stops after compositing and leaves the warp to the caller (the mapper draws
   // the intermediate image through the warp on the GPU); rgba is then left as it was.
   bool warp = true;
+  // Composite: after a frame encodes (or reuses) its axis's encoding, a background thread
+  // builds the other two axes' from it (re-sorting the stored voxels, no classification), so
+  // that a view crossing an axis does not stall; all three are then held. false: each axis is
+  // encoded when a frame first needs it.
+  bool backgroundEncodings = true;
 };
 
 struct ShearWarpView

@@ -11,6 +11,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 namespace accelvolume
@@ -61,6 +63,22 @@ struct ShearWarpRenderer::Internals
 {
   detail::EncodingSlot<ShadedVoxel> composite[2][3]; // [dense][axis]
   detail::EncodingSlot<ScalarVoxel> extreme[2][3];
+
+  // Composite encodings of the other two axes, built in the background from the frame's
+  // (TransposeEncoding) so that a view crossing an axis finds its encoding ready. The job only
+  // reads the encoding it started from and publishes each new one into an empty slot under
+  // slotsMutex; the frame thread waits for the job (joins it) before it changes or drops any
+  // composite slot, and reads a slot the job may publish into only under the mutex.
+  std::thread background;
+  std::atomic<bool> backgroundCancelled{ false };
+  detail::EncodingKey backgroundKey;
+  mutable std::mutex slotsMutex;
+
+  ~Internals();
+  // Waits for the background job, if any; returns the seconds waited.
+  double FinishBackgroundEncodings();
+  // Starts the job for the composite slots of `dense` still missing `key`, from slot `axis`.
+  void StartBackgroundEncodings(int dense, int axis, const detail::EncodingKey& key);
 
   // The frame.
   ShearWarpFactorization factorization;
