@@ -2,6 +2,9 @@
 // BenchmarkShearWarpResults.h).
 #include "BenchmarkShearWarpResults.h"
 
+#include "shearwarp/ShearWarpEngine.h" // BandsPerWorker
+#include "shearwarp/ShearWarpPartition.h"
+
 #include <algorithm>
 #include <numeric>
 
@@ -139,6 +142,49 @@ double CaseResult::MpiEfficiency() const
   return SafeRatio(one->MedianMs(), most->Ranks * most->MedianMs());
 }
 
+double CaseResult::ModelImbalance(int parts, int bandsPerWorker) const
+{
+  const RunResult* one = this->Find("balanced", 1);
+  if (!one || one->ScanlineMs.size() < 2)
+  {
+    return std::nan("");
+  }
+  std::vector<double> imbalances;
+  for (std::size_t f = 1; f < one->ScanlineMs.size(); ++f)
+  {
+    const std::vector<double>& now = one->ScanlineMs[f];
+    const int bands = parts * bandsPerWorker;
+    const std::vector<int> bounds = accelvolume::BalanceBands(
+      accelvolume::ResampleCosts(one->ScanlineMs[f - 1], static_cast<int>(now.size())), bands);
+    std::vector<double> load(static_cast<std::size_t>(parts), 0.0);
+    for (int b = 0; b < bands; ++b)
+    {
+      double cost = 0;
+      for (int v = bounds[b]; v < bounds[b + 1]; ++v)
+      {
+        cost += now[v];
+      }
+      *std::min_element(load.begin(), load.end()) += cost; // the first core free takes it
+    }
+    imbalances.push_back(accelvolume::Imbalance(load));
+  }
+  return Median(imbalances);
+}
+
+double CaseResult::ModelSpeedup(int parts, int bandsPerWorker) const
+{
+  const RunResult* one = this->Find("balanced", 1);
+  const double imbalance = this->ModelImbalance(parts, bandsPerWorker);
+  if (!one || !std::isfinite(imbalance))
+  {
+    return std::nan("");
+  }
+  const double total = one->MedianMs();
+  const double composite = Median(one->CompositeMs);
+  const double tables = Median(one->TableMs); // built in parallel too, evenly
+  return SafeRatio(total, total - composite - tables + (composite * imbalance + tables) / parts);
+}
+
 double CaseResult::VolPackRatio(bool wholeFrame, int threads) const
 {
   const RunResult* ours = this->Find("balanced", threads);
@@ -215,6 +261,19 @@ bool ReadRunJson(const Json& v, RunResult& r)
   return !r.RenderMs.empty();
 }
 
+Json ScalingModelJson(const CaseResult& c)
+{
+  Json model = Json::object();
+  for (int parts : { 2, 4, 8, 16, 32 })
+  {
+    model[std::to_string(parts)] = { { "imbalance", Round(c.ModelImbalance(parts, 1), 4) },
+      { "speedup", Round(c.ModelSpeedup(parts, 1), 3) },
+      { "dynamic_imbalance", Round(c.ModelImbalance(parts, accelvolume::BandsPerWorker), 4) },
+      { "dynamic_speedup", Round(c.ModelSpeedup(parts, accelvolume::BandsPerWorker), 3) } };
+  }
+  return model;
+}
+
 Json CaseJson(const CaseResult& c)
 {
   const RunResult* all = c.Find("balanced", c.Threads);
@@ -250,7 +309,8 @@ Json CaseJson(const CaseResult& c)
     { "volpack_ratio", Round(ratio, 3) }, { "volpack_ratio_engine", Round(engineRatio, 3) },
     { "volpack_ratio_all_threads", Round(c.VolPackRatio(true, c.Threads), 3) },
     { "volpack_ratio_engine_all_threads", Round(c.VolPackRatio(false, c.Threads), 3) },
-    { "efficiency", Round(efficiency, 4) }, { "efficiency_rle", Round(c.Efficiency("rle"), 4) },
+    { "efficiency", Round(efficiency, 4) }, { "scaling_model", ScalingModelJson(c) },
+    { "efficiency_rle", Round(c.Efficiency("rle"), 4) },
     { "efficiency_dense", Round(c.Efficiency("dense"), 4) }, { "imbalance", Round(imbalance, 4) },
     { "mpi_efficiency", Round(mpi, 4) },
     { "targets_met",

@@ -81,6 +81,7 @@ struct RunResult
   std::vector<double> Imbalance;      // slowest band / mean band
   std::vector<double> Cores;          // process CPU time / wall time of the frame (this rank)
   std::vector<double> BandMs;         // the last frame's band times (all ranks' bands)
+  std::vector<std::vector<double>> ScanlineMs; // per timed frame: compositing ms per scanline
   double Voxels = 0;                  // per-frame means: voxels composited (this rank),
   double Samples = 0;                 //   pixels composited,
   double SkippedPixels = 0;           //   pixel visits skipped by skip links
@@ -147,6 +148,16 @@ struct CaseResult
   // T(1 thread) / (threads x T(all threads)) of a configuration, paired per frame.
   double Efficiency(const std::string& id) const;
   double MpiEfficiency() const; // the largest rank count against 1 rank
+  // Scaling model for `parts` cores from (3)'s 1-thread frames: each frame's bands chosen with
+  // the previous frame's scanline costs (as the renderer does), its slowest band measured with
+  // its own; imbalance = slowest / mean band, speed-up =
+  // T1 / (T1 - C1 - B1 + (C1 x imbalance + B1) / parts) with T1 the mapper's Render(), C1 its
+  // compositing and B1 its tables (medians; the rest, mostly showing the image, stays serial).
+  // Ideal cores otherwise: no shared memory bandwidth or cache limits. NaN without two frames.
+  // bandsPerWorker > 1: that many bands per core, each handed to the first free core in order
+  // (the renderer's dynamic scheduling); imbalance = the last core's finish / the mean load.
+  double ModelImbalance(int parts, int bandsPerWorker) const;
+  double ModelSpeedup(int parts, int bandsPerWorker) const;
   // VolPack's frame (its image in memory) over ours, (3) on `threads` threads, paired per frame:
   // ours as a user sees it (wall: the window's Render with our image shown and read back), or
   // the engine alone (encode + tables + composite + gather + CPU warp; no display).

@@ -221,6 +221,12 @@ void Record(
   r.EncodedBytes = std::max<long long>(r.EncodedBytes, m->GetEncodedBytes());
   r.Axis = m->GetLastPrincipalAxis();
   r.Bands = m->GetLastNumberOfBands();
+  std::vector<double> scanlines(static_cast<std::size_t>(m->GetLastNumberOfScanlines()));
+  for (std::size_t v = 0; v < scanlines.size(); ++v)
+  {
+    scanlines[v] = 1000.0 * m->GetLastScanlineTime(static_cast<int>(v));
+  }
+  r.ScanlineMs.push_back(std::move(scanlines));
 }
 
 void RecordFirst(vtkAccelVolumeShearWarpMapper* m, double wallMs, RunResult& r)

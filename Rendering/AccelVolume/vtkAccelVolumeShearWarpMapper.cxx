@@ -215,10 +215,26 @@ void vtkAccelVolumeShearWarpMapper::SetCommunicationAbortFunction(
   vtkAccelVolumeMPIExchange::SetAbortFunction(function);
 }
 
+void vtkAccelVolumeShearWarpMapper::FinishBackgroundEncoding()
+{
+  this->Internals->Renderer.FinishBackgroundEncodings();
+}
+
 double vtkAccelVolumeShearWarpMapper::GetLastBandTime(int band) const
 {
   const auto& times = this->Internals->BandTimes;
   return band >= 0 && band < static_cast<int>(times.size()) ? times[band] : 0.0;
+}
+
+int vtkAccelVolumeShearWarpMapper::GetLastNumberOfScanlines() const
+{
+  return static_cast<int>(this->Internals->Renderer.GetScanlineSeconds().size());
+}
+
+double vtkAccelVolumeShearWarpMapper::GetLastScanlineTime(int scanline) const
+{
+  const std::vector<double>& times = this->Internals->Renderer.GetScanlineSeconds();
+  return scanline >= 0 && scanline < static_cast<int>(times.size()) ? times[scanline] : 0.0;
 }
 
 void vtkAccelVolumeShearWarpMapper::ReleaseGraphicsResources(vtkWindow* window)

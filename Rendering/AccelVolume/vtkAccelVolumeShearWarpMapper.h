@@ -128,6 +128,12 @@ public:
   vtkBooleanMacro(BackgroundEncoding, vtkTypeBool);
   ///@}
 
+  /**
+   * Waits until the background encodings the last frame started are built (benchmarks and
+   * tools: a frame that needs one waits by itself).
+   */
+  void FinishBackgroundEncoding();
+
   ///@{
   /**
    * Multi-process controller (default none: this process renders alone). With more than one
@@ -177,6 +183,10 @@ public:
   /** Bands of the last frame (threads x ranks) and their compositing seconds. */
   vtkGetMacro(LastNumberOfBands, int);
   double GetLastBandTime(int band) const;
+  /** Scanlines of the last frame's intermediate image and the compositing seconds of each (this
+   * rank's, the rest 0): what balances the next frame's bands (and models other core counts). */
+  int GetLastNumberOfScanlines() const;
+  double GetLastScanlineTime(int scanline) const;
   ///@}
 
   ///@{

@@ -614,7 +614,35 @@ void PhongTerms(const CompositeTables& t, const float g[3], float factor[3], flo
     [power](float x) { return std::pow(x, power); }, factor, specular);
 }
 
-void BuildShadingTable(CompositeTables& t)
+namespace
+{
+// Row `code` of the shading table (the last, NormalCodes, is NoNormal: ambient only).
+void ShadingRow(CompositeTables& t, int code, bool white)
+{
+  float factor[3];
+  float specular[3];
+  AmbientTerms(t.lighting, factor, specular);
+  if (code < NormalCodes)
+  {
+    float g[3];
+    DecodeNormal(static_cast<std::uint16_t>(code), g);
+    PhongTerms(t, g, factor, specular);
+  }
+  float* row = &t.shading[static_cast<std::size_t>(t.shadingStride) * code];
+  if (white)
+  {
+    row[0] = factor[0];
+    row[1] = specular[0];
+  }
+  else
+  {
+    std::copy(factor, factor + 3, row);
+    std::copy(specular, specular + 3, row + 3);
+  }
+}
+}
+
+void BuildShadingTable(CompositeTables& t, const ParallelFor& parallel)
 {
   // One row per quantized normal: the view vector is +z in eye space for every pixel of a
   // parallel view, so the specular term is fixed per normal too. White lights (VTK's default)
@@ -629,29 +657,16 @@ void BuildShadingTable(CompositeTables& t)
   }
   t.shadingStride = white ? 2 : 6;
   t.shading.assign(static_cast<std::size_t>(t.shadingStride) * (NormalCodes + 1), 0.0f);
-  for (int code = 0; code <= NormalCodes; ++code)
-  {
-    float factor[3];
-    float specular[3];
-    AmbientTerms(t.lighting, factor, specular);
-    if (code < NormalCodes) // the last row is NoNormal: ambient only
+  parallel(TableChunks,
+    [&](std::size_t begin, std::size_t end)
     {
-      float g[3];
-      DecodeNormal(static_cast<std::uint16_t>(code), g);
-      PhongTerms(t, g, factor, specular);
-    }
-    float* row = &t.shading[static_cast<std::size_t>(t.shadingStride) * code];
-    if (white)
-    {
-      row[0] = factor[0];
-      row[1] = specular[0];
-    }
-    else
-    {
-      std::copy(factor, factor + 3, row);
-      std::copy(specular, specular + 3, row + 3);
-    }
-  }
+      const int first = static_cast<int>(begin * (NormalCodes + 1) / TableChunks);
+      const int last = static_cast<int>(end * (NormalCodes + 1) / TableChunks);
+      for (int code = first; code < last; ++code)
+      {
+        ShadingRow(t, code, white);
+      }
+    });
 }
 
 void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpFactorization& f,

@@ -10,9 +10,11 @@
 #define accelvolume_ShearWarpCompositor_h
 
 #include "common/Lighting.h"
+#include "common/ParallelFor.h"
 #include "shearwarp/RunLengthVolume.h"
 #include "shearwarp/ShearWarpFactorization.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -48,8 +50,10 @@ struct CompositeTables
 // lightingPoint): the factor on the voxel colour and the specular term, per channel.
 void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3], float specular[3]);
 
-// Lacroute's shading table over the quantized normals (tables.shading and shadingStride).
-void BuildShadingTable(CompositeTables& tables);
+// Lacroute's shading table over the quantized normals (tables.shading and shadingStride), rows
+// built in parallel (TableChunks parts; the same values for any thread count).
+inline constexpr std::size_t TableChunks = 16;
+void BuildShadingTable(CompositeTables& tables, const ParallelFor& parallel);
 
 struct ScanlineCounters
 {

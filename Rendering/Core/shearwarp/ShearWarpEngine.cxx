@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #if defined(__SSE2__)
@@ -154,6 +155,39 @@ void ShearWarpRenderer::Internals::ClassifyExtremeRow(const float* values, float
   }
 }
 
+namespace
+{
+// The busiest worker's compositing time over the mean per worker (`workers` of them; one that
+// took no band counts as idle): the imbalance of the frame, whatever the band count.
+double WorkerImbalance(const std::vector<double>& bandSeconds,
+  const std::vector<std::thread::id>& bandWorker, int workers)
+{
+  std::vector<std::pair<std::thread::id, double>> busy;
+  double total = 0;
+  for (std::size_t b = 0; b < bandSeconds.size(); ++b)
+  {
+    total += bandSeconds[b];
+    auto it = std::find_if(busy.begin(), busy.end(),
+      [&](const std::pair<std::thread::id, double>& w) { return w.first == bandWorker[b]; });
+    if (it == busy.end())
+    {
+      busy.emplace_back(bandWorker[b], bandSeconds[b]);
+    }
+    else
+    {
+      it->second += bandSeconds[b];
+    }
+  }
+  double slowest = 0;
+  for (const auto& w : busy)
+  {
+    slowest = std::max(slowest, w.second);
+  }
+  return total > 0 ? slowest / (total / std::max<int>(workers, static_cast<int>(busy.size())))
+                   : 1.0;
+}
+}
+
 ShearWarpRenderer::ShearWarpRenderer()
   : Impl(new Internals)
 {
@@ -176,7 +210,8 @@ bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, do
 }
 
 void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
-  const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings)
+  const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
+  const ParallelFor& parallel)
 {
   const ShearWarpFactorization& f = this->factorization;
   CompositeTables& t = this->tables;
@@ -198,16 +233,24 @@ void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
   if (ratio != this->opacityRatio || t.opacity.size() != OpacityLevels + 1)
   {
     t.opacity.resize(OpacityLevels + 1);
-    for (int q = 0; q <= OpacityLevels; ++q)
-    {
-      t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
-    }
+    // In parallel, like the shading table: a turning view changes the ray length every frame,
+    // and serial work here caps the speed-up of every core count.
+    parallel(TableChunks,
+      [&](std::size_t begin, std::size_t end)
+      {
+        const int first = static_cast<int>(begin * (OpacityLevels + 1) / TableChunks);
+        const int last = static_cast<int>(end * (OpacityLevels + 1) / TableChunks);
+        for (int q = first; q < last; ++q)
+        {
+          t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
+        }
+      });
     this->opacityRatio = ratio;
   }
   SetShading(lighting, settings, t);
   if (t.shade && !t.phong)
   {
-    BuildShadingTable(t);
+    BuildShadingTable(t, parallel);
   }
 }
 
@@ -281,7 +324,7 @@ bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double ran
   }
 
   const Clock::time_point tableStart = Clock::now();
-  impl.UpdateTables(transfer, lighting, view, settings);
+  impl.UpdateTables(transfer, lighting, view, settings, parallel);
   stats.tableSeconds = Seconds(tableStart);
 
   impl.StartFrame(axis, stats);
@@ -506,9 +549,15 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
     return false;
   }
   const Clock::time_point compositeStart = Clock::now();
-  const std::vector<int> bounds = this->Bands(settings.bands, settings.balance);
+  // More bands than workers, taken dynamically (the ParallelFor hands out one band at a time):
+  // a band that the previous frame's costs misjudged delays its worker by a fraction of a
+  // worker's share, not by the whole error.
+  const int workers = std::max(settings.bands, 1);
+  const int parts = workers > 1 ? workers * BandsPerWorker : 1;
+  const std::vector<int> bounds = this->Bands(parts, settings.balance);
   const int bands = static_cast<int>(bounds.size()) - 1;
   stats.bandSeconds.assign(static_cast<std::size_t>(bands), 0.0);
+  std::vector<std::thread::id> bandWorker(static_cast<std::size_t>(bands));
   parallel(static_cast<std::size_t>(bands),
     [&](std::size_t begin, std::size_t end)
     {
@@ -517,11 +566,12 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
         const Clock::time_point start = Clock::now();
         this->CompositeRows(bounds[b], bounds[b + 1]);
         stats.bandSeconds[b] = Seconds(start);
+        bandWorker[b] = std::this_thread::get_id();
       }
     });
   stats.compositeSeconds = Seconds(compositeStart);
   stats.bandBounds = bounds;
-  stats.imbalance = Imbalance(stats.bandSeconds);
+  stats.imbalance = WorkerImbalance(stats.bandSeconds, bandWorker, workers);
   this->SetScanlineCosts(this->Impl->scanlineSeconds);
   this->GetCounters(stats);
   if (progress)
@@ -623,6 +673,11 @@ void ShearWarpRenderer::GetCounters(ShearWarpStats& stats) const
   stats.voxels = this->Impl->voxels;
   stats.samples = this->Impl->samples;
   stats.terminatedPixelVisits = this->Impl->terminatedPixelVisits;
+}
+
+void ShearWarpRenderer::FinishBackgroundEncodings()
+{
+  this->Impl->FinishBackgroundEncodings();
 }
 
 std::size_t ShearWarpRenderer::GetEncodedBytes() const

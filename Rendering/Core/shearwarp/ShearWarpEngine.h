@@ -39,6 +39,10 @@ enum class ShearWarpShading
   Phong        // Phong per voxel from the decoded normal
 };
 
+// Bands per worker when compositing on several: handed out one at a time (dynamic scheduling
+// on top of the balanced partition).
+inline constexpr int BandsPerWorker = 4;
+
 struct ShearWarpSettings
 {
   Blend blend = Blend::Composite;
@@ -46,7 +50,7 @@ struct ShearWarpSettings
   bool earlyTermination = true;  // skip links over saturated pixels (composite, MIP, MinIP)
   double terminationThreshold = 0.99;
   ShearWarpShading shading = ShearWarpShading::LookupTable;
-  int bands = 1;        // scanline bands composited in parallel (>= 1)
+  int bands = 1;        // workers compositing in parallel (>= 1); more bands when > 1
   bool balance = true;  // bands from the previous frame's per-scanline times; else equal sizes
   // false: Render stops after compositing and leaves the warp to the caller (the mapper draws
   // the intermediate image through the warp on the GPU); rgba is then left as it was.
@@ -78,7 +82,7 @@ struct ShearWarpStats
   double warpSeconds = 0;
   std::vector<double> bandSeconds; // per band
   std::vector<int> bandBounds;     // bands + 1 scanline boundaries
-  double imbalance = 1;            // max / mean band time
+  double imbalance = 1;            // busiest worker / mean worker compositing time
   std::uint64_t voxels = 0, samples = 0, terminatedPixelVisits = 0;
   std::size_t encodedBytes = 0;   // all encodings held
   std::uint64_t storedVoxels = 0; // voxels in the current axis's encoding
@@ -136,6 +140,9 @@ public:
   // Counters of the CompositeRows calls since BeginFrame.
   void GetCounters(ShearWarpStats& stats) const;
   std::size_t GetEncodedBytes() const;
+  // Waits until the background encodings started by the last frame are built (benchmarks and
+  // tools; a frame that needs one waits by itself).
+  void FinishBackgroundEncodings();
 
   struct Internals;
 

@@ -116,7 +116,7 @@ struct ShearWarpRenderer::Internals
     std::string& error);
   // Per-frame tables: opacity for this view's ray length between slices, and shading.
   void UpdateTables(const RayCastTransfer& transfer, const RayCastLighting& lighting,
-    const ShearWarpView& view, const ShearWarpSettings& settings);
+    const ShearWarpView& view, const ShearWarpSettings& settings, const ParallelFor& parallel);
   // Sizes the intermediate image and clears the counters; fills the frame's stats.
   void StartFrame(int axis, ShearWarpStats& stats);
 };
