@@ -373,6 +373,7 @@ int RunWorker(const Options& options, vtkMultiProcessController* controller)
         run.Ranks = ranks;
         scene.FixedView(options.Azimuth, options.Elevation);
         RecordFirst(scene.Mapper(0), scene.Render(0), run);
+        scene.Mapper(0)->FinishBackgroundEncoding(); // as the in-process runs: steady frames
         const std::string key = CaseKey(info.Name, tf, shade, size);
         if (rank == 0)
         {
