@@ -79,7 +79,11 @@ void ShearWarpRenderer::Internals::StartBackgroundEncodings(
 {
   if (this->background.joinable())
   {
-    return; // one job at a time; the next frame starts the next
+    if (this->backgroundRunning)
+    {
+      return; // one job at a time; a later frame starts the next
+    }
+    this->background.join(); // finished: at once
   }
   std::vector<int> missing;
   for (int other = 0; other < 3; ++other)
@@ -95,10 +99,16 @@ void ShearWarpRenderer::Internals::StartBackgroundEncodings(
   }
   this->backgroundKey = key;
   this->backgroundCancelled = false;
+  this->backgroundRunning = true;
   this->background = std::thread(
     [this, dense, axis, key, missing]()
     {
       const RunLengthVolume<ShadedVoxel>& from = this->composite[dense][axis].encoded;
+      struct Finished
+      {
+        std::atomic<bool>& running;
+        ~Finished() { running = false; }
+      } finished{ this->backgroundRunning };
       for (int other : missing)
       {
         if (this->backgroundCancelled)
@@ -139,6 +149,9 @@ void ShearWarpRenderer::Internals::DropStaleEncodings(
     return key.valid &&
       (key.volumeVersion != volumeVersion || key.transferVersion != transferVersion);
   };
+  // A job still running has these versions: it reads no slot dropped here, but it may publish
+  // into one while the keys are read.
+  const std::lock_guard<std::mutex> lock(this->slotsMutex);
   for (int d = 0; d < 2; ++d)
   {
     for (int a = 0; a < 3; ++a)

@@ -71,6 +71,7 @@ struct ShearWarpRenderer::Internals
   // composite slot, and reads a slot the job may publish into only under the mutex.
   std::thread background;
   std::atomic<bool> backgroundCancelled{ false };
+  std::atomic<bool> backgroundRunning{ false }; // false once the job has returned
   detail::EncodingKey backgroundKey;
   mutable std::mutex slotsMutex;
 
