@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #if defined(__SSE2__)
@@ -58,6 +59,29 @@ inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float
     return;
   }
   constexpr float toUnit = 1.0f / 255.0f;
+#if defined(__SSE2__)
+  // Unshaded and white-light table shading (the common cases) on one register: the scalar
+  // code's operations per channel, so the same values.
+  if (!t.shade || (!t.phong && t.shadingStride == 2))
+  {
+    std::uint32_t bytes;
+    std::memcpy(&bytes, voxel->colour, sizeof(bytes));
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i channels =
+      _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(bytes)), zero), zero);
+    __m128 rgb = _mm_mul_ps(_mm_cvtepi32_ps(channels), _mm_set1_ps(toUnit));
+    if (t.shade)
+    {
+      const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
+      const float* s = &t.shading[2 * row];
+      rgb = _mm_min_ps(
+        _mm_add_ps(_mm_mul_ps(rgb, _mm_set1_ps(s[0])), _mm_set1_ps(s[1])), _mm_set1_ps(1.0f));
+    }
+    _mm_storeu_ps(out, _mm_mul_ps(rgb, _mm_set1_ps(opacity)));
+    out[3] = opacity;
+    return;
+  }
+#endif
   float rgb[3] = { voxel->colour[0] * toUnit, voxel->colour[1] * toUnit,
     voxel->colour[2] * toUnit };
   if (t.shade && !t.phong)
