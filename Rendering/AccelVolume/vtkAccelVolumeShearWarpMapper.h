@@ -178,9 +178,11 @@ public:
   ///@}
 
   ///@{
-  /** Last frame's load imbalance: the slowest band's time over the mean band time (1 = even). */
+  /** Last frame's load imbalance: the busiest thread's compositing time over the mean per thread
+   * (MPI: the slowest band over the mean band; 1 = even). */
   vtkGetMacro(LastImbalance, double);
-  /** Bands of the last frame (threads x ranks) and their compositing seconds. */
+  /** Bands of the last frame (one process: 4 per thread with several threads, taken dynamically;
+   * MPI: one per thread of every rank) and their compositing seconds. */
   vtkGetMacro(LastNumberOfBands, int);
   double GetLastBandTime(int band) const;
   /** Scanlines of the last frame's intermediate image and the compositing seconds of each (this
