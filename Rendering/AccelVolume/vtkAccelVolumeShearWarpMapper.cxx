@@ -443,17 +443,18 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
   if (!in.settings.warp)
   {
     const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
+    const vtkAccelVolumeImageDisplay::Warp intermediate{ this->Renderer.GetIntermediateImage(),
+      { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp };
     if (this->Display.DrawWarped(window, lowerLeft, in.width, in.height, in.width, in.height,
-          this->Renderer.GetIntermediateImage(), f.intermediateSize[0], f.intermediateSize[1],
-          f.inverseWarp, out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
+          intermediate, out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
           peeling))
     {
       return true;
     }
     const double warpStart = Now();
-    const auto warp = [&]()
+    const auto warpOnCPU = [&]()
     { this->Renderer.Warp(vtkAccelVolumeSMPParallelFor(), this->Image, out.rectangle); };
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, warp);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, warpOnCPU);
     out.stats.warpSeconds = Now() - warpStart;
   }
   return this->Display.Draw(window, lowerLeft, in.width, in.height, in.width, in.height,
@@ -588,8 +589,6 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     }
     return;
   }
-  internals.RecordCounters(this, out);
-
   float colourScale = 1.0f;
   float colourBias = 0.0f;
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
@@ -606,6 +605,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   {
     vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
   }
-  this->LastWarpTime = out.stats.warpSeconds; // the CPU warp when the GPU could not take it
+  // After showing: a CPU warp the GPU could not take counts too.
+  internals.RecordCounters(this, out);
   this->LastRenderTime = Now() - start;
 }

@@ -16,7 +16,7 @@
 
 // Where and how a texture's pixels land: the image of imageWidth x imageHeight pixels stretched
 // over the viewport, drawn over `rectangle` only; the texture holds uploadWidth x uploadHeight
-// pixels (Pixels) from the rectangle's corner, or, with inverseWarp, the intermediate image.
+// pixels (Pixels) from the rectangle's corner, or, with a warp, the intermediate image.
 struct vtkAccelVolumeImageDisplay::Placement
 {
   const int* lowerLeft;
@@ -28,8 +28,7 @@ struct vtkAccelVolumeImageDisplay::Placement
   int selectionMode;
   const float* selectionColour;
   bool clearSecondTarget;
-  const double (*inverseWarp)[3];
-  int intermediateSize[2] = { 0, 0 };
+  const Warp* warp; // null: the texture holds the image itself
 };
 
 #include "AccelVolumeImageFS.h"
@@ -86,11 +85,13 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
 }
 
 bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
-  int width, int height, int imageWidth, int imageHeight, const float* intermediate,
-  int intermediateWidth, int intermediateHeight, const double inverseWarp[2][3],
-  const int rectangle[4], float colourScale, float colourBias, int selectionMode,
-  const float selectionColour[3], bool clearSecondTarget)
+  int width, int height, int imageWidth, int imageHeight, const Warp& warp, const int rectangle[4],
+  float colourScale, float colourBias, int selectionMode, const float selectionColour[3],
+  bool clearSecondTarget)
 {
+  const int intermediateWidth = warp.size[0];
+  const int intermediateHeight = warp.size[1];
+  const float* intermediate = warp.image;
   if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
   {
     return true; // nothing visible
@@ -133,9 +134,7 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   this->Intermediate->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
   Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
     uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    inverseWarp };
-  placement.intermediateSize[0] = intermediateWidth;
-  placement.intermediateSize[1] = intermediateHeight;
+    &warp };
   return this->Show(window, this->Intermediate, placement);
 }
 
@@ -155,36 +154,13 @@ bool vtkAccelVolumeImageDisplay::Show(
   texture->SendParameters();
   // Plain warped frames take the lean shader over the warped parallelogram only; selection and
   // depth peeling the general one.
-  const bool lean = p.inverseWarp && p.selectionMode == 0 && !p.clearSecondTarget;
+  const bool lean = p.warp && p.selectionMode == 0 && !p.clearSecondTarget;
   vtkShaderProgram* program = lean
     ? window->GetShaderCache()->ReadyShaderProgram(AccelVolumeWarpVS, AccelVolumeWarpFS, "")
     : window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
-  if (program && lean)
+  if (program)
   {
     state->vtkglViewport(p.lowerLeft[0], p.lowerLeft[1], p.width, p.height);
-    state->vtkglDisable(GL_SCISSOR_TEST);
-    state->vtkglDisable(GL_DEPTH_TEST);
-    state->vtkglDepthMask(GL_FALSE);
-    state->vtkglEnable(GL_BLEND);
-    state->vtkglBlendEquation(GL_FUNC_ADD);
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    this->SetWarpUniforms(program, texture, p);
-    this->Array->Bind();
-    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    this->Array->Release();
-  }
-  else if (program)
-  {
-    state->vtkglViewport(p.lowerLeft[0], p.lowerLeft[1], p.width, p.height);
-    // Only fragments over the rectangle (one image pixel of margin for the magnification).
-    const double scaleX = static_cast<double>(p.width) / p.imageWidth;
-    const double scaleY = static_cast<double>(p.height) / p.imageHeight;
-    const int left = p.lowerLeft[0] + static_cast<int>(std::floor((x0 - 1) * scaleX));
-    const int bottom = p.lowerLeft[1] + static_cast<int>(std::floor((y0 - 1) * scaleY));
-    const int right = p.lowerLeft[0] + static_cast<int>(std::ceil((x1 + 2) * scaleX));
-    const int top = p.lowerLeft[1] + static_cast<int>(std::ceil((y1 + 2) * scaleY));
-    state->vtkglEnable(GL_SCISSOR_TEST);
-    state->vtkglScissor(left, bottom, right - left, top - bottom);
     state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDepthMask(GL_FALSE);
     state->vtkglEnable(GL_BLEND);
@@ -193,29 +169,48 @@ bool vtkAccelVolumeImageDisplay::Show(
     program->SetUniformi("image", texture->GetTextureUnit());
     const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
       static_cast<float>(p.lowerLeft[1]) };
-    const float size[2] = { static_cast<float>(p.width), static_cast<float>(p.height) };
-    const float image[2] = { static_cast<float>(p.imageWidth), static_cast<float>(p.imageHeight) };
-    const float rectangleOrigin[2] = { static_cast<float>(x0), static_cast<float>(y0) };
-    const float rectangleSize[2] = { static_cast<float>(p.uploadWidth),
-      static_cast<float>(p.uploadHeight) };
     program->SetUniform2f("viewportOrigin", origin);
-    program->SetUniform2f("viewportSize", size);
-    program->SetUniform2f("imageSize", image);
-    program->SetUniform2f("rectangleOrigin", rectangleOrigin);
-    program->SetUniform2f("rectangleSize", rectangleSize);
-    program->SetUniformi("warped", p.inverseWarp ? 1 : 0);
-    if (p.inverseWarp)
+    program->SetUniformf("colourScale", p.colourScale);
+    program->SetUniformf("colourBias", p.colourBias);
+    if (p.warp)
     {
       this->SetWarpUniforms(program, texture, p);
     }
-    program->SetUniformf("colourScale", p.colourScale);
-    program->SetUniformf("colourBias", p.colourBias);
-    const float noColour[3] = { 0, 0, 0 };
-    program->SetUniformi("selectionMode", p.selectionMode);
-    program->SetUniformi("clearSecondTarget", p.clearSecondTarget ? 1 : 0);
-    program->SetUniform3f("selectionColour", p.selectionColour ? p.selectionColour : noColour);
     this->Array->Bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (lean)
+    {
+      state->vtkglDisable(GL_SCISSOR_TEST); // the parallelogram is the footprint
+      this->SetParallelogram(program, p);
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    else
+    {
+      // Only fragments over the rectangle (one image pixel of margin for the magnification).
+      const double scaleX = static_cast<double>(p.width) / p.imageWidth;
+      const double scaleY = static_cast<double>(p.height) / p.imageHeight;
+      const int left = p.lowerLeft[0] + static_cast<int>(std::floor((x0 - 1) * scaleX));
+      const int bottom = p.lowerLeft[1] + static_cast<int>(std::floor((y0 - 1) * scaleY));
+      const int right = p.lowerLeft[0] + static_cast<int>(std::ceil((x1 + 2) * scaleX));
+      const int top = p.lowerLeft[1] + static_cast<int>(std::ceil((y1 + 2) * scaleY));
+      state->vtkglEnable(GL_SCISSOR_TEST);
+      state->vtkglScissor(left, bottom, right - left, top - bottom);
+      const float size[2] = { static_cast<float>(p.width), static_cast<float>(p.height) };
+      const float image[2] = { static_cast<float>(p.imageWidth),
+        static_cast<float>(p.imageHeight) };
+      const float rectangleOrigin[2] = { static_cast<float>(x0), static_cast<float>(y0) };
+      const float rectangleSize[2] = { static_cast<float>(p.uploadWidth),
+        static_cast<float>(p.uploadHeight) };
+      program->SetUniform2f("viewportSize", size);
+      program->SetUniform2f("imageSize", image);
+      program->SetUniform2f("rectangleOrigin", rectangleOrigin);
+      program->SetUniform2f("rectangleSize", rectangleSize);
+      program->SetUniformi("warped", p.warp ? 1 : 0);
+      const float noColour[3] = { 0, 0, 0 };
+      program->SetUniformi("selectionMode", p.selectionMode);
+      program->SetUniformi("clearSecondTarget", p.clearSecondTarget ? 1 : 0);
+      program->SetUniform3f("selectionColour", p.selectionColour ? p.selectionColour : noColour);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     this->Array->Release();
   }
   texture->Deactivate();
@@ -226,40 +221,36 @@ bool vtkAccelVolumeImageDisplay::Show(
 void vtkAccelVolumeImageDisplay::SetWarpUniforms(
   vtkShaderProgram* program, vtkTextureObject* texture, const Placement& p)
 {
-  const double(*m)[3] = p.inverseWarp;
+  const double(*m)[3] = p.warp->inverse;
   const float warpU[3] = { static_cast<float>(m[0][0]), static_cast<float>(m[0][1]),
     static_cast<float>(m[0][2]) };
   const float warpV[3] = { static_cast<float>(m[1][0]), static_cast<float>(m[1][1]),
     static_cast<float>(m[1][2]) };
-  const float limits[2] = { static_cast<float>(p.intermediateSize[0]),
-    static_cast<float>(p.intermediateSize[1]) };
+  const float limits[2] = { static_cast<float>(p.warp->size[0]),
+    static_cast<float>(p.warp->size[1]) };
   const float extent[2] = { static_cast<float>(texture->GetWidth()),
     static_cast<float>(texture->GetHeight()) };
-  const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
-    static_cast<float>(p.lowerLeft[1]) };
-  const float viewportToImage[2] = { static_cast<float>(p.imageWidth) / p.width,
-    static_cast<float>(p.imageHeight) / p.height };
   program->SetUniform3f("warpU", warpU);
   program->SetUniform3f("warpV", warpV);
   program->SetUniform2f("warpLimit", limits);
   program->SetUniform2f("textureExtent", extent);
-  program->SetUniform2f("viewportOrigin", origin);
+}
+
+void vtkAccelVolumeImageDisplay::SetParallelogram(vtkShaderProgram* program, const Placement& p)
+{
+  const float viewportToImage[2] = { static_cast<float>(p.imageWidth) / p.width,
+    static_cast<float>(p.imageHeight) / p.height };
   program->SetUniform2f("viewportToImage", viewportToImage);
-  program->SetUniformf("colourScale", p.colourScale);
-  program->SetUniformf("colourBias", p.colourBias);
-  program->SetUniformi("image", texture->GetTextureUnit());
-  // The parallelogram (-1, limit) of the intermediate image in normalized device coordinates:
-  // the forward warp is the inverse of the 2 x 3 map.
-  const double det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  // The intermediate image's (-1, size) through the forward warp, in normalized device
+  // coordinates.
+  const double(*m)[3] = p.warp->forward;
   float corners[4][2] = {};
   for (int corner = 0; corner < 4; ++corner)
   {
-    const double u = (corner & 1) ? p.intermediateSize[0] : -1.0;
-    const double v = (corner & 2) ? p.intermediateSize[1] : -1.0;
-    const double du = u - m[0][2];
-    const double dv = v - m[1][2];
-    const double x = (m[1][1] * du - m[0][1] * dv) / det;
-    const double y = (m[0][0] * dv - m[1][0] * du) / det;
+    const double u = (corner & 1) ? p.warp->size[0] : -1.0;
+    const double v = (corner & 2) ? p.warp->size[1] : -1.0;
+    const double x = m[0][0] * u + m[0][1] * v + m[0][2];
+    const double y = m[1][0] * u + m[1][1] * v + m[1][2];
     corners[corner][0] = static_cast<float>(2.0 * x / p.imageWidth - 1.0);
     corners[corner][1] = static_cast<float>(2.0 * y / p.imageHeight - 1.0);
   }

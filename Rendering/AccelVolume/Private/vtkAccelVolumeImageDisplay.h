@@ -35,18 +35,25 @@ public:
   bool ReadDepth(
     vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height, float* depth);
 
-  // Shear-warp's intermediate image (intermediateWidth x intermediateHeight premultiplied
-  // pixels, 4 floats) warped by the GPU into the image of imageWidth x imageHeight pixels over
-  // the viewport: inverseWarp (row-major 2x3) maps an image position (pixel x's centre at
-  // x + 0.5) to intermediate coordinates (pixel i at i), sampled bilinearly with zero outside,
-  // as ShearWarpRenderer::Warp. Only image pixels in `rectangle` are drawn; the other arguments
-  // as Draw. False if GL fails or the intermediate image exceeds the texture size limit (the
-  // caller then warps on the CPU).
+  // Shear-warp's intermediate image (size[0] x size[1] premultiplied pixels, 4 floats) and its
+  // warp (row-major 2 x 3): forward maps intermediate coordinates (pixel i at i) to image
+  // positions (pixel x's centre at x + 0.5), inverse the other way (ShearWarpFactorization's
+  // warp and inverseWarp).
+  struct Warp
+  {
+    const float* image;
+    int size[2];
+    const double (*forward)[3];
+    const double (*inverse)[3];
+  };
+
+  // The intermediate image warped by the GPU into the image of imageWidth x imageHeight pixels
+  // over the viewport, sampled bilinearly with zero outside, as ShearWarpRenderer::Warp. Only
+  // image pixels in `rectangle` are drawn; the other arguments as Draw. False if GL fails or the
+  // intermediate image exceeds the texture size limit (the caller then warps on the CPU).
   bool DrawWarped(vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width, int height,
-    int imageWidth, int imageHeight, const float* intermediate, int intermediateWidth,
-    int intermediateHeight, const double inverseWarp[2][3], const int rectangle[4],
-    float colourScale, float colourBias, int selectionMode, const float selectionColour[3],
-    bool clearSecondTarget);
+    int imageWidth, int imageHeight, const Warp& warp, const int rectangle[4], float colourScale,
+    float colourBias, int selectionMode, const float selectionColour[3], bool clearSecondTarget);
 
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -56,8 +63,10 @@ private:
 
   struct Placement; // where and how the texture's pixels land (ImageDisplay.cxx)
   bool Show(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& placement);
+  // The general and the lean shader's warp uniforms; the lean one's parallelogram.
   void SetWarpUniforms(
     vtkShaderProgram* program, vtkTextureObject* texture, const Placement& placement);
+  void SetParallelogram(vtkShaderProgram* program, const Placement& placement);
 
   vtkNew<vtkTextureObject> Image;
   vtkNew<vtkTextureObject> Intermediate; // shear-warp's, with room to spare (DrawWarped)

@@ -11,20 +11,16 @@ namespace
 
 // Walks every stored voxel of `from` in its storage order (slice k, scanline j, position i),
 // calling visit(row, position, voxel) with the voxel's scanline and position in the layout of
-// `axis`. In that order each target scanline receives its voxels by increasing position: its
-// position runs along one of from's j or k axes, and the voxels of one target scanline share
-// from's other two coordinates.
+// `to` (whose axis and slice dimensions are set). In that order each target scanline receives
+// its voxels by increasing position: its position runs along one of from's j or k axes, and the
+// voxels of one target scanline share from's other two coordinates.
 template <typename Voxel, typename Visit>
-void ForEachStoredVoxel(const RunLengthVolume<Voxel>& from, int axis, Visit visit)
+void ForEachStoredVoxel(
+  const RunLengthVolume<Voxel>& from, const RunLengthVolume<Voxel>& to, Visit visit)
 {
   const int fromAxes[3] = { (from.axis + 1) % 3, (from.axis + 2) % 3, from.axis };
-  const int toAxes[3] = { (axis + 1) % 3, (axis + 2) % 3, axis };
-  int dims[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    dims[fromAxes[a]] = from.sliceDims[a];
-  }
-  const std::size_t toRows = static_cast<std::size_t>(dims[toAxes[1]]); // nj of the target
+  const int toAxes[3] = { (to.axis + 1) % 3, (to.axis + 2) % 3, to.axis };
+  const std::size_t toRows = static_cast<std::size_t>(to.sliceDims[1]);
   for (int k = 0; k < from.sliceDims[2]; ++k)
   {
     for (int j = 0; j < from.sliceDims[1]; ++j)
@@ -76,7 +72,7 @@ bool TransposeEncoding(
   std::vector<std::uint32_t> runCount(rows, 0);
   std::vector<std::uint32_t> nextVoxel(rows, 0); // voxels per scanline, then where the next goes
   std::size_t voxelCount = 0;
-  ForEachStoredVoxel(from, axis,
+  ForEachStoredVoxel(from, to,
     [&](std::size_t row, int position, const Voxel&)
     {
       runCount[row] += last[row] != position - 1 ? 1 : 0;
@@ -116,7 +112,7 @@ bool TransposeEncoding(
   to.voxels.resize(voxelCount);
   std::vector<std::uint32_t> nextRun(to.rowStart.begin(), to.rowStart.end() - 1);
   std::fill(last.begin(), last.end(), -2);
-  ForEachStoredVoxel(from, axis,
+  ForEachStoredVoxel(from, to,
     [&](std::size_t row, int position, const Voxel& voxel)
     {
       if (last[row] != position - 1)

@@ -319,7 +319,6 @@ inline int BufferOfRow(ScanlineWorkspace& ws, int j)
 
 // One voxel scanline of a pair as the pixel walk sees it: the first run that ends after the
 // current pixel's first voxel, and the shaded cells (cell i + 1 holds voxel i).
-template <typename Voxel>
 struct RowCursor
 {
   const VoxelRun* run;
@@ -335,7 +334,7 @@ struct RowCursor
 // first run ending after `from`.
 template <typename Policy>
 inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxels,
-  const RowCursor<typename Policy::Voxel>& row, int from, int to, std::uint64_t& shaded)
+  const RowCursor& row, int from, int to, std::uint64_t& shaded)
 {
   constexpr int C = Policy::Channels;
   const VoxelRun* run = row.run;
@@ -395,7 +394,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   // A local copy: the pixel stores below cannot alias it, so it stays in registers.
   const float w[4] = { slice.w[0], slice.w[1], slice.w[2], slice.w[3] };
   std::int32_t* links = ws.next.data() + stride * r;
-  RowCursor<Voxel> rows[2];
+  RowCursor rows[2];
   for (int q = 0; q < 2; ++q)
   {
     const int j = j0 + q;
@@ -425,7 +424,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
     // before u.
     int reached = std::numeric_limits<int>::max(); // first pixel >= u a run reaches
     int spanEnd = 0;                               // where the runs reaching u stop reaching
-    for (RowCursor<Voxel>& cursor : rows)
+    for (RowCursor& cursor : rows)
     {
       cursor.run = FirstRunEndingAfter(cursor.run, cursor.end, u - shiftI - 1);
       if (cursor.run != cursor.end)
@@ -459,7 +458,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
         ++stretchEnd;
       }
     }
-    for (const RowCursor<Voxel>& cursor : rows)
+    for (const RowCursor& cursor : rows)
     {
       ShadeCells(policy, voxels, cursor, u - shiftI - 1, stretchEnd - shiftI, shaded);
     }
@@ -681,14 +680,12 @@ void BuildShadingTable(CompositeTables& t, const ParallelFor& parallel)
   }
   t.shadingStride = white ? 2 : 6;
   t.shading.assign(static_cast<std::size_t>(t.shadingStride) * (NormalCodes + 1), 0.0f);
-  parallel(TableChunks,
+  parallel(NormalCodes + 1,
     [&](std::size_t begin, std::size_t end)
     {
-      const int first = static_cast<int>(begin * (NormalCodes + 1) / TableChunks);
-      const int last = static_cast<int>(end * (NormalCodes + 1) / TableChunks);
-      for (int code = first; code < last; ++code)
+      for (std::size_t code = begin; code < end; ++code)
       {
-        ShadingRow(t, code, white);
+        ShadingRow(t, static_cast<int>(code), white);
       }
     });
 }

@@ -14,7 +14,6 @@
 #include "shearwarp/RunLengthVolume.h"
 #include "shearwarp/ShearWarpFactorization.h"
 
-#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -51,8 +50,7 @@ struct CompositeTables
 void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3], float specular[3]);
 
 // Lacroute's shading table over the quantized normals (tables.shading and shadingStride), rows
-// built in parallel (TableChunks parts; the same values for any thread count).
-inline constexpr std::size_t TableChunks = 16;
+// built in parallel (the same values for any thread count).
 void BuildShadingTable(CompositeTables& tables, const ParallelFor& parallel);
 
 struct ScanlineCounters

@@ -235,12 +235,10 @@ void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
     t.opacity.resize(OpacityLevels + 1);
     // In parallel, like the shading table: a turning view changes the ray length every frame,
     // and serial work here caps the speed-up of every core count.
-    parallel(TableChunks,
+    parallel(OpacityLevels + 1,
       [&](std::size_t begin, std::size_t end)
       {
-        const int first = static_cast<int>(begin * (OpacityLevels + 1) / TableChunks);
-        const int last = static_cast<int>(end * (OpacityLevels + 1) / TableChunks);
-        for (int q = first; q < last; ++q)
+        for (std::size_t q = begin; q < end; ++q)
         {
           t.opacity[q] = static_cast<float>(1.0 - std::pow(1.0 - q / double(OpacityLevels), ratio));
         }
