@@ -3,8 +3,10 @@
 // the two differ only by the unit's filtering precision and the 16-bit texels. Checked in the
 // window (8 bits per channel): composite shaded and MIP, an oblique and a steep view, a window
 // larger and one smaller than the intermediate image (magnified and minified), a viewport that
-// does not start at the window's corner, and the warp's edges against the background. A camera
-// shifted by one pixel must fail the same bound (the check can fail).
+// does not start at the window's corner, and the warp's edges against the background; the GPU
+// draws only the bands of the intermediate image holding visible pixels, cut to their columns
+// (the vessels leave much empty), which must cover every pixel the CPU warp shows and none
+// twice. A camera shifted by one pixel must fail the same bound (the check can fail).
 #include "AccelVolumeTestUtilities.h"
 #include "vtkAccelVolumeShearWarpMapper.h"
 #include "vtkMath.h"

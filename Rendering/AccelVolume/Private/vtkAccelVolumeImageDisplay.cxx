@@ -1,6 +1,7 @@
 // vtkAccelVolumeImageDisplay: shows the CPU mappers' images in the OpenGL scene.
 #include "vtkAccelVolumeImageDisplay.h"
 
+#include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
@@ -13,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 // Where and how a texture's pixels land: the image of imageWidth x imageHeight pixels stretched
 // over the viewport, drawn over `rectangle` only; the texture holds uploadWidth x uploadHeight
@@ -30,6 +33,41 @@ struct vtkAccelVolumeImageDisplay::Placement
   bool clearSecondTarget;
   const Warp* warp; // null: the texture holds the image itself
 };
+
+namespace
+{
+
+// The first and last of `count` RGBA pixels (4 channels of 16 bits) that is not all zero;
+// first > last when every pixel is zero.
+void FindVisiblePixels(const unsigned short* row, int count, int& first, int& last)
+{
+  const auto visible = [row](int i)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, row + 4 * static_cast<std::size_t>(i), sizeof bits);
+    return bits != 0;
+  };
+  first = 0;
+  while (first < count && !visible(first))
+  {
+    ++first;
+  }
+  last = count - 1;
+  while (last > first && !visible(last))
+  {
+    --last;
+  }
+  if (first == count)
+  {
+    last = -1;
+  }
+}
+
+// Intermediate rows per band of the drawn footprint: fewer rows cut the empty parts closer,
+// more bands add vertices.
+constexpr int FootprintBandRows = 16;
+
+}
 
 #include "AccelVolumeImageFS.h"
 #include "AccelVolumeResolveVS.h"
@@ -107,12 +145,15 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   }
   const std::size_t rowValues = 4 * static_cast<std::size_t>(uploadWidth);
   this->Pixels.resize(rowValues * uploadHeight);
+  this->RowFirst.resize(intermediateHeight);
+  this->RowLast.resize(intermediateHeight);
   for (int v = 0; v < intermediateHeight; ++v)
   {
     unsigned short* row = this->Pixels.data() + rowValues * v;
     accelvolume::ConvertToUnorm16(
       intermediate + 4 * static_cast<std::size_t>(v) * intermediateWidth, rowValues - 4, row);
     std::fill(row + rowValues - 4, row + rowValues, 0);
+    FindVisiblePixels(row, intermediateWidth, this->RowFirst[v], this->RowLast[v]);
   }
   std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
   // The view turns the intermediate image's size a little every frame: the texture keeps room
@@ -167,24 +208,24 @@ bool vtkAccelVolumeImageDisplay::Show(
     state->vtkglBlendEquation(GL_FUNC_ADD);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     program->SetUniformi("image", texture->GetTextureUnit());
-    const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
-      static_cast<float>(p.lowerLeft[1]) };
-    program->SetUniform2f("viewportOrigin", origin);
     program->SetUniformf("colourScale", p.colourScale);
     program->SetUniformf("colourBias", p.colourBias);
-    if (p.warp)
-    {
-      this->SetWarpUniforms(program, texture, p);
-    }
-    this->Array->Bind();
     if (lean)
     {
-      state->vtkglDisable(GL_SCISSOR_TEST); // the parallelogram is the footprint
-      this->SetParallelogram(program, p);
-      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      state->vtkglDisable(GL_SCISSOR_TEST); // the footprint is the parallelogram's, cut
+      state->vtkglDisable(GL_CULL_FACE);    // a mirroring warp turns its triangles
+      this->DrawFootprint(program, texture, p);
     }
     else
     {
+      const float origin[2] = { static_cast<float>(p.lowerLeft[0]),
+        static_cast<float>(p.lowerLeft[1]) };
+      program->SetUniform2f("viewportOrigin", origin);
+      if (p.warp)
+      {
+        this->SetWarpUniforms(program, texture, p);
+      }
+      this->Array->Bind();
       // Only fragments over the rectangle (one image pixel of margin for the magnification).
       const double scaleX = static_cast<double>(p.width) / p.imageWidth;
       const double scaleY = static_cast<double>(p.height) / p.imageHeight;
@@ -210,8 +251,8 @@ bool vtkAccelVolumeImageDisplay::Show(
       program->SetUniformi("clearSecondTarget", p.clearSecondTarget ? 1 : 0);
       program->SetUniform3f("selectionColour", p.selectionColour ? p.selectionColour : noColour);
       glDrawArrays(GL_TRIANGLES, 0, 3);
+      this->Array->Release();
     }
-    this->Array->Release();
   }
   texture->Deactivate();
   state->Pop();
@@ -236,25 +277,94 @@ void vtkAccelVolumeImageDisplay::SetWarpUniforms(
   program->SetUniform2f("textureExtent", extent);
 }
 
-void vtkAccelVolumeImageDisplay::SetParallelogram(vtkShaderProgram* program, const Placement& p)
+void vtkAccelVolumeImageDisplay::DrawFootprint(
+  vtkShaderProgram* program, vtkTextureObject* texture, const Placement& p)
 {
-  const float viewportToImage[2] = { static_cast<float>(p.imageWidth) / p.width,
-    static_cast<float>(p.imageHeight) / p.height };
-  program->SetUniform2f("viewportToImage", viewportToImage);
-  // The intermediate image's (-1, size) through the forward warp, in normalized device
-  // coordinates.
-  const double(*m)[3] = p.warp->forward;
-  float corners[4][2] = {};
-  for (int corner = 0; corner < 4; ++corner)
+  // The parallelogram (intermediate coordinates (-1, size), pixel i at i) in bands of
+  // FootprintBandRows rows: lines v = -1, -1 + rows, ..., size[1]. Band k's fragments read
+  // intermediate rows line(k) .. line(k + 1) and, of those, columns [first - 1, last + 1] at
+  // most; elsewhere they read zeros and blend to nothing. Each band is drawn as a trapezoid
+  // whose edge on a line spans the columns of both bands beside it: neighbours share that edge
+  // exactly (no T-junction: no pixel drawn twice or missed), and every band covers its
+  // columns. Bands with no visible pixel are not drawn.
+  const int width = p.warp->size[0], height = p.warp->size[1];
+  const int bands = (height + 1 + FootprintBandRows - 1) / FootprintBandRows;
+  const auto line = [height](int k) { return std::min(-1 + k * FootprintBandRows, height); };
+  std::vector<int> bandFirst(bands), bandLast(bands); // column ranges, first > last: empty
+  for (int k = 0; k < bands; ++k)
   {
-    const double u = (corner & 1) ? p.warp->size[0] : -1.0;
-    const double v = (corner & 2) ? p.warp->size[1] : -1.0;
+    int first = width, last = -1;
+    for (int v = std::max(line(k), 0); v <= std::min(line(k + 1), height - 1); ++v)
+    {
+      if (this->RowFirst[v] <= this->RowLast[v])
+      {
+        first = std::min(first, this->RowFirst[v] - 1);
+        last = std::max(last, this->RowLast[v] + 1);
+      }
+    }
+    bandFirst[k] = std::max(first, -1);
+    bandLast[k] = std::min(last, width);
+  }
+  // The span of line k: both neighbouring bands' columns.
+  const auto span = [&](int k, double& first, double& last)
+  {
+    int lo = width, hi = -1;
+    for (int band : { k - 1, k })
+    {
+      if (band >= 0 && band < bands && bandFirst[band] <= bandLast[band])
+      {
+        lo = std::min(lo, bandFirst[band]);
+        hi = std::max(hi, bandLast[band]);
+      }
+    }
+    first = lo;
+    last = hi;
+  };
+  const double(*m)[3] = p.warp->forward;
+  const double extent[2] = { static_cast<double>(texture->GetWidth()),
+    static_cast<double>(texture->GetHeight()) };
+  std::vector<float>& vertices = this->FootprintVertices;
+  vertices.clear();
+  const auto add = [&](double u, double v)
+  {
     const double x = m[0][0] * u + m[0][1] * v + m[0][2];
     const double y = m[1][0] * u + m[1][1] * v + m[1][2];
-    corners[corner][0] = static_cast<float>(2.0 * x / p.imageWidth - 1.0);
-    corners[corner][1] = static_cast<float>(2.0 * y / p.imageHeight - 1.0);
+    vertices.push_back(static_cast<float>(2.0 * x / p.imageWidth - 1.0));
+    vertices.push_back(static_cast<float>(2.0 * y / p.imageHeight - 1.0));
+    vertices.push_back(static_cast<float>((u + 0.5) / extent[0]));
+    vertices.push_back(static_cast<float>((v + 0.5) / extent[1]));
+  };
+  for (int k = 0; k < bands; ++k)
+  {
+    if (bandFirst[k] > bandLast[k])
+    {
+      continue;
+    }
+    double bottomFirst, bottomLast, topFirst, topLast;
+    span(k, bottomFirst, bottomLast);
+    span(k + 1, topFirst, topLast);
+    const double bottom = line(k), top = line(k + 1);
+    add(bottomFirst, bottom);
+    add(bottomLast, bottom);
+    add(topLast, top);
+    add(bottomFirst, bottom);
+    add(topLast, top);
+    add(topFirst, top);
   }
-  program->SetUniform2fv("corners", 4, corners);
+  if (vertices.empty())
+  {
+    return;
+  }
+  this->FootprintBuffer->Upload(vertices, vtkOpenGLBufferObject::ArrayBuffer);
+  vtkOpenGLVertexArrayObject* array = this->FootprintArray;
+  array->Bind();
+  constexpr int stride = 4 * sizeof(float);
+  array->AddAttributeArray(
+    program, this->FootprintBuffer, "vertexPosition", 0, stride, VTK_FLOAT, 2, false);
+  array->AddAttributeArray(program, this->FootprintBuffer, "vertexCoordinate", 2 * sizeof(float),
+    stride, VTK_FLOAT, 2, false);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size() / 4));
+  array->Release();
 }
 
 bool vtkAccelVolumeImageDisplay::ReadDepth(
@@ -267,5 +377,7 @@ void vtkAccelVolumeImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Image->ReleaseGraphicsResources(window);
   this->Array->ReleaseGraphicsResources();
+  this->FootprintArray->ReleaseGraphicsResources();
+  this->FootprintBuffer->ReleaseGraphicsResources();
   this->DepthReader.ReleaseGraphicsResources(window);
 }

@@ -8,6 +8,7 @@
 
 #include <vector> // For std::vector
 
+class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
@@ -63,15 +64,24 @@ private:
 
   struct Placement; // where and how the texture's pixels land (ImageDisplay.cxx)
   bool Show(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& placement);
-  // The general and the lean shader's warp uniforms; the lean one's parallelogram.
+  // The general shader's warp uniforms.
   void SetWarpUniforms(
     vtkShaderProgram* program, vtkTextureObject* texture, const Placement& placement);
-  void SetParallelogram(vtkShaderProgram* program, const Placement& placement);
+  // The lean shader's geometry: the parallelogram's bands of intermediate rows that hold
+  // visible pixels, each cut to their columns (FootprintVertices, then the buffer), drawn.
+  void DrawFootprint(
+    vtkShaderProgram* program, vtkTextureObject* texture, const Placement& placement);
 
   vtkNew<vtkTextureObject> Image;
   vtkNew<vtkTextureObject> Intermediate; // shear-warp's, with room to spare (DrawWarped)
   std::vector<unsigned short> Pixels;
+  // DrawWarped: each intermediate row's first and last pixel that is not zero (first > last:
+  // none), and the footprint's triangles (x, y in normalized device coordinates, s, t).
+  std::vector<int> RowFirst, RowLast;
+  std::vector<float> FootprintVertices;
   vtkNew<vtkOpenGLVertexArrayObject> Array;
+  vtkNew<vtkOpenGLVertexArrayObject> FootprintArray;
+  vtkNew<vtkOpenGLBufferObject> FootprintBuffer;
   vtkAccelVolumeDepthReader DepthReader;
 };
 
