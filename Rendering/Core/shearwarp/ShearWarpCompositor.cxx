@@ -49,82 +49,127 @@ inline int FindOpen(std::int32_t* next, int u)
   return open;
 }
 
-// Premultiplied colour of a classified voxel with the frame's tables.
-inline void ShadeVoxel(const CompositeTables& t, const ShadedVoxel* voxel, float out[4])
+// Premultiplied colours of classified voxels with the frame's tables, for a run of voxels at a
+// time: the tables' pointers and modes are copied into locals once, so that the cell stores
+// cannot make the compiler reload them for every voxel.
+class VoxelShader
 {
-  const float opacity = voxel ? t.opacity[voxel->opacity] : 0.0f;
-  if (opacity <= 0)
+public:
+  explicit VoxelShader(const CompositeTables& t)
+    : Tables(t)
+    , Opacity(t.opacity.data())
+    , Shading(t.shading.data())
+    , Shade(t.shade)
+    // Unshaded and white-light table shading (the common cases) take one SSE register.
+    , OneRegister(!t.shade || (!t.phong && t.shadingStride == 2))
   {
-    out[0] = out[1] = out[2] = out[3] = 0;
-    return;
   }
-  constexpr float toUnit = 1.0f / 255.0f;
-#if defined(__SSE2__)
-  // Unshaded and white-light table shading (the common cases) on one register: the scalar
-  // code's operations per channel, so the same values.
-  if (!t.shade || (!t.phong && t.shadingStride == 2))
+
+  void operator()(const ShadedVoxel* voxel, int count, float* out) const
   {
+#if defined(__SSE2__)
+    if (this->OneRegister)
+    {
+      for (int n = 0; n < count; ++n, out += 4)
+      {
+        this->OnOneRegister(voxel[n], out);
+      }
+      return;
+    }
+#endif
+    for (int n = 0; n < count; ++n, out += 4)
+    {
+      this->General(voxel[n], out);
+    }
+  }
+
+private:
+#if defined(__SSE2__)
+  // The scalar code's operations per channel, so the same values.
+  void OnOneRegister(const ShadedVoxel& voxel, float out[4]) const
+  {
+    const float opacity = this->Opacity[voxel.opacity];
+    if (opacity <= 0)
+    {
+      _mm_storeu_ps(out, _mm_setzero_ps());
+      return;
+    }
     std::uint32_t bytes;
-    std::memcpy(&bytes, voxel->colour, sizeof(bytes));
+    std::memcpy(&bytes, voxel.colour, sizeof(bytes));
     const __m128i zero = _mm_setzero_si128();
     const __m128i channels =
       _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(bytes)), zero), zero);
-    __m128 rgb = _mm_mul_ps(_mm_cvtepi32_ps(channels), _mm_set1_ps(toUnit));
-    if (t.shade)
+    __m128 rgb = _mm_mul_ps(_mm_cvtepi32_ps(channels), _mm_set1_ps(1.0f / 255.0f));
+    if (this->Shade)
     {
-      const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
-      const float* s = &t.shading[2 * row];
+      const std::size_t row = voxel.normal == NoNormal ? NormalCodes : voxel.normal;
+      const float* s = this->Shading + 2 * row;
       rgb = _mm_min_ps(
         _mm_add_ps(_mm_mul_ps(rgb, _mm_set1_ps(s[0])), _mm_set1_ps(s[1])), _mm_set1_ps(1.0f));
     }
     _mm_storeu_ps(out, _mm_mul_ps(rgb, _mm_set1_ps(opacity)));
     out[3] = opacity;
-    return;
   }
 #endif
-  float rgb[3] = { voxel->colour[0] * toUnit, voxel->colour[1] * toUnit,
-    voxel->colour[2] * toUnit };
-  if (t.shade && !t.phong)
+
+  void General(const ShadedVoxel& voxel, float out[4]) const
   {
-    const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
-    const float* s = &t.shading[static_cast<std::size_t>(t.shadingStride) * row];
-    if (t.shadingStride == 2)
+    const CompositeTables& t = this->Tables;
+    const float opacity = this->Opacity[voxel.opacity];
+    if (opacity <= 0)
     {
-      for (float& channel : rgb)
+      out[0] = out[1] = out[2] = out[3] = 0;
+      return;
+    }
+    constexpr float toUnit = 1.0f / 255.0f;
+    float rgb[3] = { voxel.colour[0] * toUnit, voxel.colour[1] * toUnit, voxel.colour[2] * toUnit };
+    if (t.shade && !t.phong)
+    {
+      const std::size_t row = voxel.normal == NoNormal ? NormalCodes : voxel.normal;
+      const float* s = this->Shading + static_cast<std::size_t>(t.shadingStride) * row;
+      if (t.shadingStride == 2)
       {
-        channel = std::min(channel * s[0] + s[1], 1.0f);
+        for (float& channel : rgb)
+        {
+          channel = std::min(channel * s[0] + s[1], 1.0f);
+        }
+      }
+      else
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+        }
       }
     }
-    else
+    else if (t.shade)
     {
+      float factor[3];
+      float specular[3];
+      AmbientTerms(t.lighting, factor, specular);
+      if (voxel.normal != NoNormal)
+      {
+        float g[3];
+        DecodeNormal(voxel.normal, g);
+        PhongTerms(t, g, factor, specular);
+      }
       for (int c = 0; c < 3; ++c)
       {
-        rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
+        rgb[c] = std::min(rgb[c] * factor[c] + specular[c], 1.0f);
       }
     }
+    out[0] = rgb[0] * opacity;
+    out[1] = rgb[1] * opacity;
+    out[2] = rgb[2] * opacity;
+    out[3] = opacity;
   }
-  else if (t.shade)
-  {
-    float factor[3];
-    float specular[3];
-    AmbientTerms(t.lighting, factor, specular);
-    if (voxel->normal != NoNormal)
-    {
-      float g[3];
-      DecodeNormal(voxel->normal, g);
-      PhongTerms(t, g, factor, specular);
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      rgb[c] = std::min(rgb[c] * factor[c] + specular[c], 1.0f);
-    }
-  }
-  out[0] = rgb[0] * opacity;
-  out[1] = rgb[1] * opacity;
-  out[2] = rgb[2] * opacity;
-  out[3] = opacity;
-}
 
+  const CompositeTables& Tables;
+  const float* Opacity;
+  const float* Shading;
+  bool Shade;
+  bool OneRegister;
+};
 
 // Compositing of one blend, as a policy for the band loop below.
 struct CompositePolicy
@@ -133,7 +178,23 @@ struct CompositePolicy
   static constexpr int Channels = 4;
   const CompositeTables& tables;
   float Empty() const { return 0.0f; }
-  void Load(const ShadedVoxel& voxel, float* cell) const { ShadeVoxel(this->tables, &voxel, cell); }
+  // `count` cells of no voxel (gaps are short: a call to memset costs more).
+  void Clear(float* cells, int count) const
+  {
+    for (int n = 0; n < count; ++n)
+    {
+#if defined(__SSE2__)
+      _mm_storeu_ps(cells + 4 * n, _mm_setzero_ps());
+#else
+      std::fill(cells + 4 * n, cells + 4 * n + 4, 0.0f);
+#endif
+    }
+  }
+  // Cells for `count` consecutive voxels.
+  void Load(const ShadedVoxel* voxels, int count, float* cells) const
+  {
+    VoxelShader(this->tables)(voxels, count, cells);
+  }
   // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
   // the pixel; true once the pixel is saturated.
   bool Sample(const float* a, const float* b, const float* w, float* pixel) const
@@ -177,7 +238,14 @@ struct ExtremePolicy
     return this->maximum ? -std::numeric_limits<float>::infinity()
                          : std::numeric_limits<float>::infinity();
   }
-  void Load(ScalarVoxel voxel, float* cell) const { *cell = static_cast<float>(voxel); }
+  void Clear(float* cells, int count) const { std::fill(cells, cells + count, this->Empty()); }
+  void Load(const ScalarVoxel* voxels, int count, float* cells) const
+  {
+    for (int n = 0; n < count; ++n)
+    {
+      cells[n] = static_cast<float>(voxels[n]);
+    }
+  }
   bool Sample(const float* a, const float* b, const float* w, float* pixel) const
   {
     float sample = 0;
@@ -270,10 +338,10 @@ inline void ResetBandWorkspace(const BandContext<Policy>& c, double* work)
   for (int b = 0; b < 2; ++b)
   {
     ws.rows[b].resize(static_cast<std::size_t>(C) * (ni + 2));
-    ws.stamps[b].assign(static_cast<std::size_t>(ni) + 2, 0);
+    // Disjoint ranges of the ni + 2 cells, apart: at most half of them, rounded up.
+    ws.shaded[b].ranges.resize(static_cast<std::size_t>(ni) / 2 + 2);
     ws.rowIndex[b] = NoRow;
   }
-  ws.lastStamp = 0;
   if (work)
   {
     std::fill(work, work + rows, 0.0);
@@ -297,72 +365,114 @@ inline const VoxelRun* FirstRunEndingAfter(const VoxelRun* run, const VoxelRun* 
 }
 
 // The buffer of voxel scanline j in this slice (j & 1: a pair's two scanlines never share one),
-// with a new stamp when it held another scanline, which invalidates every cell at once.
+// its shaded ranges dropped when it held another scanline; one more user either way.
 inline int BufferOfRow(ScanlineWorkspace& ws, int j)
 {
   const int b = j & 1;
+  ShadedCells& shaded = ws.shaded[b];
   if (ws.rowIndex[b] != j)
   {
     ws.rowIndex[b] = j;
-    if (++ws.lastStamp == 0) // wrapped: no cell may keep an old stamp
-    {
-      for (std::vector<std::uint32_t>& stamps : ws.stamps)
-      {
-        std::fill(stamps.begin(), stamps.end(), 0);
-      }
-      ws.lastStamp = 1;
-    }
-    ws.rowStamp[b] = ws.lastStamp;
+    shaded.count = 0;
+    shaded.users = 0;
   }
+  ++shaded.users;
+  shaded.cursor = 0;
+  shaded.requested = std::numeric_limits<int>::min();
   return b;
 }
 
 // One voxel scanline of a pair as the pixel walk sees it: the first run that ends after the
-// current pixel's first voxel, and the shaded cells (cell i + 1 holds voxel i).
+// current pixel's first voxel, the shaded cells (cell i + 1 holds voxel i) and which are valid.
 struct RowCursor
 {
   const VoxelRun* run;
   const VoxelRun* end;
   float* cells;
-  std::uint32_t* stamps;
-  std::uint32_t stamp;
+  ShadedCells* shaded;
 };
 
-// Makes the cells of voxels [from, to) of a row valid: shaded from the voxel where a run stores
-// it, else the policy's empty value. Each voxel is shaded once per slice, when the first open
-// pixel reads it, so voxels behind saturated pixels are never touched. The row's cursor is the
-// first run ending after `from`.
+// Shades the cells of voxels [from, to) of a row, from the voxel where a run stores it, else
+// the policy's empty value: tight loops over the gaps and the runs' voxels. The row's cursor is
+// a run that ends after `from` or before it.
 template <typename Policy>
-inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxels,
-  const RowCursor& row, int from, int to, std::uint64_t& shaded)
+__attribute__((always_inline)) inline void ShadeRange(const Policy& policy,
+  const typename Policy::Voxel* voxels, const RowCursor& row, int from, int to,
+  std::uint64_t& shaded)
 {
   constexpr int C = Policy::Channels;
   const VoxelRun* run = row.run;
-  for (int i = from; i < to; ++i)
+  int i = from;
+  while (i < to)
   {
-    const int cell = i + 1;
-    if (row.stamps[cell] == row.stamp)
-    {
-      continue;
-    }
-    row.stamps[cell] = row.stamp;
     while (run != row.end && static_cast<int>(run->end) <= i)
     {
       ++run;
     }
-    if (run != row.end && static_cast<int>(run->begin) <= i)
+    const int gapEnd = run == row.end ? to : std::min(to, static_cast<int>(run->begin));
+    if (i < gapEnd)
     {
-      policy.Load(voxels[run->offset + (i - static_cast<int>(run->begin))], row.cells + C * cell);
-      ++shaded;
+      policy.Clear(row.cells + C * (i + 1), gapEnd - i);
+      i = gapEnd;
+    }
+    if (i >= to)
+    {
+      break;
+    }
+    const int runEnd = std::min(to, static_cast<int>(run->end));
+    policy.Load(voxels + run->offset + (i - static_cast<int>(run->begin)), runEnd - i,
+      row.cells + C * (i + 1));
+    shaded += static_cast<std::uint64_t>(runEnd - i);
+    i = runEnd;
+  }
+}
+
+// Makes the cells of voxels [from, to) of a row valid, each shaded once per slice, when the
+// first open pixel reads it, so voxels behind saturated pixels are never touched. A user asks
+// in ascending order (consecutive stretches may overlap by one cell); the buffer's first user
+// records what it shaded, a later one shades only what lies between those ranges.
+template <typename Policy>
+inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxels,
+  const RowCursor& row, int from, int to, std::uint64_t& shaded)
+{
+  ShadedCells& cells = *row.shaded;
+  from = std::max(from, cells.requested);
+  if (from >= to)
+  {
+    return;
+  }
+  cells.requested = to;
+  if (cells.users == 1)
+  {
+    ShadeRange(policy, voxels, row, from, to, shaded);
+    std::pair<int, int>* ranges = cells.ranges.data();
+    if (cells.count > 0 && ranges[cells.count - 1].second == from)
+    {
+      ranges[cells.count - 1].second = to;
     }
     else
     {
-      const float empty = policy.Empty();
-      for (int channel = 0; channel < C; ++channel)
-      {
-        row.cells[C * cell + channel] = empty;
-      }
+      ranges[cells.count++] = { from, to };
     }
+    return;
+  }
+  const std::pair<int, int>* ranges = cells.ranges.data();
+  const std::size_t count = cells.count;
+  int i = from;
+  while (i < to)
+  {
+    while (cells.cursor < count && ranges[cells.cursor].second <= i)
+    {
+      ++cells.cursor;
+    }
+    if (cells.cursor < count && ranges[cells.cursor].first <= i)
+    {
+      i = ranges[cells.cursor].second; // shaded by the first user
+      continue;
+    }
+    const int gapEnd = cells.cursor < count ? std::min(to, ranges[cells.cursor].first) : to;
+    ShadeRange(policy, voxels, row, i, gapEnd, shaded);
+    i = gapEnd;
   }
 }
 
@@ -399,7 +509,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   {
     const int j = j0 + q;
     const int b = BufferOfRow(ws, j);
-    rows[q] = { nullptr, nullptr, ws.rows[b].data(), ws.stamps[b].data(), ws.rowStamp[b] };
+    rows[q] = { nullptr, nullptr, ws.rows[b].data(), &ws.shaded[b] };
     if (j >= 0 && j < nj)
     {
       rows[q].run = encoded.RunsBegin(j, k);

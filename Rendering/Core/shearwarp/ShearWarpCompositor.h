@@ -15,6 +15,7 @@
 #include "shearwarp/ShearWarpFactorization.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace accelvolume
@@ -66,18 +67,29 @@ struct ScanlineCounters
   }
 };
 
+// The cells of a voxel scanline's buffer shaded in this slice. A buffer serves two intermediate
+// scanlines in turn, each asking for cells in ascending order: the first one's shaded ranges are
+// kept (ascending, disjoint), so that the second shades only the cells between them.
+struct ShadedCells
+{
+  // Cells [first, last) of voxels, by the first user: the first `count` entries (room for every
+  // range a scanline can hold is made once per band).
+  std::vector<std::pair<int, int>> ranges;
+  std::size_t count = 0;
+  std::size_t cursor = 0; // a later user's position in ranges
+  int requested = 0;      // the current user's cells so far end here
+  int users = 0;          // intermediate scanlines that used the buffer
+};
+
 // Scratch space per worker: skip links per scanline, open pixels per scanline, and the two
-// voxel scanlines of the current slice (voxel scanline j in buffer j & 1), shaded on first use:
-// a cell is valid while its stamp equals its buffer's.
+// voxel scanlines of the current slice (voxel scanline j in buffer j & 1), shaded on first use.
 struct ScanlineWorkspace
 {
   std::vector<std::int32_t> next;
   std::vector<std::int32_t> open;
   std::vector<float> rows[2];
-  std::vector<std::uint32_t> stamps[2];
-  int rowIndex[2] = { 0, 0 };           // voxel scanline each buffer holds (set by the band loop)
-  std::uint32_t rowStamp[2] = { 0, 0 }; // the stamp of that scanline's valid cells
-  std::uint32_t lastStamp = 0;
+  int rowIndex[2] = { 0, 0 }; // voxel scanline each buffer holds (set by the band loop)
+  ShadedCells shaded[2];
 };
 
 // Composites every slice, front to back and slice by slice (the encoding is streamed in
