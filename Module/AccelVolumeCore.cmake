@@ -29,6 +29,7 @@ set(_av_core_sources
   shearwarp/RunLengthTranspose
   shearwarp/ShearWarpEncodings
   shearwarp/ShearWarpCompositor
+  shearwarp/ShearWarpShading
   shearwarp/ShearWarpEngine
   shearwarp/ShearWarpFactorization
   shearwarp/ShearWarpPartition)
