@@ -177,7 +177,6 @@ struct CompositePolicy
   using Voxel = ShadedVoxel;
   static constexpr int Channels = 4;
   const CompositeTables& tables;
-  float Empty() const { return 0.0f; }
   // `count` cells of no voxel (gaps are short: a call to memset costs more).
   void Clear(float* cells, int count) const
   {
