@@ -92,6 +92,11 @@ trap - EXIT
 
 echo
 echo "test.sh: total $((SECONDS - t0)) s"
+fuzz_findings="${ACCELVOLUME_FUZZ_BUILD_DIR:-$build-fuzz}/findings.txt"
+if [ "${ACCELVOLUME_FUZZ:-1}" != "0" ] && [ -s "$fuzz_findings" ]; then
+  echo "test.sh: the fuzzer's findings ($fuzz_findings):" >&2
+  cat "$fuzz_findings" >&2
+fi
 if [ "${#failed[@]}" -ne 0 ]; then
   printf 'test.sh: FAILED: %s\n' "${failed[@]}" >&2
   exit 1
