@@ -141,6 +141,59 @@ bool SameVoxel(const ShadedVoxel& a, const ShadedVoxel& b)
     a.colour[1] == b.colour[1] && a.colour[2] == b.colour[2];
 }
 
+// AssignPalette on `encoded` (classified by c for axis): given exactly when no voxel has a normal;
+// then each voxel's entry is its opacity and colour, the entries ascend and differ, a second
+// call refuses (unless there is no voxel), and a transposed palette encoding equals the other
+// axis's own palette encoding.
+void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int axis, bool dense,
+  const RunLengthVolume<ShadedVoxel>& encoded)
+{
+  auto key = [](const ShadedVoxel& v)
+  { return std::uint64_t(v.opacity) << 24 | v.colour[0] << 16 | v.colour[1] << 8 | v.colour[2]; };
+  RunLengthVolume<ShadedVoxel> paletted = encoded;
+  const bool normalFree = std::all_of(encoded.voxels.begin(), encoded.voxels.end(),
+    [](const ShadedVoxel& v) { return v.normal == NoNormal; });
+  ASSERT_EQ(AssignPalette(paletted, UnevenThreadedFor(3)), normalFree);
+  if (!normalFree)
+  {
+    ExpectSameArrays(encoded, paletted, SameVoxel); // unchanged
+    EXPECT_TRUE(paletted.palette.empty());
+    return;
+  }
+  EXPECT_EQ(AssignPalette(paletted, UnevenThreadedFor(3)),
+    paletted.voxels.empty()); // nothing to index: harmless
+  for (std::size_t n = 0; n < paletted.palette.size(); ++n)
+  {
+    EXPECT_EQ(paletted.palette[n].normal, NoNormal);
+    if (n > 0)
+    {
+      ASSERT_LT(key(paletted.palette[n - 1]), key(paletted.palette[n]));
+    }
+  }
+  ASSERT_EQ(paletted.voxels.size(), encoded.voxels.size());
+  for (std::size_t n = 0; n < encoded.voxels.size(); ++n)
+  {
+    ASSERT_LT(paletted.voxels[n].normal, paletted.palette.size());
+    ShadedVoxel entry = paletted.palette[paletted.voxels[n].normal];
+    ASSERT_TRUE(SameVoxel(entry, encoded.voxels[n])) << "voxel " << n;
+    entry.normal = paletted.voxels[n].normal;
+    ASSERT_TRUE(SameVoxel(entry, paletted.voxels[n])) << "voxel " << n;
+  }
+  const int other = (axis + 1) % 3;
+  RunLengthVolume<ShadedVoxel> direct;
+  RunLengthVolume<ShadedVoxel> transposed;
+  std::string error;
+  ASSERT_TRUE(EncodeComposite(view, c, other, dense, UnevenThreadedFor(2), direct, error));
+  ASSERT_TRUE(AssignPalette(direct, UnevenThreadedFor(3)));
+  ASSERT_TRUE(TransposeEncoding(paletted, other, transposed, error)) << error;
+  ExpectSameArrays(direct, transposed, SameVoxel);
+  ASSERT_EQ(direct.palette.size(), transposed.palette.size());
+  for (std::size_t n = 0; n < direct.palette.size(); ++n)
+  {
+    EXPECT_TRUE(SameVoxel(direct.palette[n], transposed.palette[n]));
+  }
+}
+
 template <typename T>
 void CompositeTrial(std::mt19937& random, double low, double high, Totals& totals)
 {
@@ -237,6 +290,7 @@ void CompositeTrial(std::mt19937& random, double low, double high, Totals& total
     }
     ExpectSameArrays(direct, transposed, SameVoxel);
   }
+  ExpectPalette(volume.view, c, axis, dense, encoded);
 }
 
 } // namespace
@@ -405,4 +459,39 @@ TEST(RunLengthVolume, BadInputFails)
   error.clear();
   EXPECT_FALSE(EncodeComposite(empty, c, 0, false, SerialParallelFor, encoded, error));
   EXPECT_FALSE(error.empty());
+}
+
+TEST(RunLengthVolume, PaletteRefusesMoreThan65535DistinctVoxels)
+{
+  // Two full scanlines of 65536 distinct voxels in all (opacity and red vary), then one fewer.
+  for (const int count : { 65536, 65535 })
+  {
+    const int half = 32768;
+    RunLengthVolume<ShadedVoxel> encoded;
+    encoded.axis = 2;
+    encoded.sliceDims[0] = half;
+    encoded.sliceDims[1] = 2;
+    encoded.sliceDims[2] = 1;
+    encoded.rowStart = { 0, 1, 2 };
+    encoded.runs = { VoxelRun{ 0, half, 0 },
+      VoxelRun{ 0, static_cast<std::uint16_t>(count - half), static_cast<std::uint32_t>(half) } };
+    for (int n = 0; n < count; ++n)
+    {
+      const auto opacity = static_cast<std::uint16_t>(1 + n / 256);
+      const auto red = static_cast<std::uint8_t>(n % 256);
+      encoded.voxels.push_back(ShadedVoxel{ opacity, NoNormal, { red, 7, 9, 0 } });
+    }
+    const std::vector<ShadedVoxel> before = encoded.voxels;
+    const bool assigned = AssignPalette(encoded, UnevenThreadedFor(3));
+    EXPECT_EQ(assigned, count == 65535) << count;
+    EXPECT_EQ(encoded.palette.size(), assigned ? 65535u : 0u);
+    for (int n = 0; n < count; ++n)
+    {
+      const ShadedVoxel& got =
+        assigned ? encoded.palette[encoded.voxels[n].normal] : encoded.voxels[n];
+      ASSERT_EQ(got.opacity, before[n].opacity);
+      ASSERT_EQ(got.colour[0], before[n].colour[0]);
+      ASSERT_EQ(got.normal, NoNormal);
+    }
+  }
 }

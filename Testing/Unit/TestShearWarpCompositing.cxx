@@ -243,6 +243,7 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
   std::mt19937 random(8080);
   double worst = 0, worstTerminated = 0;
   std::uint64_t skipped = 0, sparseSamples = 0, denseSamples = 0, closePixels = 0;
+  int palettes = 0;
   for (int trial = 0; trial < 24; ++trial)
   {
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -331,6 +332,29 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
     t.terminationLinks = false;
     ScanlineCounters noLinks;
     EXPECT_TRUE(BitIdentical(CompositeEachScanline(sparse, f, t, noLinks), plain));
+    if (!t.shade)
+    {
+      // Unshaded, the palette encoding (colours looked up by index, the renderer's way for
+      // unshaded encodings) gives the same bits, terminated or not, on uneven threads too.
+      RunLengthVolume<ShadedVoxel> paletted = sparse;
+      for (ShadedVoxel& voxel : paletted.voxels)
+      {
+        voxel.normal = NoNormal; // unshaded encodings have none
+      }
+      ASSERT_TRUE(AssignPalette(paletted, UnevenThreadedFor(3)));
+      CompositeTables withPalette = t;
+      BuildPaletteColours(paletted.palette, withPalette, UnevenThreadedFor(3));
+      EXPECT_EQ(withPalette.paletteColours.size(), 4 * paletted.palette.size());
+      withPalette.terminationLinks = true;
+      EXPECT_TRUE(BitIdentical(bands(paletted, withPalette), terminated)) << "palette";
+      withPalette.earlyTermination = false;
+      withPalette.terminationLinks = false;
+      ScanlineCounters paletteCounters;
+      EXPECT_TRUE(
+        BitIdentical(CompositeEachScanline(paletted, f, withPalette, paletteCounters), plain))
+        << "palette, no termination";
+      ++palettes;
+    }
   }
   std::printf("[ measured ] composite scanline vs naive: max |difference| %.3g; with early "
               "termination %.3g from the full naive image; samples sparse %llu dense %llu; "
@@ -340,4 +364,5 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
     static_cast<unsigned long long>(closePixels));
   EXPECT_LT(sparseSamples, denseSamples);
   EXPECT_GT(skipped, 0u);
+  EXPECT_GT(palettes, 0);
 }

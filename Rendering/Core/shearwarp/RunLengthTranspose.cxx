@@ -62,6 +62,7 @@ bool TransposeEncoding(
   }
   to.axis = axis;
   to.dense = from.dense;
+  to.palette = from.palette; // the voxels keep their indices
   to.sliceDims[0] = dims[(axis + 1) % 3];
   to.sliceDims[1] = dims[(axis + 2) % 3];
   to.sliceDims[2] = dims[axis];

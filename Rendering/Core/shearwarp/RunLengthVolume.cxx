@@ -327,6 +327,82 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& c,
   return ok;
 }
 
+namespace
+{
+// What a palette entry is told apart by: opacity and colour.
+std::uint64_t PaletteKey(const ShadedVoxel& voxel)
+{
+  return static_cast<std::uint64_t>(voxel.opacity) << 24 |
+    static_cast<std::uint64_t>(voxel.colour[0]) << 16 |
+    static_cast<std::uint64_t>(voxel.colour[1]) << 8 | voxel.colour[2];
+}
+}
+
+bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel)
+{
+  constexpr std::size_t MaximumEntries = NoNormal; // indices 0..65534: NoNormal stays apart
+  if (!encoded.palette.empty())
+  {
+    return false;
+  }
+  // Open addressing over twice the most entries allowed: key + 1 (0: empty slot), then index.
+  constexpr std::size_t Slots = std::size_t(1) << 17;
+  std::vector<std::uint64_t> keys(Slots, 0);
+  std::vector<std::uint16_t> index(Slots, 0);
+  auto slotOf = [&keys](std::uint64_t key)
+  {
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 47);
+    while (keys[slot] != 0 && keys[slot] != key + 1)
+    {
+      slot = (slot + 1) & (Slots - 1);
+    }
+    return slot;
+  };
+  std::vector<std::uint64_t> distinct;
+  for (const ShadedVoxel& voxel : encoded.voxels)
+  {
+    if (voxel.normal != NoNormal)
+    {
+      return false;
+    }
+    const std::uint64_t key = PaletteKey(voxel);
+    const std::size_t slot = slotOf(key);
+    if (keys[slot] == 0)
+    {
+      if (distinct.size() == MaximumEntries)
+      {
+        return false;
+      }
+      keys[slot] = key + 1;
+      distinct.push_back(key);
+    }
+  }
+  // Indices in key order, so that the palette never depends on how the encoding was built.
+  std::sort(distinct.begin(), distinct.end());
+  encoded.palette.resize(distinct.size());
+  for (std::size_t n = 0; n < distinct.size(); ++n)
+  {
+    index[slotOf(distinct[n])] = static_cast<std::uint16_t>(n);
+    ShadedVoxel& entry = encoded.palette[n];
+    entry.opacity = static_cast<std::uint16_t>(distinct[n] >> 24);
+    entry.normal = NoNormal;
+    entry.colour[0] = static_cast<std::uint8_t>(distinct[n] >> 16);
+    entry.colour[1] = static_cast<std::uint8_t>(distinct[n] >> 8);
+    entry.colour[2] = static_cast<std::uint8_t>(distinct[n]);
+    entry.colour[3] = 0;
+  }
+  parallel(encoded.voxels.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t n = begin; n < end; ++n)
+      {
+        ShadedVoxel& voxel = encoded.voxels[n];
+        voxel.normal = index[slotOf(PaletteKey(voxel))];
+      }
+    });
+  return true;
+}
+
 bool EncodeExtreme(const VolumeView& volume, double rangeMin, double rangeMax, bool maximum,
   std::uint16_t threshold, int axis, bool dense, const ParallelFor& parallel,
   RunLengthVolume<ScalarVoxel>& encoded, std::string& error)

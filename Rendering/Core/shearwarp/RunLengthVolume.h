@@ -66,6 +66,9 @@ struct RunLengthVolume
   std::vector<std::uint32_t> rowStart; // runs of scanline (j, k): [rowStart[r], rowStart[r + 1]), r = j + nj k
   std::vector<VoxelRun> runs;
   std::vector<Voxel> voxels;
+  // Unshaded composite encodings (AssignPalette): the distinct classified voxels, each with
+  // normal NoNormal; a stored voxel's normal is then its index here. Empty: no palette.
+  std::vector<Voxel> palette;
 
   std::size_t Row(int j, int k) const { return static_cast<std::size_t>(j) + static_cast<std::size_t>(this->sliceDims[1]) * k; }
   const VoxelRun* RunsBegin(int j, int k) const { return this->runs.data() + this->rowStart[this->Row(j, k)]; }
@@ -73,7 +76,7 @@ struct RunLengthVolume
   std::size_t Bytes() const
   {
     return this->rowStart.size() * sizeof(std::uint32_t) + this->runs.size() * sizeof(VoxelRun) +
-      this->voxels.size() * sizeof(Voxel);
+      (this->voxels.size() + this->palette.size()) * sizeof(Voxel);
   }
   void Clear() { *this = RunLengthVolume(); }
 };
@@ -98,6 +101,13 @@ struct CompositeClassification
 bool EncodeComposite(const VolumeView& volume, const CompositeClassification& classification,
   int axis, bool dense, const ParallelFor& parallel, RunLengthVolume<ShadedVoxel>& encoded,
   std::string& error);
+
+// For an encoding without normals (unshaded): lists its distinct classified voxels (opacity and
+// colour) in `palette`, in ascending order of (opacity, colour), and stores each voxel's index
+// there in its normal field, so that compositing looks up one precomputed colour per voxel
+// instead of converting it. False, and the encoding unchanged, when it has normals, a palette
+// already, or more than 65535 distinct voxels. The indices are stored in parallel.
+bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel);
 
 // Quantized scalar for MIP / MinIP: round(65535 (s - rangeMin) / (rangeMax - rangeMin)), clamped.
 // Voxels that cannot decide a visible pixel are left out: for MIP those below `threshold`

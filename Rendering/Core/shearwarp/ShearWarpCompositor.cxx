@@ -60,6 +60,7 @@ public:
     , Opacity(t.opacity.data())
     , Shading(t.shading.data())
     , Shade(t.shade)
+    , Palette(t.shade || t.paletteColours.empty() ? nullptr : t.paletteColours.data())
     // Unshaded and white-light table shading (the common cases) take one SSE register.
     , OneRegister(!t.shade || (!t.phong && t.shadingStride == 2))
   {
@@ -67,6 +68,15 @@ public:
 
   void operator()(const ShadedVoxel* voxel, int count, float* out) const
   {
+    if (this->Palette)
+    {
+      for (int n = 0; n < count; ++n, out += 4)
+      {
+        std::memcpy(
+          out, this->Palette + 4 * static_cast<std::size_t>(voxel[n].normal), 4 * sizeof(float));
+      }
+      return;
+    }
 #if defined(__SSE2__)
     if (this->OneRegister)
     {
@@ -168,8 +178,31 @@ private:
   const float* Opacity;
   const float* Shading;
   bool Shade;
+  const float* Palette; // unshaded palette encodings: colours by index (the voxel's normal field)
   bool OneRegister;
 };
+
+}
+
+void BuildPaletteColours(
+  const std::vector<ShadedVoxel>& palette, CompositeTables& tables, const ParallelFor& parallel)
+{
+  tables.paletteColours.clear();
+  if (tables.shade || palette.empty())
+  {
+    return;
+  }
+  std::vector<float> colours(4 * palette.size());
+  // Converted by the same code as a voxel without a palette, so the same values.
+  const VoxelShader shader(tables);
+  parallel(palette.size(),
+    [&](std::size_t begin, std::size_t end)
+    { shader(palette.data() + begin, static_cast<int>(end - begin), colours.data() + 4 * begin); });
+  tables.paletteColours = std::move(colours);
+}
+
+namespace
+{
 
 // Compositing of one blend, as a policy for the band loop below.
 struct CompositePolicy

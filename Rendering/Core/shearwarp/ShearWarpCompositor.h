@@ -39,6 +39,10 @@ struct CompositeTables
   LightModel lighting;
   float lightingPoint[3] = { 0, 0, 0 }; // eye space: where positional lights are evaluated
   float normalMatrix[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  // Unshaded, with an encoding that has a palette (AssignPalette): each entry's premultiplied
+  // RGBA for this frame (4 floats per entry, the values its voxels would be converted to).
+  // Empty: every voxel's colour is converted as it is read.
+  std::vector<float> paletteColours;
   bool earlyTermination = true;
   float terminationThreshold = 0.99f;
   // Termination by skip links over saturated pixels; false: none is ever skipped (the baseline).
@@ -53,6 +57,11 @@ void PhongTerms(const CompositeTables& tables, const float g[3], float factor[3]
 // Lacroute's shading table over the quantized normals (tables.shading and shadingStride), rows
 // built in parallel (the same values for any thread count).
 void BuildShadingTable(CompositeTables& tables, const ParallelFor& parallel);
+
+// tables.paletteColours for the palette of an unshaded encoding (tables.opacity set; cleared
+// when tables.shade or the palette is empty), in parallel.
+void BuildPaletteColours(
+  const std::vector<ShadedVoxel>& palette, CompositeTables& tables, const ParallelFor& parallel);
 
 struct ScanlineCounters
 {

@@ -201,6 +201,11 @@ bool ShearWarpRenderer::Internals::UpdateCompositeEncoding(const VolumeView& vol
     {
       return false;
     }
+    if (!classification.normals)
+    {
+      AssignPalette(
+        slot.encoded, encodeParallel); // none when too many distinct voxels: converted per voxel
+    }
     slot.key = key;
     stats.encodeSeconds = Seconds(encodeStart);
   }

@@ -250,6 +250,10 @@ void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
   {
     BuildShadingTable(t, parallel);
   }
+  // Every frame: the opacity table changes with the ray length, and the entries are few.
+  static const std::vector<ShadedVoxel> noPalette;
+  BuildPaletteColours(
+    this->compositeSlot ? this->compositeSlot->encoded.palette : noPalette, t, parallel);
 }
 
 void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
