@@ -27,8 +27,8 @@ namespace accelvolume
 inline constexpr int OpacityLevels = 4095;
 
 // A classified voxel for compositing: opacity for a unit sample distance (0..OpacityLevels),
-// quantized gradient direction (NoNormal when the gradient vanishes) and colour (8 bits per
-// channel).
+// quantized gradient direction (NoNormal when the gradient vanishes; in an unshaded encoding
+// with a palette, the index of the voxel's palette entry) and colour (8 bits per channel).
 struct ShadedVoxel
 {
   std::uint16_t opacity;
