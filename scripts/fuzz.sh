@@ -102,7 +102,8 @@ for entry in "${targets[@]}"; do
         reproduced=1
       fi
     done < <(find "$artifacts" -maxdepth 1 -type f -newer "$artifacts/.started" \
-      \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | sort)
+      \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) \
+      ! -name '*.replay.log' | sort)
     if [ "$reproduced" -eq 1 ] || [ "$reproducers" -eq 0 ]; then
       failed+=("$target")
     else
