@@ -2,6 +2,7 @@
 #include "shearwarp/RunLengthVolume.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -336,53 +337,108 @@ std::uint64_t PaletteKey(const ShadedVoxel& voxel)
     static_cast<std::uint64_t>(voxel.colour[0]) << 16 |
     static_cast<std::uint64_t>(voxel.colour[1]) << 8 | voxel.colour[2];
 }
-}
 
-bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel)
+// Palette indices 0..65534: NoNormal stays apart.
+constexpr std::size_t MaximumPaletteEntries = NoNormal;
+
+// A set of palette keys with an index each: open addressing over twice the most entries allowed.
+class PaletteKeySet
 {
-  constexpr std::size_t MaximumEntries = NoNormal; // indices 0..65534: NoNormal stays apart
-  if (!encoded.palette.empty())
+public:
+  PaletteKeySet()
+    : SlotKeys(Slots, 0)
+    , Index(Slots, 0)
   {
-    return false;
   }
-  // Open addressing over twice the most entries allowed: key + 1 (0: empty slot), then index.
-  constexpr std::size_t Slots = std::size_t(1) << 17;
-  std::vector<std::uint64_t> keys(Slots, 0);
-  std::vector<std::uint16_t> index(Slots, 0);
-  auto slotOf = [&keys](std::uint64_t key)
+  // False when the key is new and the set already holds MaximumPaletteEntries keys.
+  bool Insert(std::uint64_t key)
+  {
+    const std::size_t slot = this->SlotOf(key);
+    if (this->SlotKeys[slot] == 0)
+    {
+      if (this->InsertedKeys.size() == MaximumPaletteEntries)
+      {
+        return false;
+      }
+      this->SlotKeys[slot] = key + 1;
+      this->InsertedKeys.push_back(key);
+    }
+    return true;
+  }
+  void SetIndex(std::uint64_t key, std::uint16_t index) { this->Index[this->SlotOf(key)] = index; }
+  std::uint16_t IndexOf(std::uint64_t key) const { return this->Index[this->SlotOf(key)]; }
+  const std::vector<std::uint64_t>& Distinct() const { return this->InsertedKeys; }
+
+private:
+  static constexpr std::size_t Slots = std::size_t(1) << 17;
+  std::size_t SlotOf(std::uint64_t key) const
   {
     std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 47);
-    while (keys[slot] != 0 && keys[slot] != key + 1)
+    while (
+      this->SlotKeys[slot] != 0 && this->SlotKeys[slot] != key + 1) // key + 1: 0 is an empty slot
     {
       slot = (slot + 1) & (Slots - 1);
     }
     return slot;
-  };
-  std::vector<std::uint64_t> distinct;
-  for (const ShadedVoxel& voxel : encoded.voxels)
+  }
+  std::vector<std::uint64_t> SlotKeys;
+  std::vector<std::uint16_t> Index;
+  std::vector<std::uint64_t> InsertedKeys; // in insertion order
+};
+}
+
+bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel)
+{
+  if (!encoded.palette.empty())
   {
-    if (voxel.normal != NoNormal)
+    return false;
+  }
+  // The distinct keys of fixed parts of the voxels in parallel, then merged: the set does not
+  // depend on how the parts were shared out.
+  constexpr std::size_t Parts = 16;
+  const std::size_t count = encoded.voxels.size();
+  std::vector<std::vector<std::uint64_t>> partKeys(Parts);
+  std::atomic<bool> refused{ false };
+  parallel(Parts,
+    [&](std::size_t begin, std::size_t end)
     {
-      return false;
-    }
-    const std::uint64_t key = PaletteKey(voxel);
-    const std::size_t slot = slotOf(key);
-    if (keys[slot] == 0)
+      for (std::size_t part = begin; part < end && !refused; ++part)
+      {
+        PaletteKeySet set;
+        for (std::size_t n = count * part / Parts; n < count * (part + 1) / Parts; ++n)
+        {
+          const ShadedVoxel& voxel = encoded.voxels[n];
+          if (voxel.normal != NoNormal || !set.Insert(PaletteKey(voxel)))
+          {
+            refused = true; // normals (a shaded encoding) or too many distinct voxels
+            break;
+          }
+        }
+        partKeys[part] = set.Distinct();
+      }
+    });
+  if (refused)
+  {
+    return false;
+  }
+  PaletteKeySet all;
+  for (const std::vector<std::uint64_t>& keys : partKeys)
+  {
+    for (std::uint64_t key : keys)
     {
-      if (distinct.size() == MaximumEntries)
+      if (!all.Insert(key))
       {
         return false;
       }
-      keys[slot] = key + 1;
-      distinct.push_back(key);
     }
   }
   // Indices in key order, so that the palette never depends on how the encoding was built.
+  std::vector<std::uint64_t> distinct = all.Distinct();
   std::sort(distinct.begin(), distinct.end());
   encoded.palette.resize(distinct.size());
   for (std::size_t n = 0; n < distinct.size(); ++n)
   {
-    index[slotOf(distinct[n])] = static_cast<std::uint16_t>(n);
+    all.SetIndex(distinct[n], static_cast<std::uint16_t>(n));
     ShadedVoxel& entry = encoded.palette[n];
     entry.opacity = static_cast<std::uint16_t>(distinct[n] >> 24);
     entry.normal = NoNormal;
@@ -391,13 +447,13 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
     entry.colour[2] = static_cast<std::uint8_t>(distinct[n]);
     entry.colour[3] = 0;
   }
-  parallel(encoded.voxels.size(),
+  parallel(count,
     [&](std::size_t begin, std::size_t end)
     {
       for (std::size_t n = begin; n < end; ++n)
       {
         ShadedVoxel& voxel = encoded.voxels[n];
-        voxel.normal = index[slotOf(PaletteKey(voxel))];
+        voxel.normal = all.IndexOf(PaletteKey(voxel));
       }
     });
   return true;
