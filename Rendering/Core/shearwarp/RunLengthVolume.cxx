@@ -341,13 +341,13 @@ std::uint64_t PaletteKey(const ShadedVoxel& voxel)
 // Palette indices 0..65534: NoNormal stays apart.
 constexpr std::size_t MaximumPaletteEntries = NoNormal;
 
-// A set of palette keys with an index each: open addressing over twice the most entries allowed.
+// A set of palette keys: open addressing over twice the most entries allowed.
 class PaletteKeySet
 {
 public:
+  static constexpr std::size_t Slots = std::size_t(1) << 17;
   PaletteKeySet()
     : SlotKeys(Slots, 0)
-    , Index(Slots, 0)
   {
   }
   // False when the key is new and the set already holds MaximumPaletteEntries keys.
@@ -365,24 +365,21 @@ public:
     }
     return true;
   }
-  void SetIndex(std::uint64_t key, std::uint16_t index) { this->Index[this->SlotOf(key)] = index; }
-  std::uint16_t IndexOf(std::uint64_t key) const { return this->Index[this->SlotOf(key)]; }
-  const std::vector<std::uint64_t>& Distinct() const { return this->InsertedKeys; }
-
-private:
-  static constexpr std::size_t Slots = std::size_t(1) << 17;
+  // The key's slot (0..Slots - 1): where it is, or where it would go.
   std::size_t SlotOf(std::uint64_t key) const
   {
     std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 47);
-    while (
-      this->SlotKeys[slot] != 0 && this->SlotKeys[slot] != key + 1) // key + 1: 0 is an empty slot
+    // key + 1: 0 is an empty slot
+    while (this->SlotKeys[slot] != 0 && this->SlotKeys[slot] != key + 1)
     {
       slot = (slot + 1) & (Slots - 1);
     }
     return slot;
   }
+  const std::vector<std::uint64_t>& Distinct() const { return this->InsertedKeys; }
+
+private:
   std::vector<std::uint64_t> SlotKeys;
-  std::vector<std::uint16_t> Index;
   std::vector<std::uint64_t> InsertedKeys; // in insertion order
 };
 }
@@ -435,10 +432,11 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
   // Indices in key order, so that the palette never depends on how the encoding was built.
   std::vector<std::uint64_t> distinct = all.Distinct();
   std::sort(distinct.begin(), distinct.end());
+  std::vector<std::uint16_t> index(PaletteKeySet::Slots, 0); // by the merged set's slot
   encoded.palette.resize(distinct.size());
   for (std::size_t n = 0; n < distinct.size(); ++n)
   {
-    all.SetIndex(distinct[n], static_cast<std::uint16_t>(n));
+    index[all.SlotOf(distinct[n])] = static_cast<std::uint16_t>(n);
     ShadedVoxel& entry = encoded.palette[n];
     entry.opacity = static_cast<std::uint16_t>(distinct[n] >> 24);
     entry.normal = NoNormal;
@@ -453,7 +451,7 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
       for (std::size_t n = begin; n < end; ++n)
       {
         ShadedVoxel& voxel = encoded.voxels[n];
-        voxel.normal = all.IndexOf(PaletteKey(voxel));
+        voxel.normal = index[all.SlotOf(PaletteKey(voxel))];
       }
     });
   return true;

@@ -210,6 +210,7 @@ struct CompositePolicy
   using Voxel = ShadedVoxel;
   static constexpr int Channels = 4;
   const CompositeTables& tables;
+  VoxelShader shader; // of tables, made once per band
   // `count` cells of no voxel (gaps are short: a call to memset costs more).
   void Clear(float* cells, int count) const
   {
@@ -225,7 +226,7 @@ struct CompositePolicy
   // Cells for `count` consecutive voxels.
   void Load(const ShadedVoxel* voxels, int count, float* cells) const
   {
-    VoxelShader(this->tables)(voxels, count, cells);
+    this->shader(voxels, count, cells);
   }
   // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
   // the pixel; true once the pixel is saturated.
@@ -760,7 +761,7 @@ void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpF
   const CompositeTables& tables, int v0, int v1, float* rgba, ScanlineWorkspace& workspace,
   ScanlineCounters& counters, double* work)
 {
-  const CompositePolicy policy{ tables };
+  const CompositePolicy policy{ tables, VoxelShader(tables) };
   Band(encoded, f, policy, tables.terminationLinks && tables.earlyTermination, v0, v1, rgba, workspace,
     counters, work);
 }

@@ -250,10 +250,15 @@ void ShearWarpRenderer::Internals::UpdateTables(const RayCastTransfer& transfer,
   {
     BuildShadingTable(t, parallel);
   }
-  // Every frame: the opacity table changes with the ray length, and the entries are few.
-  static const std::vector<ShadedVoxel> noPalette;
-  BuildPaletteColours(
-    this->compositeSlot ? this->compositeSlot->encoded.palette : noPalette, t, parallel);
+  // Every frame, like the opacity table it depends on: one conversion per distinct voxel.
+  if (this->compositeSlot)
+  {
+    BuildPaletteColours(this->compositeSlot->encoded.palette, t, parallel);
+  }
+  else
+  {
+    t.paletteColours.clear();
+  }
 }
 
 void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
