@@ -71,8 +71,6 @@ for entry in "${targets[@]}"; do
     "$build/$target.log" || true
   echo "$target: exit $status after $((SECONDS - t)) s (log: $build/$target.log)"
   if [ "$status" -ne 0 ]; then
-    grep -E "^(==[0-9]+==ERROR|SUMMARY|LoadVolume broke)|runtime error|out-of-memory|timeout" \
-      "$build/$target.log" | head -5 || true
     {
       echo "$target: exit $status"
       grep -E "^(==[0-9]+==ERROR|SUMMARY|LoadVolume broke)|runtime error|out-of-memory|timeout" \
@@ -80,7 +78,7 @@ for entry in "${targets[@]}"; do
       # The stack's frames outside libFuzzer, the sanitizers and libc.
       grep -E "^ +#[0-9]+ " "$build/$target.log" |
         grep -v -E "fuzzer::|__sanitizer|libc\.so|libc_start|_start " | head -10 | cut -c1-200 || true
-    } >>"$findings"
+    } | tee -a "$findings"
     # A finding fails the run when its reproducer fails again on replay (three times, with a
     # generous time limit). One that passes on replay (a stalled machine tripping the 10 s limit,
     # a nondeterministic leak report) is reported with its bytes but does not fail the run.
