@@ -25,6 +25,10 @@ set(_av_core_sources
   raycast/RayCastAcceleration
   raycast/RayCastEngine
   raycast/RayCastKernel
+  raycast/RayCastKernel8Bit
+  raycast/RayCastKernel16Bit
+  raycast/RayCastKernel32Bit
+  raycast/RayCastKernel64Bit
   shearwarp/RunLengthVolume
   shearwarp/RunLengthTranspose
   shearwarp/ShearWarpEncodings
@@ -69,8 +73,9 @@ if (NOT TARGET AccelVolumeCore)
   # they never contract a * b + c into FMA, so that every SIMD target (RayCastKernelBatch.inl's
   # clones) gives the same bits.
   if (CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    set_source_files_properties("${_av_core_root}/raycast/RayCastKernel.cxx"
-      PROPERTIES COMPILE_OPTIONS "-fno-math-errno;-fno-trapping-math;-ffp-contract=off")
+    set_source_files_properties("${_av_core_root}/raycast/RayCastKernel8Bit.cxx"
+      "${_av_core_root}/raycast/RayCastKernel16Bit.cxx" "${_av_core_root}/raycast/RayCastKernel32Bit.cxx"
+      "${_av_core_root}/raycast/RayCastKernel64Bit.cxx" PROPERTIES COMPILE_OPTIONS "-fno-math-errno;-fno-trapping-math;-ffp-contract=off")
     # The packets set rays up in AVX-512 lanes with the operations of Affine::Apply and
     # IntersectRayRegion, the footprint projects box corners in lanes as ProjectBox does and the
     # displayed images convert to 16 bits in lanes: those must not contract either (only an

@@ -129,6 +129,12 @@ inline bool RaysApproachTogether(const KernelFrame& frame)
 void CastTile(
   const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters);
 
+// CastTile for volumes of scalar type T: instantiated for each scalar type of VolumeView by
+// RayCastKernel8Bit.cxx ... RayCastKernel64Bit.cxx (RayCastKernelTile.inl).
+template <typename T>
+void CastTileOf(
+  const KernelFrame& frame, int x0, int y0, int x1, int y1, float* rgba, RayCastCounters& counters);
+
 }
 }
 

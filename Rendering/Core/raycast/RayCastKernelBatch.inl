@@ -7,7 +7,7 @@
 // configuration). The shading lane loops are compiled for AVX2 besides the x86-64 baseline
 // and chosen at run time (LanesOnAvx2): IEEE adds, multiplies, divides and square roots in the
 // same order on every target and no FMA contraction (-ffp-contract=off), so the same bits on
-// every CPU (TestRayCastEngine compares the two). LanesOnAvx2: RayCastKernel.cxx.
+// every CPU (TestRayCastEngine compares the two). LanesOnAvx2: RayCastKernelTile.inl.
 
 template <typename T>
 bool RayCasterTile<T>::CanBatch() const

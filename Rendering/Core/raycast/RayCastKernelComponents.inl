@@ -1,5 +1,5 @@
 // RayCastKernel's multi-component rays (RayCastComponents): members of RayCasterTile, included
-// by RayCastKernel.cxx inside its namespaces (not a header of its own). Samples are classified
+// by RayCastKernelTile.inl inside its namespaces (not a header of its own). Samples are classified
 // as the slice mapper's shader (AccelVolumeSliceComponentsFS.glsl) and vtkGPUVolumeRayCastMapper
 // classify them.
 

@@ -1,5 +1,5 @@
 // RayCastKernel's ISOSURFACE_BLEND and SLICE_BLEND rays: members of RayCasterTile, included by
-// RayCastKernel.cxx inside its namespaces (not a header of its own).
+// RayCastKernelTile.inl inside its namespaces (not a header of its own).
 
 // The colour and opacity of iso-value v (raw, of the iso component), no opacity correction.
 // Multi-component scalars as VTK's GPU mapper looks them up: an independent component in its own

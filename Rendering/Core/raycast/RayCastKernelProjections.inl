@@ -1,5 +1,5 @@
 // RayCastKernel's MIP / MinIP (Extreme) and raysum / average (Integrate) rays of
-// single-component scalars: members of RayCasterTile, included by RayCastKernel.cxx inside its
+// single-component scalars: members of RayCasterTile, included by RayCastKernelTile.inl inside its
 // namespaces (not a header of its own).
 
 template <typename T>
