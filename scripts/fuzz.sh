@@ -38,6 +38,12 @@ echo "fuzz build: $((SECONDS - t0)) s"
 rm -rf "$build/seeds"
 "$build/MakeBadInputs" --fuzz-seeds "$build/seeds"
 
+# The targets' scratch folders (FuzzSupport.h) go under the build folder: libFuzzer ends a run
+# with _Exit, so their atexit cleanup never runs and /tmp would collect one per run.
+export TMPDIR="$build/tmp"
+rm -rf "$TMPDIR"
+mkdir -p "$TMPDIR"
+
 # The fuzzers' sanitizer settings, for fuzzing and for replaying a reproducer alike.
 fuzz_env() {
   ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1" \
@@ -110,6 +116,7 @@ for entry in "${targets[@]}"; do
   fi
 done
 
+rm -rf "$TMPDIR"
 echo
 echo "fuzz.sh: total $((SECONDS - t0)) s"
 if [ "${#failed[@]}" -ne 0 ]; then
