@@ -82,15 +82,23 @@ phase() { echo; echo "=== $* ==="; }
 failed=()
 t_all=$SECONDS
 
-# configure DIR SANITIZERS GL: a RelWithDebInfo build at -O1 with line tables (enough for
-# symbolized reports; -O2 -g compiles half as fast), without Python wrapping and the ParaView
-# plugin, the tests on headless backend GL.
+# configure DIR SANITIZERS GL IMAGE_TESTS: a RelWithDebInfo build at -O1 with line tables (enough
+# for symbolized reports; -O2 -g compiles half as fast), without Python wrapping and the ParaView
+# plugin, the tests on headless backend GL; IMAGE_TESTS all or sanitizer-ci (only the image
+# tests the ci and tsan runs select are compiled: Testing/Cxx/CMakeLists.txt, which must match
+# cpu_image_regex and tsan_image_regex above). A new build folder uses Ninja when there is one
+# (a long translation unit then no longer holds back the next library's).
 configure() {
-  cmake -S "$root" -B "$1" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  local generator=()
+  if [ ! -f "$1/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then
+    generator=(-G Ninja)
+  fi
+  cmake -S "$root" -B "$1" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     -DBUILD_TESTING=ON "-DACCELVOLUME_TEST_GL=$3" -DACCELVOLUME_WRAP_PYTHON=OFF \
-    -DACCELVOLUME_BUILD_PARAVIEW_PLUGIN=OFF "-DACCELVOLUME_SANITIZE=$2"
+    -DACCELVOLUME_BUILD_PARAVIEW_PLUGIN=OFF "-DACCELVOLUME_SANITIZE=$2" \
+    "-DACCELVOLUME_IMAGE_TESTS=$4"
 }
 
 # run_ctest NAME ARGS...: one ctest run in the current build folder, recorded on failure.
@@ -103,7 +111,7 @@ run_ctest() {
 run_asan() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
   phase "ASan + UBSan: configure and build ($build)"
-  configure "$build" "address;undefined" egl || { failed+=("asan: configure"); return; }
+  configure "$build" "address;undefined" egl all || { failed+=("asan: configure"); return; }
   cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
     vtkRenderingAccelVolumeCxxTests-MPI accelvolume || { failed+=("asan: build"); return; }
@@ -122,7 +130,7 @@ run_asan() {
 run_asan_ci() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
   phase "ASan + UBSan (ci subset): configure and build ($build)"
-  configure "$build" "address;undefined" egl || { failed+=("asan: configure"); return; }
+  configure "$build" "address;undefined" egl sanitizer-ci || { failed+=("asan: configure"); return; }
   cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
     || { failed+=("asan: build"); return; }
@@ -144,7 +152,7 @@ run_tsan() {
       "thread here, so TSan cannot see races in them (the GoogleTests still start threads)" >&2
   fi
   phase "TSan: configure and build ($build)"
-  configure "$build" thread osmesa || { failed+=("tsan: configure"); return; }
+  configure "$build" thread osmesa sanitizer-ci || { failed+=("tsan: configure"); return; }
   cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     vtkRenderingAccelVolumeCxxTests || { failed+=("tsan: build"); return; }
   echo "tsan: configure + build $((SECONDS - t)) s"

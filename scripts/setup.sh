@@ -6,7 +6,7 @@
 set -euo pipefail
 
 packages=(
-  cmake g++ make                    # toolchain
+  cmake g++ make ninja-build        # toolchain (Ninja: scripts/test.sh and sanitize.sh builds)
   libvtk9-dev                       # VTK 9.1 (RenderingOpenGL2, RenderingVolumeOpenGL2, ...)
   libosmesa6-dev                    # headless backend: OSMesa
   libegl-dev libegl-mesa0           # headless backend: EGL (glvnd + Mesa vendor)
