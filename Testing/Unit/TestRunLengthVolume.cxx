@@ -171,9 +171,11 @@ void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int
     }
   }
   ASSERT_EQ(paletted.voxels.size(), encoded.voxels.size());
+  ASSERT_EQ(paletted.paletteIndices.size(), encoded.voxels.size());
   for (std::size_t n = 0; n < encoded.voxels.size(); ++n)
   {
     ASSERT_LT(paletted.voxels[n].normal, paletted.palette.size());
+    ASSERT_EQ(paletted.paletteIndices[n], paletted.voxels[n].normal) << "voxel " << n;
     ShadedVoxel entry = paletted.palette[paletted.voxels[n].normal];
     ASSERT_TRUE(SameVoxel(entry, encoded.voxels[n])) << "voxel " << n;
     entry.normal = paletted.voxels[n].normal;
@@ -192,6 +194,7 @@ void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int
   {
     EXPECT_TRUE(SameVoxel(direct.palette[n], transposed.palette[n]));
   }
+  EXPECT_EQ(direct.paletteIndices, transposed.paletteIndices);
 }
 
 template <typename T>

@@ -353,6 +353,16 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
       EXPECT_TRUE(
         BitIdentical(CompositeEachScanline(paletted, f, withPalette, paletteCounters), plain))
         << "palette, no termination";
+      // Without the dense index array, colours are looked up through the voxels' normal field:
+      // the same bits again.
+      RunLengthVolume<ShadedVoxel> unindexed = paletted;
+      unindexed.paletteIndices.clear();
+      withPalette.earlyTermination = true;
+      withPalette.terminationLinks = true;
+      ScanlineCounters unindexedCounters;
+      EXPECT_TRUE(BitIdentical(
+        CompositeEachScanline(unindexed, f, withPalette, unindexedCounters), terminated))
+        << "palette, no indices";
       ++palettes;
     }
   }

@@ -88,6 +88,45 @@ TEST(ShearWarpEngine, ImagesIgnoreBandsBalancingAndThreads)
   }
 }
 
+TEST(ShearWarpEngine, OneWorkerSplitsLargeImagesIntoCacheSizedBands)
+{
+  // An intermediate image of several BandCacheBytes: even one worker composites it band by
+  // band, and the image is the one of a single band over every scanline.
+  const int dims[3] = { 180, 160, 20 };
+  const Scene scene = MakeScene(dims, false, Content::SphereAndBar);
+  const RayCastTransfer tf = MakeTransfer(0.3f, false);
+  const ViewSetup camera = MakeCamera(scene, 200, -35, Isotropic, 240, 220, 25, true);
+  for (Blend blend : { Blend::Composite, Blend::Maximum })
+  {
+    SCOPED_TRACE(BlendName(blend));
+    ShearWarpSettings settings;
+    settings.blend = blend;
+    ShearWarpRenderer renderer;
+    const Frame frame = RenderFrame(renderer, scene, tf, camera, settings);
+    const int width = frame.stats.intermediateSize[0];
+    const int rows = frame.stats.intermediateSize[1];
+    const std::size_t pixelBytes = blend == Blend::Composite ? 16 : 4;
+    const std::size_t bytes = pixelBytes * static_cast<std::size_t>(width) * rows;
+    const std::size_t expected = (bytes + BandCacheBytes - 1) / BandCacheBytes;
+    if (blend == Blend::Composite)
+    {
+      ASSERT_GT(expected, 1u); // the scene is large enough to need several bands
+    }
+    EXPECT_EQ(frame.stats.bandBounds.size(), expected + 1);
+
+    ShearWarpRenderer single;
+    ShearWarpStats stats;
+    std::string error;
+    ASSERT_TRUE(single.BeginFrame(scene.view, scene.range[0], scene.range[1], 1, tf, 1,
+      camera.lighting, camera.sw, settings, SerialParallelFor, stats, error))
+      << error;
+    single.CompositeRows(0, rows);
+    Frame whole;
+    single.Warp(SerialParallelFor, whole.rgba, whole.rectangle);
+    EXPECT_TRUE(BitIdentical(whole.rgba, frame.rgba));
+  }
+}
+
 TEST(ShearWarpEngine, RunLengthEncodingIsExactAgainstTheDenseVolume)
 {
   const int dims[3] = { 36, 30, 26 };

@@ -2,7 +2,9 @@
 // never classified again, with memory for the two encodings only.
 #include "shearwarp/RunLengthVolume.h"
 
+#include <algorithm>
 #include <limits>
+#include <type_traits>
 
 namespace accelvolume
 {
@@ -126,6 +128,15 @@ bool TransposeEncoding(
       to.voxels[nextVoxel[row]++] = voxel;
       last[row] = position;
     });
+  if constexpr (std::is_same_v<Voxel, ShadedVoxel>)
+  {
+    if (!to.palette.empty())
+    {
+      to.paletteIndices.resize(to.voxels.size());
+      std::transform(to.voxels.begin(), to.voxels.end(), to.paletteIndices.begin(),
+        [](const ShadedVoxel& voxel) { return voxel.normal; });
+    }
+  }
   return true;
 }
 

@@ -445,6 +445,7 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
     entry.colour[2] = static_cast<std::uint8_t>(distinct[n]);
     entry.colour[3] = 0;
   }
+  encoded.paletteIndices.resize(count);
   parallel(count,
     [&](std::size_t begin, std::size_t end)
     {
@@ -452,6 +453,7 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
       {
         ShadedVoxel& voxel = encoded.voxels[n];
         voxel.normal = index[all.SlotOf(PaletteKey(voxel))];
+        encoded.paletteIndices[n] = voxel.normal;
       }
     });
   return true;

@@ -211,6 +211,12 @@ struct CompositePolicy
   static constexpr int Channels = 4;
   const CompositeTables& tables;
   VoxelShader shader; // of tables, made once per band
+  // Unshaded with a palette: the encoding's voxels and their palette indices (a voxel's index
+  // sits at its own offset), so cells copy their colours reading 2 bytes per voxel, not 8.
+  const ShadedVoxel* voxelBase = nullptr;
+  const std::uint16_t* paletteIndices = nullptr;
+  const float* paletteColours = nullptr;
+  float threshold = 1; // tables.terminationThreshold
   // `count` cells of no voxel (gaps are short: a call to memset costs more).
   void Clear(float* cells, int count) const
   {
@@ -226,7 +232,27 @@ struct CompositePolicy
   // Cells for `count` consecutive voxels.
   void Load(const ShadedVoxel* voxels, int count, float* cells) const
   {
+    if (this->paletteIndices)
+    {
+      const std::uint16_t* index = this->paletteIndices + (voxels - this->voxelBase);
+      for (int n = 0; n < count; ++n)
+      {
+        std::memcpy(cells + 4 * n, this->paletteColours + 4 * static_cast<std::size_t>(index[n]),
+          4 * sizeof(float));
+      }
+      return;
+    }
     this->shader(voxels, count, cells);
+  }
+  // A hint to start loading what Load reads for the voxel at `offset`.
+  void Prefetch(const ShadedVoxel* voxels, std::size_t offset) const
+  {
+    if (this->paletteIndices)
+    {
+      __builtin_prefetch(this->paletteIndices + offset);
+      return;
+    }
+    __builtin_prefetch(voxels + offset);
   }
   // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
   // the pixel; true once the pixel is saturated.
@@ -255,7 +281,7 @@ struct CompositePolicy
       pixel[c] += transmit * sample[c];
     }
 #endif
-    return pixel[3] >= this->tables.terminationThreshold;
+    return pixel[3] >= this->threshold;
   }
 };
 
@@ -278,6 +304,10 @@ struct ExtremePolicy
     {
       cells[n] = static_cast<float>(voxels[n]);
     }
+  }
+  void Prefetch(const ScalarVoxel* voxels, std::size_t offset) const
+  {
+    __builtin_prefetch(voxels + offset);
   }
   bool Sample(const float* a, const float* b, const float* w, float* pixel) const
   {
@@ -524,7 +554,9 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   constexpr int C = Policy::Channels;
   using Voxel = typename Policy::Voxel;
   const RunLengthVolume<Voxel>& encoded = c.encoded;
-  const Policy& policy = c.policy;
+  // A local copy: the pixel stores below cannot alias its members (the termination threshold),
+  // so they stay in registers.
+  const Policy policy = c.policy;
   ScanlineWorkspace& ws = c.ws;
   ScanlineCounters& counters = c.counters;
   const bool skip = c.skip;
@@ -666,8 +698,8 @@ inline void CompositeScanlinePair(
     if (first != last)
     {
       --last;
-      __builtin_prefetch(encoded.voxels.data() + first->offset);
-      __builtin_prefetch(encoded.voxels.data() + last->offset + (last->end - last->begin) - 1);
+      c.policy.Prefetch(encoded.voxels.data(), first->offset);
+      c.policy.Prefetch(encoded.voxels.data(), last->offset + (last->end - last->begin) - 1);
     }
   }
   // The pixels the two voxel scanlines can reach at all; when every one of them is already
@@ -761,7 +793,15 @@ void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpF
   const CompositeTables& tables, int v0, int v1, float* rgba, ScanlineWorkspace& workspace,
   ScanlineCounters& counters, double* work)
 {
-  const CompositePolicy policy{ tables, VoxelShader(tables) };
+  CompositePolicy policy{ tables, VoxelShader(tables) };
+  policy.threshold = tables.terminationThreshold;
+  if (!tables.shade && !tables.paletteColours.empty() &&
+    encoded.paletteIndices.size() == encoded.voxels.size())
+  {
+    policy.voxelBase = encoded.voxels.data();
+    policy.paletteIndices = encoded.paletteIndices.data();
+    policy.paletteColours = tables.paletteColours.data();
+  }
   Band(encoded, f, policy, tables.terminationLinks && tables.earlyTermination, v0, v1, rgba, workspace,
     counters, work);
 }

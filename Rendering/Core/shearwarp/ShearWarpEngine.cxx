@@ -559,8 +559,16 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   // More bands than workers, taken dynamically (the ParallelFor hands out one band at a time):
   // a band that the previous frame's costs misjudged delays its worker by a fraction of a
   // worker's share, not by the whole error.
+  // Bands are also kept small enough that their intermediate pixels, swept once per slice,
+  // stay in a core's cache (a band composites every slice before the next band starts).
   const int workers = std::max(settings.bands, 1);
-  const int parts = workers > 1 ? workers * BandsPerWorker : 1;
+  const ShearWarpFactorization& f = this->Impl->factorization;
+  const std::size_t pixelBytes = settings.blend == Blend::Composite ? 4 * sizeof(float) : sizeof(float);
+  const std::size_t imageBytes = pixelBytes * static_cast<std::size_t>(f.intermediateSize[0]) *
+    static_cast<std::size_t>(std::max(f.intermediateSize[1], 0));
+  const int cacheParts = static_cast<int>(std::min<std::size_t>(
+    (imageBytes + BandCacheBytes - 1) / BandCacheBytes, std::max(f.intermediateSize[1], 1)));
+  const int parts = std::max(workers > 1 ? workers * BandsPerWorker : 1, cacheParts);
   const std::vector<int> bounds = this->Bands(parts, settings.balance);
   const int bands = static_cast<int>(bounds.size()) - 1;
   stats.bandSeconds.assign(static_cast<std::size_t>(bands), 0.0);

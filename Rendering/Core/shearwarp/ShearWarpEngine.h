@@ -42,6 +42,9 @@ enum class ShearWarpShading
 // Bands per worker when compositing on several: handed out one at a time (dynamic scheduling
 // on top of the balanced partition).
 inline constexpr int BandsPerWorker = 4;
+// The most intermediate-image bytes per band: a band's pixels stay in a core's L2 cache while
+// every slice sweeps them.
+inline constexpr std::size_t BandCacheBytes = 256 * 1024;
 
 struct ShearWarpSettings
 {
