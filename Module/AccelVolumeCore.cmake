@@ -43,7 +43,20 @@ set(_av_reference_sources
   reference/ReferenceComposite
   reference/ReferenceRenderer)
 
-if (NOT TARGET AccelVolumeCore)
+# ACCELVOLUME_PREBUILT_CORE: the AccelVolumeCore library of another build of these sources with
+# the same compiler and build type, used instead of compiling Core again (the top-level build
+# passes its own to the ParaView plugin's sub-build). Core uses no VTK, so the plugin's VTK does
+# not matter. AccelVolumeReference (tests only) is then not defined.
+set(ACCELVOLUME_PREBUILT_CORE "" CACHE FILEPATH
+  "A built AccelVolumeCore static library to link instead of compiling Rendering/Core")
+if (NOT TARGET AccelVolumeCore AND ACCELVOLUME_PREBUILT_CORE)
+  find_package(Threads REQUIRED)
+  add_library(AccelVolumeCore STATIC IMPORTED)
+  set_target_properties(AccelVolumeCore PROPERTIES
+    IMPORTED_LOCATION "${ACCELVOLUME_PREBUILT_CORE}"
+    INTERFACE_INCLUDE_DIRECTORIES "${_av_core_root}"
+    INTERFACE_LINK_LIBRARIES Threads::Threads)
+elseif (NOT TARGET AccelVolumeCore)
   list(TRANSFORM _av_core_sources PREPEND "${_av_core_root}/")
   list(TRANSFORM _av_core_sources APPEND ".cxx")
   list(TRANSFORM _av_reference_sources PREPEND "${_av_core_root}/")

@@ -7,7 +7,8 @@
 # ci: the subset CI runs (scripts/test.sh, so .ci/run): ASan + UBSan over the self-tests, the
 #   Core unit tests and the CPU mappers' image tests (ray caster, shear-warp, octree), then the
 #   tsan run below as it is. The slice mapper's image tests, the CLI and MPI tests run only in
-#   the full asan mode (time: the whole of .ci/run must stay under 30 minutes on 2 cores).
+#   the full asan mode (time: the whole of .ci/run must stay under 30 minutes on 2 cores). The
+#   ci and tsan builds compile only the image tests they run (ACCELVOLUME_IMAGE_TESTS=sanitizer-ci).
 #
 # asan: -DACCELVOLUME_SANITIZE="address;undefined" (UBSan with float-cast-overflow, no recovery;
 #   LeakSanitizer on, Testing/Sanitizers/lsan.supp), GL tests on EGL (Mesa surfaceless: nothing
