@@ -15,6 +15,23 @@
 using namespace accelvolume;
 using namespace accelvolume_test;
 
+namespace
+{
+// BeginFrame on one thread: the first of the phases MPI ranks use.
+::testing::AssertionResult BeginPhases(ShearWarpRenderer& renderer, const Scene& scene,
+  const RayCastTransfer& tf, const ViewSetup& camera, const ShearWarpSettings& settings)
+{
+  ShearWarpStats stats;
+  std::string error;
+  if (renderer.BeginFrame(scene.view, scene.range[0], scene.range[1], 1, tf, 1, camera.lighting,
+        camera.sw, settings, SerialParallelFor, stats, error))
+  {
+    return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure() << error;
+}
+}
+
 TEST(ShearWarpEngine, ImagesIgnoreBandsBalancingAndThreads)
 {
   const int dims[3] = { 40, 32, 24 };
@@ -41,11 +58,7 @@ TEST(ShearWarpEngine, ImagesIgnoreBandsBalancingAndThreads)
     // The phases by hand, as MPI ranks use them: scanline ranges composited in any order.
     {
       ShearWarpRenderer phased;
-      ShearWarpStats stats;
-      std::string error;
-      ASSERT_TRUE(phased.BeginFrame(scene.view, scene.range[0], scene.range[1], 1, tf, 1,
-        camera.lighting, camera.sw, settings, SerialParallelFor, stats, error))
-        << error;
+      ASSERT_TRUE(BeginPhases(phased, scene, tf, camera, settings));
       const int rows = phased.GetFactorization().intermediateSize[1];
       for (int v1 = rows; v1 > 0; v1 -= 5)
       {
@@ -115,11 +128,7 @@ TEST(ShearWarpEngine, OneWorkerSplitsLargeImagesIntoCacheSizedBands)
     EXPECT_EQ(frame.stats.bandBounds.size(), expected + 1);
 
     ShearWarpRenderer single;
-    ShearWarpStats stats;
-    std::string error;
-    ASSERT_TRUE(single.BeginFrame(scene.view, scene.range[0], scene.range[1], 1, tf, 1,
-      camera.lighting, camera.sw, settings, SerialParallelFor, stats, error))
-      << error;
+    ASSERT_TRUE(BeginPhases(single, scene, tf, camera, settings));
     single.CompositeRows(0, rows);
     Frame whole;
     single.Warp(SerialParallelFor, whole.rgba, whole.rectangle);
