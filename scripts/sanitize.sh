@@ -5,7 +5,9 @@
 #   ./scripts/sanitize.sh [asan|tsan|all|ci]  (default: all)
 #
 # ci: the subset CI runs (scripts/test.sh, so .ci/run): ASan + UBSan over the self-tests, the
-#   Core unit tests and the CPU mappers' image tests (ray caster, shear-warp, octree), then the
+#   Core unit tests and the CPU mappers' image tests (ray caster, shear-warp, octree; with
+#   ACCELVOLUME_TEST_SUBSET=sanitizer as the tsan run; not the loaders' tests, which fuzz.sh
+#   runs under ASan + UBSan), then the
 #   tsan run below as it is. The slice mapper's image tests, the CLI and MPI tests run only in
 #   the full asan mode (time: the whole of .ci/run must stay under 30 minutes on 2 cores). The
 #   ci and tsan builds compile only the image tests they run (ACCELVOLUME_IMAGE_TESTS=sanitizer-ci).
@@ -23,7 +25,8 @@
 #   Not run: python, install, report, paraview (uninstrumented interpreters or a second build),
 #   xwindow (needs X), example (the same mappers as the image tests).
 # tsan: -DACCELVOLUME_SANITIZE=thread (Testing/Sanitizers/tsan.supp, empty). Builds the module,
-#   the core GoogleTest executable, the image test driver and the self-test, and runs
+#   the core GoogleTest executable (the threaded suites' files only), the image test driver (the
+#   image tests below only) and the self-test, and runs
 #     ctest -L '^sanitizer$'                          (a race in a vtkSMPTools loop must be caught)
 #     ctest -L '^unit$' -R "$tsan_unit_regex" -E "$timing_tests"
 #         the GoogleTests that start threads: ray caster engine, shear-warp engine, run-length
@@ -83,11 +86,12 @@ phase() { echo; echo "=== $* ==="; }
 failed=()
 t_all=$SECONDS
 
-# configure DIR SANITIZERS GL IMAGE_TESTS: a RelWithDebInfo build at -O1 with line tables (enough
-# for symbolized reports; -O2 -g compiles half as fast), without Python wrapping and the ParaView
-# plugin, the tests on headless backend GL; IMAGE_TESTS all or sanitizer-ci (only the image
-# tests the ci and tsan runs select are compiled: Testing/Cxx/CMakeLists.txt, which must match
-# cpu_image_regex and tsan_image_regex above). A new build folder uses Ninja when there is one
+# configure DIR SANITIZERS GL IMAGE_TESTS [UNIT_TESTS]: a RelWithDebInfo build at -O1 with line
+# tables (enough for symbolized reports; -O2 -g compiles half as fast), without Python wrapping
+# and the ParaView plugin, the tests on headless backend GL; IMAGE_TESTS all or sanitizer-ci
+# (only the image tests the ci and tsan runs select are compiled: Testing/Cxx/CMakeLists.txt,
+# which must match cpu_image_regex and tsan_image_regex above); UNIT_TESTS all (default) or
+# threaded (only the files of the suites tsan_unit_regex selects: Testing/Unit/CMakeLists.txt). A new build folder uses Ninja when there is one
 # (a long translation unit then no longer holds back the next library's).
 configure() {
   local generator=()
@@ -99,7 +103,7 @@ configure() {
     "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     -DBUILD_TESTING=ON "-DACCELVOLUME_TEST_GL=$3" -DACCELVOLUME_WRAP_PYTHON=OFF \
     -DACCELVOLUME_BUILD_PARAVIEW_PLUGIN=OFF "-DACCELVOLUME_SANITIZE=$2" \
-    "-DACCELVOLUME_IMAGE_TESTS=$4"
+    "-DACCELVOLUME_IMAGE_TESTS=$4" "-DACCELVOLUME_UNIT_TESTS=${5:-all}"
 }
 
 # run_ctest NAME ARGS...: one ctest run in the current build folder, recorded on failure.
@@ -132,16 +136,18 @@ run_asan_ci() {
   local build="${ACCELVOLUME_SANITIZE_BUILD_DIR_ASAN:-$root/build-asan}" t=$SECONDS
   phase "ASan + UBSan (ci subset): configure and build ($build)"
   configure "$build" "address;undefined" egl sanitizer-ci || { failed+=("asan: configure"); return; }
+  # Not AccelVolumeVolumeIOTests: fuzz.sh runs the same loaders under ASan + UBSan.
   cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
-    AccelVolumeCellLeapTests AccelVolumeVolumeIOTests vtkRenderingAccelVolumeCxxTests \
+    AccelVolumeCellLeapTests vtkRenderingAccelVolumeCxxTests \
     || { failed+=("asan: build"); return; }
   echo "asan: configure + build $((SECONDS - t)) s"
   phase "ASan + UBSan (ci subset): tests"
   local tt=$SECONDS
   pushd "$build" >/dev/null
   run_ctest "asan: self-tests" -L '^sanitizer$'
-  run_ctest "asan: unit tests" -L '^unit$' -E "$timing_tests"
-  run_ctest "asan: CPU mapper image tests" -L '^image$' -LE '^mpi$' -R "$cpu_image_regex"
+  run_ctest "asan: unit tests" -L '^unit$' -E "$timing_tests|^AccelVolumeVolumeIOTests_NOT_BUILT$"
+  ACCELVOLUME_TEST_SUBSET=sanitizer run_ctest "asan: CPU mapper image tests" -L '^image$' -LE '^mpi$' \
+    -R "$cpu_image_regex"
   popd >/dev/null
   echo "asan: tests $((SECONDS - tt)) s, total $((SECONDS - t)) s"
 }
@@ -153,7 +159,7 @@ run_tsan() {
       "thread here, so TSan cannot see races in them (the GoogleTests still start threads)" >&2
   fi
   phase "TSan: configure and build ($build)"
-  configure "$build" thread osmesa sanitizer-ci || { failed+=("tsan: configure"); return; }
+  configure "$build" thread osmesa sanitizer-ci threaded || { failed+=("tsan: configure"); return; }
   cmake --build "$build" -j"$jobs" --target SanitizerSelfTest CellLeapTableShared AccelVolumeUnitTests \
     vtkRenderingAccelVolumeCxxTests || { failed+=("tsan: build"); return; }
   echo "tsan: configure + build $((SECONDS - t)) s"
