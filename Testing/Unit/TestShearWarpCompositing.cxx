@@ -353,8 +353,8 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
       EXPECT_TRUE(
         BitIdentical(CompositeEachScanline(paletted, f, withPalette, paletteCounters), plain))
         << "palette, no termination";
-      // Without the dense index array, colours are looked up through the voxels' normal field:
-      // the same bits again.
+      // Without the dense index array, each voxel is converted as it is read (the code that
+      // converted the palette's entries): the same bits again.
       RunLengthVolume<ShadedVoxel> unindexed = paletted;
       unindexed.paletteIndices.clear();
       withPalette.earlyTermination = true;

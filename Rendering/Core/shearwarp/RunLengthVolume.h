@@ -108,10 +108,10 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& cl
 
 // For an encoding without normals (unshaded): lists its distinct classified voxels (opacity and
 // colour) in `palette`, in ascending order of (opacity, colour), and stores each voxel's index
-// there in its normal field, so that compositing looks up one precomputed colour per voxel
-// instead of converting it; paletteIndices holds the same indices densely. False, and the
-// encoding unchanged, when it has normals, a palette already, or more than 65535 distinct
-// voxels. The indices are stored in parallel.
+// there in its normal field (kept through the transposes) and densely in paletteIndices, from
+// which compositing looks up one precomputed colour per voxel instead of converting it. False,
+// and the encoding unchanged, when it has normals, a palette already, or more than 65535
+// distinct voxels. The indices are stored in parallel.
 bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel);
 
 // Quantized scalar for MIP / MinIP: round(65535 (s - rangeMin) / (rangeMax - rangeMin)), clamped.

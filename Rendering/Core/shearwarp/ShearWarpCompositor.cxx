@@ -60,7 +60,6 @@ public:
     , Opacity(t.opacity.data())
     , Shading(t.shading.data())
     , Shade(t.shade)
-    , Palette(t.shade || t.paletteColours.empty() ? nullptr : t.paletteColours.data())
     // Unshaded and white-light table shading (the common cases) take one SSE register.
     , OneRegister(!t.shade || (!t.phong && t.shadingStride == 2))
   {
@@ -68,15 +67,6 @@ public:
 
   void operator()(const ShadedVoxel* voxel, int count, float* out) const
   {
-    if (this->Palette)
-    {
-      for (int n = 0; n < count; ++n, out += 4)
-      {
-        std::memcpy(
-          out, this->Palette + 4 * static_cast<std::size_t>(voxel[n].normal), 4 * sizeof(float));
-      }
-      return;
-    }
 #if defined(__SSE2__)
     if (this->OneRegister)
     {
@@ -178,7 +168,6 @@ private:
   const float* Opacity;
   const float* Shading;
   bool Shade;
-  const float* Palette; // unshaded palette encodings: colours by index (the voxel's normal field)
   bool OneRegister;
 };
 
