@@ -56,16 +56,18 @@ targets=(
   "FuzzRawVolume raw raw.dict 65536"
   "FuzzHeader header header.dict 16384"
 )
-failed=()
-for entry in "${targets[@]}"; do
-  read -r target seeds dict max_len <<<"$entry"
-  corpus="$build/corpus/$target"
-  artifacts="$build/artifacts/$target"
+# fuzz_target ENTRY: fuzzes one target, then replays what it found; prints its report and writes
+# its findings to <build>/<target>.findings. Exit status 1: a finding that reproduces (or left no
+# reproducer).
+fuzz_target() {
+  local target seeds dict max_len
+  read -r target seeds dict max_len <<<"$1"
+  local corpus="$build/corpus/$target" artifacts="$build/artifacts/$target"
+  local found="$build/$target.findings" t=$SECONDS status=0
   mkdir -p "$corpus" "$artifacts"
+  rm -f "$found"
   echo
   echo "=== $target: ${seconds} s ==="
-  t=$SECONDS
-  status=0
   touch "$artifacts/.started"
   # halt_on_error: UBSan findings stop the run like ASan ones, leaving a reproducer. lsan.supp
   # names the one leak inside Debian's VTK that the fuzzer reaches (see the file).
@@ -76,43 +78,72 @@ for entry in "${targets[@]}"; do
   grep -E "^(Done|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb)" \
     "$build/$target.log" || true
   echo "$target: exit $status after $((SECONDS - t)) s (log: $build/$target.log)"
-  if [ "$status" -ne 0 ]; then
-    {
-      echo "$target: exit $status"
-      grep -E "^(==[0-9]+==ERROR|SUMMARY|LoadVolume broke)|runtime error|out-of-memory|timeout" \
-        "$build/$target.log" | head -5 | cut -c1-200 || true
-      # The stack's frames outside libFuzzer, the sanitizers and libc.
-      grep -E "^ +#[0-9]+ " "$build/$target.log" |
-        grep -v -E "fuzzer::|__sanitizer|libc\.so|libc_start|_start " | head -10 | cut -c1-200 || true
-    } | tee -a "$findings"
-    # A finding fails the run when its reproducer fails again on replay (three times, with a
-    # generous time limit). One that passes on replay (a stalled machine tripping the 10 s limit,
-    # a nondeterministic leak report) is reported with its bytes but does not fail the run.
-    reproduced=0
-    reproducers=0
-    while IFS= read -r reproducer; do
-      reproducers=$((reproducers + 1))
-      echo "reproducer: $reproducer"
-      echo "  replay:   $build/$target $reproducer"
-      # CI keeps only the tail of its log: the reproducer itself, when small, travels in it.
-      if [ "$(stat -c %s "$reproducer")" -le 4096 ]; then
-        echo "reproducer $(basename "$reproducer") (base64): $(base64 -w0 "$reproducer")" >>"$findings"
-      fi
-      if fuzz_env "$build/$target" "$reproducer" -runs=3 -timeout=60 -rss_limit_mb=2048 \
-        -detect_leaks=1 >"$reproducer.replay.log" 2>&1; then
-        echo "  passes on replay: not reproduced" | tee -a "$findings"
-      else
-        echo "  fails on replay (log: $reproducer.replay.log)" | tee -a "$findings"
-        reproduced=1
-      fi
-    done < <(find "$artifacts" -maxdepth 1 -type f -newer "$artifacts/.started" \
-      \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) \
-      ! -name '*.replay.log' | sort)
-    if [ "$reproduced" -eq 1 ] || [ "$reproducers" -eq 0 ]; then
-      failed+=("$target")
-    else
-      echo "$target: no finding reproduced on replay; reported above, not failed" | tee -a "$findings"
+  if [ "$status" -eq 0 ]; then
+    return 0
+  fi
+  {
+    echo "$target: exit $status"
+    grep -E "^(==[0-9]+==ERROR|SUMMARY|LoadVolume broke)|runtime error|out-of-memory|timeout" \
+      "$build/$target.log" | head -5 | cut -c1-200 || true
+    # The stack's frames outside libFuzzer, the sanitizers and libc.
+    grep -E "^ +#[0-9]+ " "$build/$target.log" |
+      grep -v -E "fuzzer::|__sanitizer|libc\.so|libc_start|_start " | head -10 | cut -c1-200 || true
+  } | tee -a "$found"
+  # A finding fails the run when its reproducer fails again on replay (three times, with a
+  # generous time limit). One that passes on replay (a stalled machine tripping the 10 s limit,
+  # a nondeterministic leak report) is reported with its bytes but does not fail the run.
+  local reproduced=0 reproducers=0 reproducer
+  while IFS= read -r reproducer; do
+    reproducers=$((reproducers + 1))
+    echo "reproducer: $reproducer"
+    echo "  replay:   $build/$target $reproducer"
+    # CI keeps only the tail of its log: the reproducer itself, when small, travels in it.
+    if [ "$(stat -c %s "$reproducer")" -le 4096 ]; then
+      echo "reproducer $(basename "$reproducer") (base64): $(base64 -w0 "$reproducer")" >>"$found"
     fi
+    if fuzz_env "$build/$target" "$reproducer" -runs=3 -timeout=60 -rss_limit_mb=2048 \
+      -detect_leaks=1 >"$reproducer.replay.log" 2>&1; then
+      echo "  passes on replay: not reproduced" | tee -a "$found"
+    else
+      echo "  fails on replay (log: $reproducer.replay.log)" | tee -a "$found"
+      reproduced=1
+    fi
+  done < <(find "$artifacts" -maxdepth 1 -type f -newer "$artifacts/.started" \
+    \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) \
+    ! -name '*.replay.log' | sort)
+  if [ "$reproduced" -eq 1 ] || [ "$reproducers" -eq 0 ]; then
+    return 1
+  fi
+  echo "$target: no finding reproduced on replay; reported above, not failed" | tee -a "$found"
+}
+
+# The targets run side by side when there are cores for them (each fuzzer is one process on one
+# core), else one after the other; their reports are printed in order either way.
+failed=()
+pids=()
+for entry in "${targets[@]}"; do
+  read -r target _ <<<"$entry"
+  if [ "$jobs" -ge "${#targets[@]}" ]; then
+    fuzz_target "$entry" >"$build/$target.report" 2>&1 &
+    pids+=("$!")
+  else
+    fuzz_target "$entry" >"$build/$target.report" 2>&1 && pids+=(0) || pids+=(1)
+  fi
+done
+for n in "${!targets[@]}"; do
+  read -r target _ <<<"${targets[$n]}"
+  status=0
+  if [ "$jobs" -ge "${#targets[@]}" ]; then
+    wait "${pids[$n]}" || status=$?
+  else
+    status="${pids[$n]}"
+  fi
+  cat "$build/$target.report"
+  if [ -f "$build/$target.findings" ]; then
+    cat "$build/$target.findings" >>"$findings"
+  fi
+  if [ "$status" -ne 0 ]; then
+    failed+=("$target")
   fi
 done
 

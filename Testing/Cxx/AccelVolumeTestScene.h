@@ -11,6 +11,9 @@
 #include "vtkAccelVolumeSliceMapper.h"
 #include "vtkRegressionTestImage.h"
 
+#include <cstdlib>
+#include <string>
+
 namespace accelvolume_test
 {
 template <typename MapperType>
@@ -22,9 +25,10 @@ struct SceneOf
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkRenderWindow> Window;
 
-  // 300x300 window, phantom volume, grey (or colour) ramp, oblique view.
-  explicit SceneOf(
-    const char* phantom = "vessels", int blend = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND)
+  // size x size window (300 unless a test without baseline asks for less), phantom volume,
+  // grey (or colour) ramp, oblique view.
+  explicit SceneOf(const char* phantom = "vessels",
+    int blend = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, int size = 300)
   {
     this->Image = MakePhantom(phantom, 64, 56, 48, 1.0, 1.0, 1.25);
     this->Mapper->SetInputData(this->Image);
@@ -33,7 +37,7 @@ struct SceneOf
     SetRampProperty(this->Volume->GetProperty(), 40.0, 900.0, true);
     this->Renderer->SetBackground(0.1, 0.1, 0.2);
     this->Renderer->AddVolume(this->Volume);
-    this->Window->SetSize(300, 300);
+    this->Window->SetSize(size, size);
     this->Window->SetMultiSamples(0);
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->ResetCamera();
@@ -119,6 +123,15 @@ std::vector<float> ExpectedMipOverSphere(SceneType& scene, const FlatSphere& sph
     }
   }
   return expected;
+}
+
+// True under scripts/sanitize.sh's test subset (ACCELVOLUME_TEST_SUBSET=sanitizer), where every
+// loop runs 10-50x slower: the CPU mappers' exactness tests then check the same code paths on
+// fewer cases or pixels.
+inline bool SanitizerSubset()
+{
+  const char* subset = std::getenv("ACCELVOLUME_TEST_SUBSET");
+  return subset != nullptr && std::string(subset) == "sanitizer";
 }
 
 using Scene = SceneOf<vtkAccelVolumeSliceMapper>;

@@ -169,8 +169,10 @@ void Configure(SceneType& scene, bool parallel)
 template <typename MapperType, typename Setup>
 bool CheckMapper(const std::string& what, bool parallel, bool needIntermediate, Setup&& setup)
 {
-  SceneOf<MapperType> plain("blobs");
-  SceneOf<MapperType> observed("blobs");
+  // Under a sanitizer a 120x120 window: the same events on a sixth of the pixels.
+  const int size = SanitizerSubset() ? 120 : 300;
+  SceneOf<MapperType> plain("blobs", vtkVolumeMapper::COMPOSITE_BLEND, size);
+  SceneOf<MapperType> observed("blobs", vtkVolumeMapper::COMPOSITE_BLEND, size);
   Configure(plain, parallel);
   Configure(observed, parallel);
   setup(plain.Mapper.GetPointer());
@@ -239,7 +241,8 @@ int TestAccelVolumeProgress(int, char*[])
     ok;
   {
     // The forwarder is attached only while an observed smart mapper renders.
-    SceneOf<vtkAccelVolumeSmartMapper> scene("blobs");
+    SceneOf<vtkAccelVolumeSmartMapper> scene(
+      "blobs", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, SanitizerSubset() ? 120 : 300);
     EventLog log;
     log.Attach(scene.Mapper);
     scene.Window->Render();

@@ -123,8 +123,7 @@ bool CheckScene(const char* name, const char* phantom, int blend, bool shade, in
   }
   // Under a thread sanitizer (ACCELVOLUME_TEST_SUBSET=sanitizer, set by scripts/sanitize.sh) only
   // 2 threads: one thread starts no band threads, and 3 are capped to 2 on a 2-core CI machine.
-  const char* subset = std::getenv("ACCELVOLUME_TEST_SUBSET");
-  const bool sanitizer = subset != nullptr && std::string(subset) == "sanitizer";
+  const bool sanitizer = SanitizerSubset();
   const std::vector<int> threadCounts =
     sanitizer ? std::vector<int>{ 2 } : std::vector<int>{ 1, 2, 3 };
   for (int threads : threadCounts)
