@@ -169,13 +169,13 @@ std::vector<const Voxel*> Decode(
         EXPECT_GT(static_cast<std::int64_t>(run->begin), previousEnd) << "row " << row;
         EXPECT_EQ(run->offset, expectedOffset);
         if (run->end > static_cast<std::uint32_t>(ni) ||
-          run->offset + (run->end - run->begin) > e.voxels.size() || run->begin >= run->end)
+          run->offset + (run->end - run->begin) > e.StoredVoxels() || run->begin >= run->end)
         {
           return {};
         }
         for (std::uint32_t i = run->begin; i < run->end; ++i)
         {
-          decoded[row * ni + i] = &e.voxels[run->offset + (i - run->begin)];
+          decoded[row * ni + i] = &e.StoredVoxel(run->offset + (i - run->begin));
           EXPECT_EQ(FindVoxel(e, static_cast<int>(i), j, k), decoded[row * ni + i]);
         }
         previousEnd = run->end;
@@ -187,7 +187,7 @@ std::vector<const Voxel*> Decode(
       }
     }
   }
-  EXPECT_EQ(expectedOffset, e.voxels.size());
+  EXPECT_EQ(expectedOffset, e.StoredVoxels());
   return decoded;
 }
 
@@ -202,10 +202,10 @@ void ExpectSameArrays(const RunLengthVolume<Voxel>& a, const RunLengthVolume<Vox
     EXPECT_EQ(a.runs[r].end, b.runs[r].end);
     EXPECT_EQ(a.runs[r].offset, b.runs[r].offset);
   }
-  ASSERT_EQ(a.voxels.size(), b.voxels.size());
-  for (std::size_t v = 0; v < a.voxels.size(); ++v)
+  ASSERT_EQ(a.StoredVoxels(), b.StoredVoxels());
+  for (std::size_t v = 0; v < a.StoredVoxels(); ++v)
   {
-    ASSERT_TRUE(same(a.voxels[v], b.voxels[v])) << "voxel " << v;
+    ASSERT_TRUE(same(a.StoredVoxel(v), b.StoredVoxel(v))) << "voxel " << v;
   }
 }
 

@@ -141,10 +141,10 @@ bool SameVoxel(const ShadedVoxel& a, const ShadedVoxel& b)
     a.colour[1] == b.colour[1] && a.colour[2] == b.colour[2];
 }
 
-// AssignPalette on `encoded` (classified by c for axis): given exactly when no voxel has a normal;
-// then each voxel's entry is its opacity and colour, the entries ascend and differ, a second
-// call refuses (unless there is no voxel), and a transposed palette encoding equals the other
-// axis's own palette encoding.
+// AssignPalette on `encoded` (classified by c for axis): given exactly when no voxel has a normal
+// and there are voxels; then the voxels are released (only their indices kept), each voxel's
+// entry is its opacity and colour, the entries ascend and differ, a second call refuses, and a
+// transposed palette encoding equals the other axis's own palette encoding.
 void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int axis, bool dense,
   const RunLengthVolume<ShadedVoxel>& encoded)
 {
@@ -153,15 +153,16 @@ void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int
   RunLengthVolume<ShadedVoxel> paletted = encoded;
   const bool normalFree = std::all_of(encoded.voxels.begin(), encoded.voxels.end(),
     [](const ShadedVoxel& v) { return v.normal == NoNormal; });
-  ASSERT_EQ(AssignPalette(paletted, UnevenThreadedFor(3)), normalFree);
-  if (!normalFree)
+  ASSERT_EQ(AssignPalette(paletted, UnevenThreadedFor(3)), normalFree && !encoded.voxels.empty());
+  if (!normalFree || encoded.voxels.empty())
   {
     ExpectSameArrays(encoded, paletted, SameVoxel); // unchanged
     EXPECT_TRUE(paletted.palette.empty());
     return;
   }
-  EXPECT_EQ(AssignPalette(paletted, UnevenThreadedFor(3)),
-    paletted.voxels.empty()); // nothing to index: harmless
+  EXPECT_FALSE(AssignPalette(paletted, UnevenThreadedFor(3)));
+  EXPECT_TRUE(paletted.Indexed());
+  EXPECT_TRUE(paletted.voxels.empty()) << "the indices stand for the voxels";
   for (std::size_t n = 0; n < paletted.palette.size(); ++n)
   {
     EXPECT_EQ(paletted.palette[n].normal, NoNormal);
@@ -170,16 +171,14 @@ void ExpectPalette(const VolumeView& view, const CompositeClassification& c, int
       ASSERT_LT(key(paletted.palette[n - 1]), key(paletted.palette[n]));
     }
   }
-  ASSERT_EQ(paletted.voxels.size(), encoded.voxels.size());
+  ASSERT_EQ(paletted.StoredVoxels(), encoded.voxels.size());
   ASSERT_EQ(paletted.paletteIndices.size(), encoded.voxels.size());
+  ExpectSameArrays(encoded, paletted, SameVoxel);
   for (std::size_t n = 0; n < encoded.voxels.size(); ++n)
   {
-    ASSERT_LT(paletted.voxels[n].normal, paletted.palette.size());
-    ASSERT_EQ(paletted.paletteIndices[n], paletted.voxels[n].normal) << "voxel " << n;
-    ShadedVoxel entry = paletted.palette[paletted.voxels[n].normal];
-    ASSERT_TRUE(SameVoxel(entry, encoded.voxels[n])) << "voxel " << n;
-    entry.normal = paletted.voxels[n].normal;
-    ASSERT_TRUE(SameVoxel(entry, paletted.voxels[n])) << "voxel " << n;
+    ASSERT_LT(paletted.paletteIndices[n], paletted.palette.size());
+    ASSERT_TRUE(SameVoxel(paletted.palette[paletted.paletteIndices[n]], encoded.voxels[n]))
+      << "voxel " << n;
   }
   const int other = (axis + 1) % 3;
   RunLengthVolume<ShadedVoxel> direct;
@@ -490,8 +489,7 @@ TEST(RunLengthVolume, PaletteRefusesMoreThan65535DistinctVoxels)
     EXPECT_EQ(encoded.palette.size(), assigned ? 65535u : 0u);
     for (int n = 0; n < count; ++n)
     {
-      const ShadedVoxel& got =
-        assigned ? encoded.palette[encoded.voxels[n].normal] : encoded.voxels[n];
+      const ShadedVoxel& got = encoded.StoredVoxel(static_cast<std::size_t>(n));
       ASSERT_EQ(got.opacity, before[n].opacity);
       ASSERT_EQ(got.colour[0], before[n].colour[0]);
       ASSERT_EQ(got.normal, NoNormal);

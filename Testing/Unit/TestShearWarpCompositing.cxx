@@ -353,16 +353,17 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
       EXPECT_TRUE(
         BitIdentical(CompositeEachScanline(paletted, f, withPalette, paletteCounters), plain))
         << "palette, no termination";
-      // Without the dense index array, each voxel is converted as it is read (the code that
-      // converted the palette's entries): the same bits again.
-      RunLengthVolume<ShadedVoxel> unindexed = paletted;
-      unindexed.paletteIndices.clear();
+      // The palette encoding holds indices only (its voxels released); without the precomputed
+      // colours each voxel's palette entry is converted as it is read (the code that converted
+      // the palette's entries): the same bits again.
+      EXPECT_TRUE(paletted.voxels.empty());
+      withPalette.paletteColours.clear();
       withPalette.earlyTermination = true;
       withPalette.terminationLinks = true;
-      ScanlineCounters unindexedCounters;
+      ScanlineCounters convertedCounters;
       EXPECT_TRUE(BitIdentical(
-        CompositeEachScanline(unindexed, f, withPalette, unindexedCounters), terminated))
-        << "palette, no indices";
+        CompositeEachScanline(paletted, f, withPalette, convertedCounters), terminated))
+        << "palette, colours converted per voxel";
       ++palettes;
     }
   }

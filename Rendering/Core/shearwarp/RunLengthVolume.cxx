@@ -386,7 +386,7 @@ private:
 
 bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel)
 {
-  if (!encoded.palette.empty())
+  if (encoded.Indexed() || encoded.voxels.empty())
   {
     return false;
   }
@@ -451,11 +451,10 @@ bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& par
     {
       for (std::size_t n = begin; n < end; ++n)
       {
-        ShadedVoxel& voxel = encoded.voxels[n];
-        voxel.normal = index[all.SlotOf(PaletteKey(voxel))];
-        encoded.paletteIndices[n] = voxel.normal;
+        encoded.paletteIndices[n] = index[all.SlotOf(PaletteKey(encoded.voxels[n]))];
       }
     });
+  encoded.voxels = std::vector<ShadedVoxel>(); // released: the indices stand for them
   return true;
 }
 

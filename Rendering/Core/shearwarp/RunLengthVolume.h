@@ -65,13 +65,25 @@ struct RunLengthVolume
   bool dense = false;             // one run per scanline, transparent voxels stored too
   std::vector<std::uint32_t> rowStart; // runs of scanline (j, k): [rowStart[r], rowStart[r + 1]), r = j + nj k
   std::vector<VoxelRun> runs;
-  std::vector<Voxel> voxels;
+  std::vector<Voxel> voxels; // the stored voxels; empty with a palette
   // Unshaded composite encodings (AssignPalette): the distinct classified voxels, each with
-  // normal NoNormal; a stored voxel's normal is then its index here. Empty: no palette.
+  // normal NoNormal. Empty: no palette.
   std::vector<Voxel> palette;
-  // With a palette: each stored voxel's palette index (its normal field), 2 bytes where a voxel
-  // takes 8, which compositing streams instead of the voxels (less memory traffic).
+  // With a palette, the stored voxels as their palette indices (2 bytes where a voxel takes 8:
+  // less memory, and less traffic for compositing and the transposes); voxel n is
+  // palette[paletteIndices[n]].
   std::vector<std::uint16_t> paletteIndices;
+
+  bool Indexed() const { return !this->palette.empty(); }
+  std::size_t StoredVoxels() const
+  {
+    return this->Indexed() ? this->paletteIndices.size() : this->voxels.size();
+  }
+  // Stored voxel n (in storage order: slice, scanline, position).
+  const Voxel& StoredVoxel(std::size_t n) const
+  {
+    return this->Indexed() ? this->palette[this->paletteIndices[n]] : this->voxels[n];
+  }
 
   std::size_t Row(int j, int k) const { return static_cast<std::size_t>(j) + static_cast<std::size_t>(this->sliceDims[1]) * k; }
   const VoxelRun* RunsBegin(int j, int k) const { return this->runs.data() + this->rowStart[this->Row(j, k)]; }
@@ -107,11 +119,11 @@ bool EncodeComposite(const VolumeView& volume, const CompositeClassification& cl
   std::string& error);
 
 // For an encoding without normals (unshaded): lists its distinct classified voxels (opacity and
-// colour) in `palette`, in ascending order of (opacity, colour), and stores each voxel's index
-// there in its normal field (kept through the transposes) and densely in paletteIndices, from
-// which compositing looks up one precomputed colour per voxel instead of converting it. False,
-// and the encoding unchanged, when it has normals, a palette already, or more than 65535
-// distinct voxels. The indices are stored in parallel.
+// colour) in `palette`, in ascending order of (opacity, colour), and replaces the stored voxels
+// by their indices there (paletteIndices; `voxels` is emptied), from which compositing looks up
+// one precomputed colour per voxel instead of converting it. False, and the encoding unchanged,
+// when it has normals, a palette already, no voxels, or more than 65535 distinct voxels. The
+// indices are stored in parallel.
 bool AssignPalette(RunLengthVolume<ShadedVoxel>& encoded, const ParallelFor& parallel);
 
 // Quantized scalar for MIP / MinIP: round(65535 (s - rangeMin) / (rangeMax - rangeMin)), clamped.
@@ -140,7 +152,7 @@ const Voxel* FindVoxel(const RunLengthVolume<Voxel>& encoded, int i, int j, int 
   {
     if (static_cast<std::uint32_t>(i) >= run->begin && static_cast<std::uint32_t>(i) < run->end)
     {
-      return &encoded.voxels[run->offset + (i - run->begin)];
+      return &encoded.StoredVoxel(run->offset + (i - run->begin));
     }
   }
   return nullptr;

@@ -1,15 +1,13 @@
 // Front-to-back compositing of sheared slices into one intermediate scanline, walking voxel runs
 // and skip links over saturated pixels together.
 #include "shearwarp/ShearWarpCompositor.h"
+#include "shearwarp/ShearWarpCompositePolicies.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 #if defined(__x86_64__) || defined(__i386__)
 #include <x86intrin.h>
 #endif
@@ -49,128 +47,6 @@ inline int FindOpen(std::int32_t* next, int u)
   return open;
 }
 
-// Premultiplied colours of classified voxels with the frame's tables, for a run of voxels at a
-// time: the tables' pointers and modes are copied into locals once, so that the cell stores
-// cannot make the compiler reload them for every voxel.
-class VoxelShader
-{
-public:
-  explicit VoxelShader(const CompositeTables& t)
-    : Tables(t)
-    , Opacity(t.opacity.data())
-    , Shading(t.shading.data())
-    , Shade(t.shade)
-    // Unshaded and white-light table shading (the common cases) take one SSE register.
-    , OneRegister(!t.shade || (!t.phong && t.shadingStride == 2))
-  {
-  }
-
-  void operator()(const ShadedVoxel* voxel, int count, float* out) const
-  {
-#if defined(__SSE2__)
-    if (this->OneRegister)
-    {
-      for (int n = 0; n < count; ++n, out += 4)
-      {
-        this->OnOneRegister(voxel[n], out);
-      }
-      return;
-    }
-#endif
-    for (int n = 0; n < count; ++n, out += 4)
-    {
-      this->General(voxel[n], out);
-    }
-  }
-
-private:
-#if defined(__SSE2__)
-  // The scalar code's operations per channel, so the same values.
-  void OnOneRegister(const ShadedVoxel& voxel, float out[4]) const
-  {
-    const float opacity = this->Opacity[voxel.opacity];
-    if (opacity <= 0)
-    {
-      _mm_storeu_ps(out, _mm_setzero_ps());
-      return;
-    }
-    std::uint32_t bytes;
-    std::memcpy(&bytes, voxel.colour, sizeof(bytes));
-    const __m128i zero = _mm_setzero_si128();
-    const __m128i channels =
-      _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(static_cast<int>(bytes)), zero), zero);
-    __m128 rgb = _mm_mul_ps(_mm_cvtepi32_ps(channels), _mm_set1_ps(1.0f / 255.0f));
-    if (this->Shade)
-    {
-      const std::size_t row = voxel.normal == NoNormal ? NormalCodes : voxel.normal;
-      const float* s = this->Shading + 2 * row;
-      rgb = _mm_min_ps(
-        _mm_add_ps(_mm_mul_ps(rgb, _mm_set1_ps(s[0])), _mm_set1_ps(s[1])), _mm_set1_ps(1.0f));
-    }
-    _mm_storeu_ps(out, _mm_mul_ps(rgb, _mm_set1_ps(opacity)));
-    out[3] = opacity;
-  }
-#endif
-
-  void General(const ShadedVoxel& voxel, float out[4]) const
-  {
-    const CompositeTables& t = this->Tables;
-    const float opacity = this->Opacity[voxel.opacity];
-    if (opacity <= 0)
-    {
-      out[0] = out[1] = out[2] = out[3] = 0;
-      return;
-    }
-    constexpr float toUnit = 1.0f / 255.0f;
-    float rgb[3] = { voxel.colour[0] * toUnit, voxel.colour[1] * toUnit, voxel.colour[2] * toUnit };
-    if (t.shade && !t.phong)
-    {
-      const std::size_t row = voxel.normal == NoNormal ? NormalCodes : voxel.normal;
-      const float* s = this->Shading + static_cast<std::size_t>(t.shadingStride) * row;
-      if (t.shadingStride == 2)
-      {
-        for (float& channel : rgb)
-        {
-          channel = std::min(channel * s[0] + s[1], 1.0f);
-        }
-      }
-      else
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          rgb[c] = std::min(rgb[c] * s[c] + s[c + 3], 1.0f);
-        }
-      }
-    }
-    else if (t.shade)
-    {
-      float factor[3];
-      float specular[3];
-      AmbientTerms(t.lighting, factor, specular);
-      if (voxel.normal != NoNormal)
-      {
-        float g[3];
-        DecodeNormal(voxel.normal, g);
-        PhongTerms(t, g, factor, specular);
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        rgb[c] = std::min(rgb[c] * factor[c] + specular[c], 1.0f);
-      }
-    }
-    out[0] = rgb[0] * opacity;
-    out[1] = rgb[1] * opacity;
-    out[2] = rgb[2] * opacity;
-    out[3] = opacity;
-  }
-
-  const CompositeTables& Tables;
-  const float* Opacity;
-  const float* Shading;
-  bool Shade;
-  bool OneRegister;
-};
-
 }
 
 void BuildPaletteColours(
@@ -183,7 +59,7 @@ void BuildPaletteColours(
   }
   std::vector<float> colours(4 * palette.size());
   // Converted by the same code as a voxel without a palette, so the same values.
-  const VoxelShader shader(tables);
+  const compositing::VoxelShader shader(tables);
   parallel(palette.size(),
     [&](std::size_t begin, std::size_t end)
     { shader(palette.data() + begin, static_cast<int>(end - begin), colours.data() + 4 * begin); });
@@ -192,128 +68,8 @@ void BuildPaletteColours(
 
 namespace
 {
-
-// Compositing of one blend, as a policy for the band loop below.
-struct CompositePolicy
-{
-  using Voxel = ShadedVoxel;
-  static constexpr int Channels = 4;
-  const CompositeTables& tables;
-  VoxelShader shader; // of tables, made once per band
-  // Unshaded with a palette: the encoding's voxels and their palette indices (a voxel's index
-  // sits at its own offset), so cells copy their colours reading 2 bytes per voxel, not 8.
-  const ShadedVoxel* voxelBase = nullptr;
-  const std::uint16_t* paletteIndices = nullptr;
-  const float* paletteColours = nullptr;
-  float threshold = 1; // tables.terminationThreshold
-  // `count` cells of no voxel (gaps are short: a call to memset costs more).
-  void Clear(float* cells, int count) const
-  {
-    for (int n = 0; n < count; ++n)
-    {
-#if defined(__SSE2__)
-      _mm_storeu_ps(cells + 4 * n, _mm_setzero_ps());
-#else
-      std::fill(cells + 4 * n, cells + 4 * n + 4, 0.0f);
-#endif
-    }
-  }
-  // Cells for `count` consecutive voxels.
-  void Load(const ShadedVoxel* voxels, int count, float* cells) const
-  {
-    if (this->paletteIndices)
-    {
-      const std::uint16_t* index = this->paletteIndices + (voxels - this->voxelBase);
-      for (int n = 0; n < count; ++n)
-      {
-        std::memcpy(cells + 4 * n, this->paletteColours + 4 * static_cast<std::size_t>(index[n]),
-          4 * sizeof(float));
-      }
-      return;
-    }
-    this->shader(voxels, count, cells);
-  }
-  // A hint to start loading what Load reads for the voxel at `offset`.
-  void Prefetch(const ShadedVoxel* voxels, std::size_t offset) const
-  {
-    if (this->paletteIndices)
-    {
-      __builtin_prefetch(this->paletteIndices + offset);
-      return;
-    }
-    __builtin_prefetch(voxels + offset);
-  }
-  // Resamples the four corners (a: row j0 at i0, i0 + 1; b: row j0 + 1) and composites "over"
-  // the pixel; true once the pixel is saturated.
-  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
-  {
-#if defined(__SSE2__)
-    // One RGBA pixel per SSE register; same operation order as the scalar code below.
-    const __m128 sample = _mm_add_ps(
-      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(w[0]), _mm_loadu_ps(a)),
-                   _mm_mul_ps(_mm_set1_ps(w[1]), _mm_loadu_ps(a + 4))),
-        _mm_mul_ps(_mm_set1_ps(w[2]), _mm_loadu_ps(b))),
-      _mm_mul_ps(_mm_set1_ps(w[3]), _mm_loadu_ps(b + 4)));
-    const float transmit = 1.0f - pixel[3];
-    const __m128 result =
-      _mm_add_ps(_mm_loadu_ps(pixel), _mm_mul_ps(_mm_set1_ps(transmit), sample));
-    _mm_storeu_ps(pixel, result);
-#else
-    float sample[4];
-    for (int c = 0; c < 4; ++c)
-    {
-      sample[c] = ((w[0] * a[c] + w[1] * a[4 + c]) + w[2] * b[c]) + w[3] * b[4 + c];
-    }
-    const float transmit = 1.0f - pixel[3];
-    for (int c = 0; c < 4; ++c)
-    {
-      pixel[c] += transmit * sample[c];
-    }
-#endif
-    return pixel[3] >= this->threshold;
-  }
-};
-
-struct ExtremePolicy
-{
-  using Voxel = ScalarVoxel;
-  static constexpr int Channels = 1;
-  bool maximum;
-  float saturation;
-  // A corner that is not stored is +-inf, which drops every sample it weighs.
-  float Empty() const
-  {
-    return this->maximum ? -std::numeric_limits<float>::infinity()
-                         : std::numeric_limits<float>::infinity();
-  }
-  void Clear(float* cells, int count) const { std::fill(cells, cells + count, this->Empty()); }
-  void Load(const ScalarVoxel* voxels, int count, float* cells) const
-  {
-    for (int n = 0; n < count; ++n)
-    {
-      cells[n] = static_cast<float>(voxels[n]);
-    }
-  }
-  void Prefetch(const ScalarVoxel* voxels, std::size_t offset) const
-  {
-    __builtin_prefetch(voxels + offset);
-  }
-  bool Sample(const float* a, const float* b, const float* w, float* pixel) const
-  {
-    float sample = 0;
-    sample += w[0] > 0 ? w[0] * a[0] : 0.0f;
-    sample += w[1] > 0 ? w[1] * a[1] : 0.0f;
-    sample += w[2] > 0 ? w[2] * b[0] : 0.0f;
-    sample += w[3] > 0 ? w[3] * b[1] : 0.0f;
-    if (this->maximum)
-    {
-      *pixel = std::max(*pixel, sample);
-      return *pixel >= this->saturation;
-    }
-    *pixel = std::min(*pixel, sample);
-    return *pixel <= this->saturation;
-  }
-};
+using compositing::CompositePolicy;
+using compositing::ExtremePolicy;
 
 // The band loop shared by every blend: slices front to back (the encoding streams in order);
 // in each, the scanlines of the band, each resampling two voxel scanlines shaded once into
@@ -448,9 +204,8 @@ struct RowCursor
 // the policy's empty value: tight loops over the gaps and the runs' voxels. The row's cursor is
 // a run that ends after `from` or before it.
 template <typename Policy>
-__attribute__((always_inline)) inline void ShadeRange(const Policy& policy,
-  const typename Policy::Voxel* voxels, const RowCursor& row, int from, int to,
-  std::uint64_t& shaded)
+__attribute__((always_inline)) inline void ShadeRange(
+  const Policy& policy, const RowCursor& row, int from, int to, std::uint64_t& shaded)
 {
   constexpr int C = Policy::Channels;
   const VoxelRun* run = row.run;
@@ -472,8 +227,8 @@ __attribute__((always_inline)) inline void ShadeRange(const Policy& policy,
       break;
     }
     const int runEnd = std::min(to, static_cast<int>(run->end));
-    policy.Load(voxels + run->offset + (i - static_cast<int>(run->begin)), runEnd - i,
-      row.cells + C * (i + 1));
+    policy.Load(run->offset + static_cast<std::size_t>(i - static_cast<int>(run->begin)),
+      runEnd - i, row.cells + C * (i + 1));
     shaded += static_cast<std::uint64_t>(runEnd - i);
     i = runEnd;
   }
@@ -484,8 +239,8 @@ __attribute__((always_inline)) inline void ShadeRange(const Policy& policy,
 // in ascending order (consecutive stretches may overlap by one cell); the buffer's first user
 // records what it shaded, a later one shades only what lies between those ranges.
 template <typename Policy>
-inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxels,
-  const RowCursor& row, int from, int to, std::uint64_t& shaded)
+inline void ShadeCells(
+  const Policy& policy, const RowCursor& row, int from, int to, std::uint64_t& shaded)
 {
   ShadedCells& cells = *row.shaded;
   from = std::max(from, cells.requested);
@@ -496,7 +251,7 @@ inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxel
   cells.requested = to;
   if (cells.users == 1)
   {
-    ShadeRange(policy, voxels, row, from, to, shaded);
+    ShadeRange(policy, row, from, to, shaded);
     std::pair<int, int>* ranges = cells.ranges.data();
     if (cells.count > 0 && ranges[cells.count - 1].second == from)
     {
@@ -523,7 +278,7 @@ inline void ShadeCells(const Policy& policy, const typename Policy::Voxel* voxel
       continue;
     }
     const int gapEnd = cells.cursor < count ? std::min(to, ranges[cells.cursor].first) : to;
-    ShadeRange(policy, voxels, row, i, gapEnd, shaded);
+    ShadeRange(policy, row, i, gapEnd, shaded);
     i = gapEnd;
   }
 }
@@ -554,7 +309,6 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   const std::size_t stride = static_cast<std::size_t>(width) + 1;
   const int k = slice.k;
   const int shiftI = slice.shiftI;
-  const Voxel* voxels = encoded.voxels.data();
   // A local copy: the pixel stores below cannot alias it, so it stays in registers.
   const float w[4] = { slice.w[0], slice.w[1], slice.w[2], slice.w[3] };
   std::int32_t* links = ws.next.data() + stride * r;
@@ -624,7 +378,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
     }
     for (const RowCursor& cursor : rows)
     {
-      ShadeCells(policy, voxels, cursor, u - shiftI - 1, stretchEnd - shiftI, shaded);
+      ShadeCells(policy, cursor, u - shiftI - 1, stretchEnd - shiftI, shaded);
     }
     for (; u < stretchEnd; ++u)
     {
@@ -687,8 +441,8 @@ inline void CompositeScanlinePair(
     if (first != last)
     {
       --last;
-      c.policy.Prefetch(encoded.voxels.data(), first->offset);
-      c.policy.Prefetch(encoded.voxels.data(), last->offset + (last->end - last->begin) - 1);
+      c.policy.Prefetch(first->offset);
+      c.policy.Prefetch(last->offset + (last->end - last->begin) - 1);
     }
   }
   // The pixels the two voxel scanlines can reach at all; when every one of them is already
@@ -782,14 +536,20 @@ void CompositeBand(const RunLengthVolume<ShadedVoxel>& encoded, const ShearWarpF
   const CompositeTables& tables, int v0, int v1, float* rgba, ScanlineWorkspace& workspace,
   ScanlineCounters& counters, double* work)
 {
-  CompositePolicy policy{ tables, VoxelShader(tables) };
+  CompositePolicy policy{ tables, compositing::VoxelShader(tables) };
   policy.threshold = tables.terminationThreshold;
-  if (!tables.shade && !tables.paletteColours.empty() &&
-    encoded.paletteIndices.size() == encoded.voxels.size())
+  if (encoded.Indexed())
   {
-    policy.voxelBase = encoded.voxels.data();
     policy.paletteIndices = encoded.paletteIndices.data();
-    policy.paletteColours = tables.paletteColours.data();
+    policy.palette = encoded.palette.data();
+    if (!tables.shade && tables.paletteColours.size() == 4 * encoded.palette.size())
+    {
+      policy.paletteColours = tables.paletteColours.data();
+    }
+  }
+  else
+  {
+    policy.voxels = encoded.voxels.data();
   }
   Band(encoded, f, policy, tables.terminationLinks && tables.earlyTermination, v0, v1, rgba, workspace,
     counters, work);
@@ -799,7 +559,7 @@ void ExtremeBand(const RunLengthVolume<ScalarVoxel>& encoded, const ShearWarpFac
   bool maximum, float saturation, bool terminationLinks, int v0, int v1, float* value,
   ScanlineWorkspace& workspace, ScanlineCounters& counters, double* work)
 {
-  const ExtremePolicy policy{ maximum, saturation };
+  const ExtremePolicy policy{ maximum, saturation, encoded.voxels.data() };
   Band(encoded, f, policy, terminationLinks, v0, v1, value, workspace, counters, work);
 }
 

@@ -277,7 +277,7 @@ void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
   stats.intermediateSize[1] = f.intermediateSize[1];
   if (this->compositeSlot)
   {
-    stats.storedVoxels = this->compositeSlot->encoded.voxels.size();
+    stats.storedVoxels = this->compositeSlot->encoded.StoredVoxels();
     stats.runs = this->compositeSlot->encoded.runs.size();
   }
   else
