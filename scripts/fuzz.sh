@@ -120,29 +120,34 @@ fuzz_target() {
 # The targets run side by side when there are cores for them (each fuzzer is one process on one
 # core), else one after the other; their reports are printed in order either way.
 failed=()
-pids=()
-for entry in "${targets[@]}"; do
-  read -r target _ <<<"$entry"
-  if [ "$jobs" -ge "${#targets[@]}" ]; then
+statuses=()
+if [ "$jobs" -ge "${#targets[@]}" ]; then
+  pids=()
+  for entry in "${targets[@]}"; do
+    read -r target _ <<<"$entry"
     fuzz_target "$entry" >"$build/$target.report" 2>&1 &
     pids+=("$!")
-  else
-    fuzz_target "$entry" >"$build/$target.report" 2>&1 && pids+=(0) || pids+=(1)
-  fi
-done
+  done
+  for pid in "${pids[@]}"; do
+    status=0
+    wait "$pid" || status=$?
+    statuses+=("$status")
+  done
+else
+  for entry in "${targets[@]}"; do
+    read -r target _ <<<"$entry"
+    status=0
+    fuzz_target "$entry" >"$build/$target.report" 2>&1 || status=$?
+    statuses+=("$status")
+  done
+fi
 for n in "${!targets[@]}"; do
   read -r target _ <<<"${targets[$n]}"
-  status=0
-  if [ "$jobs" -ge "${#targets[@]}" ]; then
-    wait "${pids[$n]}" || status=$?
-  else
-    status="${pids[$n]}"
-  fi
   cat "$build/$target.report"
   if [ -f "$build/$target.findings" ]; then
     cat "$build/$target.findings" >>"$findings"
   fi
-  if [ "$status" -ne 0 ]; then
+  if [ "${statuses[$n]}" -ne 0 ]; then
     failed+=("$target")
   fi
 done

@@ -50,6 +50,13 @@ constexpr int Cycle = 200;                 // the schedule repeats every Cycle f
 constexpr double HeapBoundKiB = 256.0;     // growth of heap in use allowed after warm-up
 constexpr double RssBoundMiB = 1.0;        // growth of resident memory allowed after warm-up
 constexpr double MinimumDrawnShare = 0.25; // of the sampled frames of every cycle
+
+// The frame after which resident memory is taken as warm: the second cycle's end when there are
+// three or more cycles (see Result::RssWarm), else the first's.
+int RssWarmFrame(int frames)
+{
+  return (frames / Cycle >= 3 ? 2 : 1) * Cycle;
+}
 constexpr double MiB = 1024.0 * 1024.0;
 
 enum class Kind
@@ -172,7 +179,6 @@ struct Result
   // shader JIT) only in the second cycle, a one-time step that is no leak (seen once in CI:
   // +1.0 MiB between frames 200 and 400, flat after). Heap in use is judged from the first.
   Memory RssWarm;
-  int RssWarmFrame = 0;
   std::vector<Memory> Checkpoints; // after every cycle
   double MsPerFrame = 0;
   int Errors = 0;
@@ -248,9 +254,7 @@ public:
     result.MsPerFrame = 1000.0 * timer->GetElapsedTime() / frames;
     result.Warm = result.Checkpoints.front();
     result.End = result.Checkpoints.back();
-    const std::size_t rssWarm = result.Checkpoints.size() >= 3 ? 1 : 0;
-    result.RssWarm = result.Checkpoints[rssWarm];
-    result.RssWarmFrame = static_cast<int>(rssWarm + 1) * Cycle;
+    result.RssWarm = result.Checkpoints[static_cast<std::size_t>(RssWarmFrame(frames) / Cycle - 1)];
     result.Errors = this->Errors->Count;
     result.Warnings = this->Warnings->Count;
     result.FirstError = this->Errors->First;
@@ -590,7 +594,7 @@ int TestAccelVolumeSoak(int argc, char* argv[])
   }
   std::cout << "soak: " << args.Frames << " frames per mapper, schedule period " << Cycle
             << " frames; heap in use after frame " << Cycle << " (warm), resident memory after frame "
-            << (args.Frames / Cycle >= 3 ? 2 * Cycle : Cycle) << ", both after frame " << args.Frames
+            << RssWarmFrame(args.Frames) << ", both after frame " << args.Frames
             << "; bounds: heap in use +" << HeapBoundKiB << " KiB, RSS +" << RssBoundMiB << " MiB"
             << (args.InjectLeak ? ", injected leak " + std::to_string(args.InjectLeak) +
                      " bytes per transfer-function change"
@@ -629,7 +633,7 @@ int TestAccelVolumeSoak(int argc, char* argv[])
 
   bool memoryOk = true;
   bool otherOk = true;
-  std::cout << "\nmapper     frames  RSS@" << (results.empty() ? Cycle : results.front().RssWarmFrame)
+  std::cout << "\nmapper     frames  RSS@" << RssWarmFrame(args.Frames)
             << "  RSS@end  RSS growth  heap@" << Cycle
             << "  heap@end  heap growth  ms/frame  errors  warnings\n";
   for (const Result& r : results)
