@@ -324,6 +324,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
   settings.bands = in.threads;
   settings.balance = self->LoadBalancing != 0;
   settings.warp = self->WarpOnGPU == 0;
+  settings.displayPixels = !settings.warp; // converted by the band workers (one rank)
   settings.backgroundEncodings = self->BackgroundEncoding != 0;
   return FrameReady;
 }
@@ -443,8 +444,10 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
   if (!in.settings.warp)
   {
     const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
+    const accelvolume::ShearWarpDisplayPixels converted = this->Renderer.GetDisplayPixels();
     const vtkAccelVolumeImageDisplay::Warp intermediate{ this->Renderer.GetIntermediateImage(),
-      { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp };
+      { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp, converted.rgba,
+      converted.rowFirst, converted.rowLast };
     if (this->Display.DrawWarped(window, lowerLeft, in.width, in.height, in.width, in.height,
           intermediate, out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
           peeling))

@@ -3,6 +3,8 @@
 // the shading table; encodings cached per axis and version; bad arguments fail cleanly.
 #include "ShearWarpEngineTestSupport.h"
 
+#include "common/Unorm16.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -133,6 +135,77 @@ TEST(ShearWarpEngine, OneWorkerSplitsLargeImagesIntoCacheSizedBands)
     Frame whole;
     single.Warp(SerialParallelFor, whole.rgba, whole.rectangle);
     EXPECT_TRUE(BitIdentical(whole.rgba, frame.rgba));
+  }
+}
+
+TEST(ShearWarpEngine, BandWorkersConvertTheDisplayPixels)
+{
+  // Without the warp, Render's band workers convert their rows for display: the values of
+  // converting the intermediate image afterwards, a zero column and row past it, each row's
+  // visible span, whatever the bands and threads; the phases (MPI) leave them unset.
+  const int dims[3] = { 40, 32, 24 };
+  const Scene scene = MakeScene(dims, false, Content::SphereAndBar);
+  const RayCastTransfer tf = MakeTransfer(0.3f, false);
+  const ViewSetup camera = MakeCamera(scene, 200, -35, Isotropic, 90, 70, 25, true);
+  for (Blend blend : { Blend::Composite, Blend::Maximum })
+  {
+    SCOPED_TRACE(BlendName(blend));
+    ShearWarpSettings settings;
+    settings.blend = blend;
+    settings.warp = false;
+    ShearWarpRenderer renderer;
+    Frame frame = RenderFrame(renderer, scene, tf, camera, settings);
+    EXPECT_EQ(renderer.GetDisplayPixels().rgba, nullptr) << "not asked for";
+    settings.displayPixels = true;
+    for (int bands : { 1, 3 })
+    {
+      settings.bands = bands;
+      frame = RenderFrame(renderer, scene, tf, camera, settings,
+        bands > 1 ? UnevenThreadedFor(3) : ParallelFor(SerialParallelFor));
+      const ShearWarpDisplayPixels display = renderer.GetDisplayPixels();
+      const int width = frame.stats.intermediateSize[0], rows = frame.stats.intermediateSize[1];
+      ASSERT_NE(display.rgba, nullptr);
+      ASSERT_EQ(display.width, width + 1);
+      ASSERT_EQ(display.height, rows + 1);
+      const float* intermediate = renderer.GetIntermediateImage();
+      int visibleRows = 0;
+      for (int v = 0; v <= rows; ++v)
+      {
+        const std::uint16_t* row = display.rgba + 4 * static_cast<std::size_t>(width + 1) * v;
+        std::vector<std::uint16_t> expected(4 * static_cast<std::size_t>(width + 1), 0);
+        if (v < rows)
+        {
+          ConvertToUnorm16(intermediate + 4 * static_cast<std::size_t>(width) * v,
+            4 * static_cast<std::size_t>(width), expected.data());
+        }
+        ASSERT_TRUE(std::equal(expected.begin(), expected.end(), row)) << "row " << v;
+        if (v == rows)
+        {
+          break;
+        }
+        int first = width, last = -1;
+        for (int u = 0; u < width; ++u)
+        {
+          if (row[4 * u] || row[4 * u + 1] || row[4 * u + 2] || row[4 * u + 3])
+          {
+            first = std::min(first, u);
+            last = u;
+          }
+        }
+        if (last < 0)
+        {
+          EXPECT_GT(display.rowFirst[v], display.rowLast[v]) << "row " << v;
+          continue;
+        }
+        ++visibleRows;
+        EXPECT_EQ(display.rowFirst[v], first) << "row " << v;
+        EXPECT_EQ(display.rowLast[v], last) << "row " << v;
+      }
+      EXPECT_GT(visibleRows, rows / 4);
+      EXPECT_LT(visibleRows, rows); // a transparent margin too
+    }
+    ASSERT_TRUE(BeginPhases(renderer, scene, tf, camera, settings));
+    EXPECT_EQ(renderer.GetDisplayPixels().rgba, nullptr) << "phases";
   }
 }
 

@@ -32,36 +32,14 @@ struct vtkAccelVolumeImageDisplay::Placement
   const float* selectionColour;
   bool clearSecondTarget;
   const Warp* warp; // null: the texture holds the image itself
+  const unsigned short* pixels; // uploadWidth x uploadHeight 16-bit RGBA
+  // With a warp: each intermediate row's first and last visible pixel (first > last: none).
+  const int* rowFirst;
+  const int* rowLast;
 };
 
 namespace
 {
-
-// The first and last of `count` RGBA pixels (4 channels of 16 bits) that is not all zero;
-// first > last when every pixel is zero.
-void FindVisiblePixels(const unsigned short* row, int count, int& first, int& last)
-{
-  const auto visible = [row](int i)
-  {
-    std::uint64_t bits;
-    std::memcpy(&bits, row + 4 * static_cast<std::size_t>(i), sizeof bits);
-    return bits != 0;
-  };
-  first = 0;
-  while (first < count && !visible(first))
-  {
-    ++first;
-  }
-  last = count - 1;
-  while (last > first && !visible(last))
-  {
-    --last;
-  }
-  if (first == count)
-  {
-    last = -1;
-  }
-}
 
 // Intermediate rows per band of the drawn footprint: fewer rows cut the empty parts closer,
 // more bands add vertices.
@@ -118,7 +96,7 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   this->Image->SetWrapT(vtkTextureObject::ClampToEdge);
   Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, rectangleWidth,
     rectangleHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    nullptr };
+    nullptr, this->Pixels.data(), nullptr, nullptr };
   return this->Show(window, this->Image, placement);
 }
 
@@ -143,19 +121,23 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   {
     return false;
   }
-  const std::size_t rowValues = 4 * static_cast<std::size_t>(uploadWidth);
-  this->Pixels.resize(rowValues * uploadHeight);
-  this->RowFirst.resize(intermediateHeight);
-  this->RowLast.resize(intermediateHeight);
-  for (int v = 0; v < intermediateHeight; ++v)
+  if (!warp.converted)
   {
-    unsigned short* row = this->Pixels.data() + rowValues * v;
-    accelvolume::ConvertToUnorm16(
-      intermediate + 4 * static_cast<std::size_t>(v) * intermediateWidth, rowValues - 4, row);
-    std::fill(row + rowValues - 4, row + rowValues, 0);
-    FindVisiblePixels(row, intermediateWidth, this->RowFirst[v], this->RowLast[v]);
+    const std::size_t rowValues = 4 * static_cast<std::size_t>(uploadWidth);
+    this->Pixels.resize(rowValues * uploadHeight);
+    this->RowFirst.resize(intermediateHeight);
+    this->RowLast.resize(intermediateHeight);
+    for (int v = 0; v < intermediateHeight; ++v)
+    {
+      unsigned short* row = this->Pixels.data() + rowValues * v;
+      accelvolume::ConvertToUnorm16(
+        intermediate + 4 * static_cast<std::size_t>(v) * intermediateWidth, rowValues - 4, row);
+      std::fill(row + rowValues - 4, row + rowValues, 0);
+      accelvolume::FindNonZeroPixels(
+        row, intermediateWidth, this->RowFirst[v], this->RowLast[v]);
+    }
+    std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
   }
-  std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
   // The view turns the intermediate image's size a little every frame: the texture keeps room
   // to spare (in steps of 64) so that it is not made anew each frame.
   this->Intermediate->SetContext(window);
@@ -175,7 +157,9 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   this->Intermediate->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
   Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
     uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    &warp };
+    &warp, warp.converted ? warp.converted : this->Pixels.data(),
+    warp.converted ? warp.rowFirst : this->RowFirst.data(),
+    warp.converted ? warp.rowLast : this->RowLast.data() };
   return this->Show(window, this->Intermediate, placement);
 }
 
@@ -188,8 +172,8 @@ bool vtkAccelVolumeImageDisplay::Show(
   state->Push();
   texture->Activate();
   state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, p.uploadWidth, p.uploadHeight, GL_RGBA, GL_UNSIGNED_SHORT,
-    this->Pixels.data());
+  glTexSubImage2D(
+    GL_TEXTURE_2D, 0, 0, 0, p.uploadWidth, p.uploadHeight, GL_RGBA, GL_UNSIGNED_SHORT, p.pixels);
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
   texture->SendParameters();
@@ -296,10 +280,10 @@ void vtkAccelVolumeImageDisplay::DrawFootprint(
     int first = width, last = -1;
     for (int v = std::max(line(k), 0); v <= std::min(line(k + 1), height - 1); ++v)
     {
-      if (this->RowFirst[v] <= this->RowLast[v])
+      if (p.rowFirst[v] <= p.rowLast[v])
       {
-        first = std::min(first, this->RowFirst[v] - 1);
-        last = std::max(last, this->RowLast[v] + 1);
+        first = std::min(first, p.rowFirst[v] - 1);
+        last = std::max(last, p.rowLast[v] + 1);
       }
     }
     bandFirst[k] = std::max(first, -1);

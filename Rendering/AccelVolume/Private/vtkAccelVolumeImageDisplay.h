@@ -46,6 +46,12 @@ public:
     int size[2];
     const double (*forward)[3];
     const double (*inverse)[3];
+    // The image converted already (ShearWarpDisplayPixels: (size[0] + 1) x (size[1] + 1) 16-bit
+    // pixels, the last column and row zero, and each row's first and last visible pixel), or
+    // null: DrawWarped converts `image` itself.
+    const unsigned short* converted = nullptr;
+    const int* rowFirst = nullptr;
+    const int* rowLast = nullptr;
   };
 
   // The intermediate image warped by the GPU into the image of imageWidth x imageHeight pixels
@@ -75,8 +81,8 @@ private:
   vtkNew<vtkTextureObject> Image;
   vtkNew<vtkTextureObject> Intermediate; // shear-warp's, with room to spare (DrawWarped)
   std::vector<unsigned short> Pixels;
-  // DrawWarped: each intermediate row's first and last pixel that is not zero (first > last:
-  // none), and the footprint's triangles (x, y in normalized device coordinates, s, t).
+  // DrawWarped's own conversion: each intermediate row's first and last pixel that is not zero
+  // (first > last: none); and the footprint's triangles (x, y in normalized device coordinates, s, t).
   std::vector<int> RowFirst, RowLast;
   std::vector<float> FootprintVertices;
   vtkNew<vtkOpenGLVertexArrayObject> Array;

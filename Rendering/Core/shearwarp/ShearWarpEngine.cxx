@@ -1,5 +1,7 @@
 // Shear-warp frames: encodings cached per axis, per-frame tables, banded compositing, warp.
 #include "shearwarp/ShearWarpEngine.h"
+
+#include "common/Unorm16.h"
 #include "shearwarp/ShearWarpEngineInternals.h"
 
 #include "shearwarp/RunLengthVolume.h"
@@ -268,6 +270,7 @@ void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
     static_cast<std::size_t>(f.intermediateSize[1]);
   // Resized only: each band clears its own rows (in parallel) before compositing them.
   this->intermediate.resize(4 * pixels);
+  this->displayReady = false;
   this->scanlineSeconds.assign(static_cast<std::size_t>(f.intermediateSize[1]), 0.0);
   this->voxels = 0;
   this->samples = 0;
@@ -284,6 +287,32 @@ void ShearWarpRenderer::Internals::StartFrame(int axis, ShearWarpStats& stats)
   {
     stats.storedVoxels = this->extremeSlot->encoded.voxels.size();
     stats.runs = this->extremeSlot->encoded.runs.size();
+  }
+}
+
+void ShearWarpRenderer::Internals::PrepareDisplayPixels()
+{
+  const std::size_t paddedWidth = static_cast<std::size_t>(this->factorization.intermediateSize[0]) + 1;
+  const std::size_t rows = static_cast<std::size_t>(this->factorization.intermediateSize[1]);
+  this->displayPixels.resize(4 * paddedWidth * (rows + 1));
+  // The padding row; each band writes its rows' padding column.
+  std::fill(this->displayPixels.end() - static_cast<std::ptrdiff_t>(4 * paddedWidth),
+    this->displayPixels.end(), std::uint16_t(0));
+  this->displayRowFirst.resize(rows);
+  this->displayRowLast.resize(rows);
+}
+
+void ShearWarpRenderer::Internals::ConvertRowsForDisplay(int v0, int v1)
+{
+  const int width = this->factorization.intermediateSize[0];
+  const std::size_t paddedValues = 4 * (static_cast<std::size_t>(width) + 1);
+  for (int v = v0; v < v1; ++v)
+  {
+    std::uint16_t* row = this->displayPixels.data() + paddedValues * v;
+    ConvertToUnorm16(this->intermediate.data() + 4 * static_cast<std::size_t>(width) * v,
+      paddedValues - 4, row);
+    std::fill(row + paddedValues - 4, row + paddedValues, std::uint16_t(0));
+    FindNonZeroPixels(row, width, this->displayRowFirst[v], this->displayRowLast[v]);
   }
 }
 
@@ -573,6 +602,12 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   const int bands = static_cast<int>(bounds.size()) - 1;
   stats.bandSeconds.assign(static_cast<std::size_t>(bands), 0.0);
   std::vector<std::thread::id> bandWorker(static_cast<std::size_t>(bands));
+  Internals& impl = *this->Impl;
+  const bool display = settings.displayPixels && !settings.warp;
+  if (display)
+  {
+    impl.PrepareDisplayPixels();
+  }
   parallel(static_cast<std::size_t>(bands),
     [&](std::size_t begin, std::size_t end)
     {
@@ -580,11 +615,17 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
       {
         const Clock::time_point start = Clock::now();
         this->CompositeRows(bounds[b], bounds[b + 1]);
+        if (display)
+        {
+          impl.ConvertRowsForDisplay(
+            std::max(bounds[b], 0), std::min(bounds[b + 1], f.intermediateSize[1]));
+        }
         stats.bandSeconds[b] = Seconds(start);
         bandWorker[b] = std::this_thread::get_id();
       }
     });
   stats.compositeSeconds = Seconds(compositeStart);
+  impl.displayReady = display;
   stats.bandBounds = bounds;
   stats.imbalance = WorkerImbalance(stats.bandSeconds, bandWorker, workers);
   this->SetScanlineCosts(this->Impl->scanlineSeconds);
@@ -670,6 +711,21 @@ const ShearWarpFactorization& ShearWarpRenderer::GetFactorization() const
 float* ShearWarpRenderer::GetIntermediateImage()
 {
   return this->Impl->intermediate.data();
+}
+
+ShearWarpDisplayPixels ShearWarpRenderer::GetDisplayPixels() const
+{
+  const Internals& impl = *this->Impl;
+  ShearWarpDisplayPixels pixels;
+  if (impl.displayReady)
+  {
+    pixels.rgba = impl.displayPixels.data();
+    pixels.width = impl.factorization.intermediateSize[0] + 1;
+    pixels.height = impl.factorization.intermediateSize[1] + 1;
+    pixels.rowFirst = impl.displayRowFirst.data();
+    pixels.rowLast = impl.displayRowLast.data();
+  }
+  return pixels;
 }
 
 const std::vector<double>& ShearWarpRenderer::GetScanlineSeconds() const

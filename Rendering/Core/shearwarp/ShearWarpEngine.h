@@ -58,6 +58,10 @@ struct ShearWarpSettings
   // false: Render stops after compositing and leaves the warp to the caller (the mapper draws
   // the intermediate image through the warp on the GPU); rgba is then left as it was.
   bool warp = true;
+  // With warp false: each band worker also converts the rows it composited into the display
+  // pixels (GetDisplayPixels) while they are still in its cache, so that showing the image
+  // needs no serial pass over it. Render only (BeginFrame / CompositeRows leave them unset).
+  bool displayPixels = false;
   // Composite: after a frame encodes (or reuses) its axis's encoding, a background thread
   // builds the other two axes' from it (re-sorting the stored voxels, no classification), so
   // that a view crossing an axis does not stall; all three are then held. false: each axis is
@@ -81,7 +85,7 @@ struct ShearWarpStats
   int intermediateSize[2] = { 0, 0 };
   double encodeSeconds = 0;    // classification + run-length encoding done this frame
   double tableSeconds = 0;     // opacity correction and shading tables
-  double compositeSeconds = 0; // all bands (wall clock)
+  double compositeSeconds = 0; // all bands (wall clock; with their display pixels)
   double warpSeconds = 0;
   std::vector<double> bandSeconds; // per band
   std::vector<int> bandBounds;     // bands + 1 scanline boundaries
@@ -90,6 +94,18 @@ struct ShearWarpStats
   std::size_t encodedBytes = 0;   // all encodings held
   std::uint64_t storedVoxels = 0; // voxels in the current axis's encoding
   std::uint64_t runs = 0;
+};
+
+// The intermediate image as 16-bit normalised RGBA for display (common/Unorm16.h's values):
+// (size[0] + 1) x (size[1] + 1) pixels, the last column and row zero (a bilinear lookup past
+// the image reads zero), and each intermediate row's first and last pixel that is not zero
+// (first > last: none).
+struct ShearWarpDisplayPixels
+{
+  const std::uint16_t* rgba = nullptr; // null: not converted this frame
+  int width = 0, height = 0;           // the padded size
+  const int* rowFirst = nullptr;
+  const int* rowLast = nullptr;
 };
 
 class ShearWarpRenderer
@@ -135,6 +151,9 @@ public:
   // A scanline is defined once CompositeRows has composited it this frame (or a caller has
   // written it, e.g. rows received from other MPI ranks); Warp reads every scanline.
   float* GetIntermediateImage();
+  // The last Render's display pixels when its settings asked for them (displayPixels, no
+  // warp); rgba is null otherwise and after BeginFrame.
+  ShearWarpDisplayPixels GetDisplayPixels() const;
   // Seconds per intermediate scanline of the last CompositeRows calls (0 where not composited):
   // each call's time shared out over its scanlines by the clock ticks each took.
   const std::vector<double>& GetScanlineSeconds() const;

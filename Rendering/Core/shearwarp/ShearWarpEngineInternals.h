@@ -89,6 +89,10 @@ struct ShearWarpRenderer::Internals
   detail::EncodingSlot<ScalarVoxel>* extremeSlot = nullptr;
   std::vector<float> transfer; // RGBA table for MIP / MinIP classification
   std::vector<float> intermediate;
+  // settings.displayPixels: the intermediate image converted by the band workers.
+  std::vector<std::uint16_t> displayPixels;
+  std::vector<int> displayRowFirst, displayRowLast;
+  bool displayReady = false;
   std::vector<double> scanlineSeconds;
   int imageSize[2] = { 0, 0 };
   double opacityRatio = -1; // ray length between slices / opacity unit distance of tables.opacity
@@ -120,6 +124,11 @@ struct ShearWarpRenderer::Internals
     const ShearWarpView& view, const ShearWarpSettings& settings, const ParallelFor& parallel);
   // Sizes the intermediate image and clears the counters; fills the frame's stats.
   void StartFrame(int axis, ShearWarpStats& stats);
+  // Sizes the display pixels for this frame's intermediate image (Render, displayPixels) and
+  // zeroes their padding row; ConvertRowsForDisplay converts rows [v0, v1), composited
+  // already, and writes their padding column.
+  void PrepareDisplayPixels();
+  void ConvertRowsForDisplay(int v0, int v1);
 };
 
 } // namespace accelvolume
