@@ -136,13 +136,18 @@ CompositeTables RandomTables(std::mt19937& random, bool shade)
   t.phong = false;
   if (shade)
   {
-    t.shading.resize(6 * (static_cast<std::size_t>(NormalCodes) + 1));
+    // Coloured lights (a factor and a term per channel) or, every other table, white light
+    // (one of each: the renderer's one-register shading).
+    t.shadingStride = random() % 2 ? 6 : 2;
+    const int channels = t.shadingStride / 2;
+    t.shading.resize(t.shadingStride * (static_cast<std::size_t>(NormalCodes) + 1));
     for (std::size_t row = 0; row <= static_cast<std::size_t>(NormalCodes); ++row)
     {
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < channels; ++c)
       {
-        t.shading[6 * row + c] = static_cast<float>(Uniform(random, 0.1, 1.3));
-        t.shading[6 * row + 3 + c] = static_cast<float>(Uniform(random, 0.0, 0.3));
+        t.shading[t.shadingStride * row + c] = static_cast<float>(Uniform(random, 0.1, 1.3));
+        t.shading[t.shadingStride * row + channels + c] =
+          static_cast<float>(Uniform(random, 0.0, 0.3));
       }
     }
   }
@@ -178,7 +183,10 @@ NaiveScanline NaiveComposite(const Grid<ShadedVoxel>& grid, const ShearWarpFacto
       if (voxel && t.shade)
       {
         const std::size_t row = voxel->normal == NoNormal ? NormalCodes : voxel->normal;
-        value = std::min(value * t.shading[6 * row + c] + t.shading[6 * row + 3 + c], 1.0);
+        const int channels = t.shadingStride / 2;
+        const float* shading = t.shading.data() + t.shadingStride * row;
+        const int channel = channels == 3 ? c : 0;
+        value = std::min(value * shading[channel] + shading[channels + channel], 1.0);
       }
       out[c] = value * opacity;
     }
@@ -244,6 +252,7 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
   double worst = 0, worstTerminated = 0;
   std::uint64_t skipped = 0, sparseSamples = 0, denseSamples = 0, closePixels = 0;
   int palettes = 0;
+  int whiteLightTables = 0, colouredLightTables = 0;
   for (int trial = 0; trial < 24; ++trial)
   {
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -254,6 +263,10 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
     const bool opaque = trial % 3 == 0;
     const Grid<ShadedVoxel> grid = RandomShadedGrid(random, f.sliceDims, opaque ? 1.0 : 0.15);
     CompositeTables t = RandomTables(random, trial % 2 == 1);
+    if (t.shade)
+    {
+      ++(t.shadingStride == 2 ? whiteLightTables : colouredLightTables);
+    }
     const RunLengthVolume<ShadedVoxel> sparse =
       Encode(grid, f.axes[2], false, ShadedVoxel{ 0, NoNormal, { 0, 0, 0, 0 } });
     const RunLengthVolume<ShadedVoxel> dense = Encode(grid, f.axes[2], true,
@@ -376,4 +389,6 @@ TEST(ShearWarpCompositing, CompositeScanlineEqualsNaiveCompositing)
   EXPECT_LT(sparseSamples, denseSamples);
   EXPECT_GT(skipped, 0u);
   EXPECT_GT(palettes, 0);
+  EXPECT_GT(whiteLightTables, 0);
+  EXPECT_GT(colouredLightTables, 0);
 }
