@@ -14,8 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 
 // Where and how a texture's pixels land: the image of imageWidth x imageHeight pixels stretched
 // over the viewport, drawn over `rectangle` only; the texture holds uploadWidth x uploadHeight
