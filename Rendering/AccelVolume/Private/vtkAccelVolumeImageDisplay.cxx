@@ -125,15 +125,8 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
     this->Pixels.resize(rowValues * uploadHeight);
     this->RowFirst.resize(intermediateHeight);
     this->RowLast.resize(intermediateHeight);
-    for (int v = 0; v < intermediateHeight; ++v)
-    {
-      unsigned short* row = this->Pixels.data() + rowValues * v;
-      accelvolume::ConvertToUnorm16(
-        intermediate + 4 * static_cast<std::size_t>(v) * intermediateWidth, rowValues - 4, row);
-      std::fill(row + rowValues - 4, row + rowValues, 0);
-      accelvolume::FindNonZeroPixels(
-        row, intermediateWidth, this->RowFirst[v], this->RowLast[v]);
-    }
+    accelvolume::ConvertRowsPadded(intermediate, intermediateWidth, 0, intermediateHeight,
+      this->Pixels.data(), this->RowFirst.data(), this->RowLast.data());
     std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
   }
   // The view turns the intermediate image's size a little every frame: the texture keeps room

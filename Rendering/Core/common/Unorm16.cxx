@@ -73,27 +73,8 @@ void ConvertInSse2Lanes(const float* in, std::size_t count, std::uint16_t* out)
 }
 #endif
 
-} // namespace
-
-void ConvertToUnorm16(const float* in, std::size_t count, std::uint16_t* out)
-{
-#if ACCELVOLUME_AVX512_BUILD
-  if (CpuHasAvx512())
-  {
-    ConvertInLanes(in, count, out);
-    return;
-  }
-#endif
-#if defined(__SSE2__)
-  ConvertInSse2Lanes(in, count, out);
-#else
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    out[i] = ToUnorm16(in[i]);
-  }
-#endif
-}
-
+// The first and last of `count` RGBA pixels (4 channels of 16 bits) that are not all zero;
+// first > last when every pixel is zero.
 void FindNonZeroPixels(const std::uint16_t* rgba, int count, int& first, int& last)
 {
   const auto visible = [rgba](int i)
@@ -115,6 +96,40 @@ void FindNonZeroPixels(const std::uint16_t* rgba, int count, int& first, int& la
   if (first == count)
   {
     last = -1;
+  }
+}
+
+} // namespace
+
+void ConvertToUnorm16(const float* in, std::size_t count, std::uint16_t* out)
+{
+#if ACCELVOLUME_AVX512_BUILD
+  if (CpuHasAvx512())
+  {
+    ConvertInLanes(in, count, out);
+    return;
+  }
+#endif
+#if defined(__SSE2__)
+  ConvertInSse2Lanes(in, count, out);
+#else
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    out[i] = ToUnorm16(in[i]);
+  }
+#endif
+}
+
+void ConvertRowsPadded(const float* image, int width, int v0, int v1, std::uint16_t* padded,
+  int* rowFirst, int* rowLast)
+{
+  const std::size_t paddedValues = 4 * (static_cast<std::size_t>(width) + 1);
+  for (int v = v0; v < v1; ++v)
+  {
+    std::uint16_t* row = padded + paddedValues * v;
+    ConvertToUnorm16(image + 4 * static_cast<std::size_t>(width) * v, paddedValues - 4, row);
+    std::fill(row + paddedValues - 4, row + paddedValues, std::uint16_t(0));
+    FindNonZeroPixels(row, width, rowFirst[v], rowLast[v]);
   }
 }
 

@@ -13,9 +13,12 @@ namespace accelvolume
 // on every CPU (16 at a time where it has AVX-512, else 8 with SSE2).
 void ConvertToUnorm16(const float* in, std::size_t count, std::uint16_t* out);
 
-// The first and last of `count` RGBA pixels (4 channels of 16 bits) that are not all zero;
-// first > last when every pixel is zero (the drawn footprint of a converted image).
-void FindNonZeroPixels(const std::uint16_t* rgba, int count, int& first, int& last);
+// Rows [v0, v1) of an RGBA float image `width` pixels wide into rows of width + 1 16-bit pixels
+// (the last one zero: a bilinear lookup past the image reads zero), row v at
+// padded + 4 (width + 1) v, with each row's first and last pixel that is not all zero in
+// rowFirst[v], rowLast[v] (first > last: none; the drawn footprint of a warped image).
+void ConvertRowsPadded(const float* image, int width, int v0, int v1, std::uint16_t* padded,
+  int* rowFirst, int* rowLast);
 
 }
 

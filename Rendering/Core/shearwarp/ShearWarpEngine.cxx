@@ -304,16 +304,8 @@ void ShearWarpRenderer::Internals::PrepareDisplayPixels()
 
 void ShearWarpRenderer::Internals::ConvertRowsForDisplay(int v0, int v1)
 {
-  const int width = this->factorization.intermediateSize[0];
-  const std::size_t paddedValues = 4 * (static_cast<std::size_t>(width) + 1);
-  for (int v = v0; v < v1; ++v)
-  {
-    std::uint16_t* row = this->displayPixels.data() + paddedValues * v;
-    ConvertToUnorm16(this->intermediate.data() + 4 * static_cast<std::size_t>(width) * v,
-      paddedValues - 4, row);
-    std::fill(row + paddedValues - 4, row + paddedValues, std::uint16_t(0));
-    FindNonZeroPixels(row, width, this->displayRowFirst[v], this->displayRowLast[v]);
-  }
+  ConvertRowsPadded(this->intermediate.data(), this->factorization.intermediateSize[0], v0, v1,
+    this->displayPixels.data(), this->displayRowFirst.data(), this->displayRowLast.data());
 }
 
 bool ShearWarpRenderer::BeginFrameReporting(const VolumeView& volume, double rangeMin,
