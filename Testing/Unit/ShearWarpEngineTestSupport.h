@@ -34,7 +34,9 @@ enum class Content
 {
   SphereAndBar, // a soft sphere (linear falloff to 0 at its surface) and a sharp-edged bar
   Inverted,     // 255 - the above: bright background, dark sphere and bar (for MinIP)
-  Blobs         // two soft ellipsoids off the centre: smooth, asymmetric in every axis
+  Blobs,        // two soft ellipsoids off the centre: smooth, asymmetric in every axis
+  Edges         // single bright voxels on the volume's corners and edges, empty elsewhere:
+                // slices whose only voxel is on their first or last scanline, empty slices
 };
 
 inline Scene MakeScene(const int dims[3], bool sixteenBit, Content content = Content::SphereAndBar)
@@ -50,7 +52,14 @@ inline Scene MakeScene(const int dims[3], bool sixteenBit, Content content = Con
       for (int x = 0; x < dims[0]; ++x)
       {
         double v = 0;
-        if (content == Content::Blobs)
+        if (content == Content::Edges)
+        {
+          // On two or three of the volume's faces at once, and every seventh slice of z empty.
+          const int faces = (x == 0 || x == dims[0] - 1) + (y == 0 || y == dims[1] - 1) +
+            (z == 0 || z == dims[2] - 1);
+          v = faces >= 2 && (x + 2 * y + 3 * z) % 5 < 2 && z % 7 != 3 ? 240 : 0;
+        }
+        else if (content == Content::Blobs)
         {
           for (const auto& b : blobs)
           {

@@ -158,16 +158,29 @@ struct CompositePolicy
   const ShadedVoxel* palette = nullptr;
   const float* paletteColours = nullptr;
   float threshold = 1; // tables.terminationThreshold
-  // `count` cells of no voxel (gaps are short: a call to memset costs more).
+  // `count` cells of no voxel. Most gaps are a few cells, for which a call to memset (what
+  // compilers turn a plain clearing loop into) costs more than the stores: those are unrolled.
   void Clear(float* cells, int count) const
   {
-    for (int n = 0; n < count; ++n)
+    constexpr std::size_t cellBytes = 4 * sizeof(float);
+    switch (count)
     {
-#if defined(__SSE2__)
-      _mm_storeu_ps(cells + 4 * n, _mm_setzero_ps());
-#else
-      std::fill(cells + 4 * n, cells + 4 * n + 4, 0.0f);
-#endif
+      case 4:
+        std::memset(cells + 12, 0, cellBytes);
+        [[fallthrough]];
+      case 3:
+        std::memset(cells + 8, 0, cellBytes);
+        [[fallthrough]];
+      case 2:
+        std::memset(cells + 4, 0, cellBytes);
+        [[fallthrough]];
+      case 1:
+        std::memset(cells, 0, cellBytes);
+        [[fallthrough]];
+      case 0:
+        return;
+      default:
+        std::memset(cells, 0, cellBytes * static_cast<std::size_t>(count));
     }
   }
   // Cells for `count` consecutive stored voxels from the one at `offset`.

@@ -132,7 +132,12 @@ inline void ResetBandWorkspace(const BandContext<Policy>& c, double* work)
   const int rows = c.v1 - c.v0;
   ScanlineWorkspace& ws = c.ws;
   const std::size_t stride = static_cast<std::size_t>(width) + 1;
-  ws.next.resize(stride * rows);
+  // Never shrunk: bands of a frame differ in size, and growing again would zero what the loop
+  // below writes anyway.
+  if (ws.next.size() < stride * rows)
+  {
+    ws.next.resize(stride * rows);
+  }
   for (int r = 0; r < rows; ++r)
   {
     std::int32_t* links = ws.next.data() + stride * r;
@@ -405,6 +410,42 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   counters.terminatedPixelVisits += skipped;
 }
 
+// Whether voxel scanlines j0 and j0 + 1 of slice k store no voxel (either may lie outside the
+// slice): the common case in sparse volumes, decided before anything else is read.
+template <typename Voxel>
+inline bool PairIsEmpty(const RunLengthVolume<Voxel>& encoded, int j0, int k)
+{
+  const int nj = encoded.sliceDims[1];
+  const int first = std::max(j0, 0);
+  const int last = std::min(j0 + 2, nj); // exclusive
+  if (first >= last)
+  {
+    return true;
+  }
+  // The scanlines of a slice are consecutive in rowStart.
+  const std::uint32_t* start = encoded.rowStart.data() + encoded.Row(first, k);
+  return start[0] == start[last - first];
+}
+
+// The voxel scanlines [first, last) of slice k that hold the slice's stored voxels (first ==
+// last: none), by binary search over its run starts: bands skip the empty margins of each slice
+// without visiting them.
+template <typename Voxel>
+inline void OccupiedScanlines(const RunLengthVolume<Voxel>& encoded, int k, int& first, int& last)
+{
+  const int nj = encoded.sliceDims[1];
+  const std::uint32_t* start = encoded.rowStart.data() + encoded.Row(0, k);
+  const std::uint32_t* end = start + nj; // start[j + 1]: where scanline j's runs end
+  // First scanline whose runs end past the slice's first run; last one that starts before
+  // the slice's last run ends.
+  first = static_cast<int>(std::upper_bound(start + 1, end + 1, start[0]) - (start + 1));
+  last = static_cast<int>(std::lower_bound(start, end, *end) - start);
+  if (first >= last)
+  {
+    first = last = 0;
+  }
+}
+
 // Intermediate scanline v of this slice: from voxel scanlines j0 = v - shiftJ - 1 and j0 + 1.
 template <typename Policy>
 inline void CompositeScanlinePair(
@@ -420,11 +461,11 @@ inline void CompositeScanlinePair(
   const int k = slice.k;
   const int shiftI = slice.shiftI;
   const int r = v - c.v0;
-  if (ws.open[r] == 0)
+  const int j0 = v - slice.shiftJ - 1;
+  if (ws.open[r] == 0 || PairIsEmpty(encoded, j0, k))
   {
     return;
   }
-  const int j0 = v - slice.shiftJ - 1;
   // Ahead of use, without waiting for any of it: the run records of the scanline after next,
   // and the first and last voxels of the next one (whose records came one pair ago), where an
   // opaque object's open silhouette pixels read.
@@ -484,8 +525,17 @@ inline void CompositeSlice(
 {
   const SlicePlacement slice = PlaceSlice(c.f, s);
   c.ws.rowIndex[0] = c.ws.rowIndex[1] = NoRow; // last slice's scanlines
-  const int vBegin = std::max(c.v0, slice.shiftJ);
-  const int vEnd = std::min(c.v1, slice.shiftJ + c.f.sliceDims[1] + 1);
+  // Scanline v reads voxel scanlines v - shiftJ - 1 and v - shiftJ: those that reach a stored
+  // voxel of this slice.
+  int firstJ = 0;
+  int lastJ = 0;
+  OccupiedScanlines(c.encoded, slice.k, firstJ, lastJ);
+  if (firstJ == lastJ)
+  {
+    return;
+  }
+  const int vBegin = std::max(c.v0, slice.shiftJ + firstJ);
+  const int vEnd = std::min(c.v1, slice.shiftJ + lastJ + 1);
   std::uint64_t previousTicks = work ? Ticks() : 0;
   int previousRow = -1;
   for (int v = vBegin; v < vEnd; ++v)
