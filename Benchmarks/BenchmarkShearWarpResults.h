@@ -30,7 +30,8 @@ struct Options
   int Threads = 0;       // the "all threads" count; 0: the hardware threads
   double Azimuth = 30.0; // the fixed view (image checks, first frame)
   double Elevation = 20.0;
-  double Turn = 1.0; // azimuth degrees per timed round (the paper: 1 degree per frame)
+  double Turn = 1.0; // azimuth degrees per timed frame (the paper: 1 degree per frame)
+  int RunLength = 4; // frames one configuration renders in a row in each round
   bool SkipLarge = false;
   bool Mpi = true;
   std::vector<int> MpiRanks = { 1, 2 };
