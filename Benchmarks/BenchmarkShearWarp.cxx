@@ -15,8 +15,11 @@
 // Per volume x transfer function x shading x image size: parallel camera fitted to the volume,
 // turned to the fixed view (azimuth 30, elevation 20), composite blend. Every mapper's first frame
 // (classification + encoding) is rendered at the fixed view, the images are checked there, then
-// N rounds turn the camera by --turn degrees (1, as the paper) and render every configuration
-// and VolPack (interleaved, so load from other processes hits all alike). ms/frame is the median
+// rounds of --run-length frames turning the camera by --turn degrees (1, as the paper) render
+// every configuration and VolPack over the same views, each its frames in a row as a user's
+// turning view does (the configurations alternate between rounds, so load from other processes
+// hits all alike; --run-length 1 interleaves every frame, each then starting with the caches
+// the other configurations left). ms/frame is the median
 // of the mapper's GetLastRenderTime (its whole Render(), the draw calls included); "wall" is the
 // window's whole Render() with one pixel read back (so the OpenGL work has finished): the frame
 // as a user sees it, which the VolPack ratio uses (VolPack's time: its image in memory); "engine"
