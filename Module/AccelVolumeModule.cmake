@@ -41,7 +41,8 @@ set(_av_private_sources
   vtkAccelVolumeSliceMask
   vtkAccelVolumeSlicePasses
   vtkAccelVolumeSliceResolve
-  vtkAccelVolumeSliceResources)
+  vtkAccelVolumeSliceResources
+  vtkAccelVolumeWorkers)
 
 set(_av_shaders
   AccelVolumeSliceVS
@@ -148,3 +149,12 @@ if (_av_have_egl)
 endif ()
 find_package(Threads REQUIRED)
 vtk_module_link(VTK::RenderingAccelVolume PRIVATE AccelVolumeCore ${CMAKE_DL_LIBS} Threads::Threads)
+# A CPU mapper's thread count as a kept TBB task arena (vtkAccelVolumeWorkers: VTK 9.1's
+# LocalScope does not hold it); without TBB, std::threads per loop.
+find_package(TBB CONFIG QUIET)
+if (TARGET TBB::tbb)
+  vtk_module_link(VTK::RenderingAccelVolume PRIVATE TBB::tbb)
+  vtk_module_definitions(VTK::RenderingAccelVolume PRIVATE ACCELVOLUME_HAVE_TBB=1)
+else ()
+  vtk_module_definitions(VTK::RenderingAccelVolume PRIVATE ACCELVOLUME_HAVE_TBB=0)
+endif ()

@@ -6,6 +6,7 @@
 #include "vtkAccelVolumeMinMaxOctreeInternals.h"
 #include "vtkAccelVolumeRenderProgress.h"
 #include "vtkAccelVolumeScalarEncoding.h"
+#include "vtkAccelVolumeWorkers.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -131,24 +132,12 @@ bool BuildLevels(int builder, int numberOfThreads,
       break;
     case vtkAccelVolumeMinMaxOctree::BUILDER_CPU:
     {
-      const accelvolume::ParallelFor parallel = SMPFor;
-      if (numberOfThreads > 0)
-      {
-        // A scoped limit: other vtkSMPTools users in the process keep their settings. VTK
-        // 9.1's TBB backend does not restore the thread count when the scope ends, so put
-        // it back by hand.
-        const int previous = vtkSMPTools::GetEstimatedNumberOfThreads();
-        vtkSMPTools::LocalScope(vtkSMPTools::Config{ numberOfThreads },
-          [&]() { ok = internals.Octree.BuildParallel(view, parallel, error); });
-        if (vtkSMPTools::GetEstimatedNumberOfThreads() != previous)
-        {
-          vtkSMPTools::Initialize(previous);
-        }
-      }
-      else
-      {
-        ok = internals.Octree.BuildParallel(view, parallel, error);
-      }
+      // Exactly the set thread count (vtkSMPTools::LocalScope does not hold it with VTK 9.1's
+      // TBB backend, vtkAccelVolumeWorkers.h); otherwise vtkSMPTools' own.
+      vtkAccelVolumeWorkers workers;
+      const accelvolume::ParallelFor parallel =
+        numberOfThreads > 0 ? workers.For(numberOfThreads) : accelvolume::ParallelFor(SMPFor);
+      ok = internals.Octree.BuildParallel(view, parallel, error);
       break;
     }
     default:

@@ -8,6 +8,7 @@
 #include "vtkAccelVolumeInputAdapter.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
+#include "vtkAccelVolumeWorkers.h"
 #include "vtkActor2D.h"
 #include "vtkCamera.h"
 #include "vtkContourValues.h"
@@ -122,6 +123,7 @@ public:
   std::vector<float> RayDepth;
   vtkAccelVolumeCPUInputs Inputs; // tables and the versions the caster's caches were built from
   vtkAccelVolumeCPUMask Mask;     // the mask input or the ghost arrays, as bytes
+  vtkAccelVolumeWorkers Workers;  // the mapper's thread count, kept between frames
   bool ReportedError = false;
 
   // Steps of Render, in order.
@@ -438,11 +440,10 @@ bool vtkAccelVolumeRayCastMapper::vtkInternals::Cast(vtkAccelVolumeRayCastMapper
   accelvolume::RayCastCounters& counters, std::string& error)
 {
   // More threads than cores only adds contention. A set thread count gets exactly that many
-  // workers (vtkSMPTools::LocalScope does not limit VTK 9.1's TBB backend).
+  // workers (vtkAccelVolumeWorkers.h: vtkSMPTools::LocalScope does not hold it).
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const accelvolume::ParallelFor parallel = self->NumberOfThreads > 0
-    ? accelvolume::FixedThreadsParallelFor(std::min(self->NumberOfThreads, cores))
-    : vtkAccelVolumeSMPParallelFor();
+  const accelvolume::ParallelFor parallel =
+    this->Workers.For(self->NumberOfThreads > 0 ? std::min(self->NumberOfThreads, cores) : 0);
   bool ok = false;
   auto cast = [&]()
   {

@@ -9,6 +9,7 @@
 #include "vtkAccelVolumeMPIExchange.h"
 #include "vtkAccelVolumeMapperSupport.h"
 #include "vtkAccelVolumeRenderProgress.h"
+#include "vtkAccelVolumeWorkers.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -21,7 +22,6 @@
 #include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -102,6 +102,7 @@ struct ShearWarpFrameInputs
   int height = 0;
   int lowerLeft[2] = { 0, 0 };
   int threads = 1;
+  accelvolume::ParallelFor parallel; // exactly `threads` workers when the mapper sets a count
 };
 
 // What one frame produced, on this rank.
@@ -158,6 +159,7 @@ public:
   std::vector<double> BandTimes;
   vtkAccelVolumeCPUInputs Inputs;     // tables and the versions the encodings were built from
   vtkAccelVolumeMPIExchange Exchange; // bounded exchanges with the other ranks
+  vtkAccelVolumeWorkers Workers;      // the mapper's thread count, kept between frames
   bool WarnedUnsupported = false;
 
   // Checks the mapper's settings and gathers the frame's inputs; FrameReady, or the code and
@@ -206,6 +208,7 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Controller: " << this->Controller << "\n";
   os << indent << "CommunicationTimeout: " << this->CommunicationTimeout << "\n";
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
+  os << indent << "LastNumberOfWorkers: " << this->LastNumberOfWorkers << "\n";
   os << indent << "EncodedBytes: " << this->EncodedBytes << "\n";
 }
 
@@ -315,6 +318,7 @@ int vtkAccelVolumeShearWarpMapper::vtkInternals::PrepareFrame(vtkAccelVolumeShea
   // than that only contend, and TBB warns about them.
   const int cores = UsableCores();
   in.threads = self->NumberOfThreads > 0 ? std::min(self->NumberOfThreads, cores) : cores;
+  in.parallel = this->Workers.For(self->NumberOfThreads > 0 ? in.threads : 0);
   settings.runLengthEncoding = self->RunLengthEncoding != 0;
   settings.earlyTermination = self->EarlyRayTermination != 0;
   settings.terminationThreshold = self->EarlyRayTerminationThreshold;
@@ -340,7 +344,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrame(const ShearWarpFra
       this->Renderer.SetProgressFunction(progress.Range(0.0, 0.95));
       out.ok = this->Renderer.Render(in.view, in.range[0], in.high, this->Inputs.VolumeVersion,
         in.transfer, this->Inputs.TransferVersion, in.lighting, in.frame, in.settings,
-        vtkAccelVolumeSMPParallelFor(), this->Image, out.rectangle, out.stats, out.error);
+        in.parallel, this->Image, out.rectangle, out.stats, out.error);
       return;
     }
     this->RenderFrameOnRanks(in, ranks, rank, progress, out);
@@ -360,7 +364,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
   // up to 0.6, then each phase once. Every exchange with another rank is bounded in time
   // (CommunicationTimeout; vtkAccelVolumeMPIExchange).
   accelvolume::ShearWarpRenderer& engine = this->Renderer;
-  const accelvolume::ParallelFor parallel = vtkAccelVolumeSMPParallelFor();
+  const accelvolume::ParallelFor& parallel = in.parallel;
   const int threads = in.threads;
   engine.SetProgressFunction(progress.Range(0.0, 0.6));
   try
@@ -395,6 +399,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
   // Rank r owns the consecutive thread bands [r * threads, (r + 1) * threads).
   const int first = rank * threads;
   std::vector<double> bandSeconds(static_cast<std::size_t>(ranks * threads), 0.0);
+  std::vector<std::thread::id> bandWorker(static_cast<std::size_t>(threads));
   // A rank that runs out of memory here still takes part in the exchanges below (its rows
   // are then meaningless) and fails the frame on every rank through the summed flag.
   bool composited = true;
@@ -408,6 +413,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
           const double bandStart = Now();
           engine.CompositeRows(rankBounds[first + t], rankBounds[first + t + 1]);
           bandSeconds[first + t] = Now() - bandStart;
+          bandWorker[t] = std::this_thread::get_id();
         }
       });
   }
@@ -416,6 +422,9 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
     composited = false;
   }
   out.stats.compositeSeconds = Now() - compositeStart;
+  std::sort(bandWorker.begin(), bandWorker.end());
+  out.stats.workers =
+    static_cast<int>(std::unique(bandWorker.begin(), bandWorker.end()) - bandWorker.begin());
   progress.Report(0.75);
   if (!this->GatherBands(rankBounds, bandSeconds, composited, ranks, threads, out))
   {
@@ -455,9 +464,7 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
       return true;
     }
     const double warpStart = Now();
-    const auto warpOnCPU = [&]()
-    { this->Renderer.Warp(vtkAccelVolumeSMPParallelFor(), this->Image, out.rectangle); };
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, warpOnCPU);
+    this->Renderer.Warp(in.parallel, this->Image, out.rectangle);
     out.stats.warpSeconds = Now() - warpStart;
   }
   return this->Display.Draw(window, lowerLeft, in.width, in.height, in.width, in.height,
@@ -516,6 +523,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RecordCounters(
   self->LastWarpTime = stats.warpSeconds;
   self->LastImbalance = stats.imbalance;
   self->LastNumberOfBands = static_cast<int>(stats.bandSeconds.size());
+  self->LastNumberOfWorkers = stats.workers;
   this->BandTimes = stats.bandSeconds;
   self->LastNumberOfVoxels = static_cast<vtkTypeInt64>(stats.voxels);
   self->LastNumberOfSamples = static_cast<vtkTypeInt64>(stats.samples);
@@ -574,15 +582,7 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   }
 
   ShearWarpFrameResult out;
-  auto renderFrame = [&]() { internals.RenderFrame(in, ranks, rank, progress, out); };
-  if (this->NumberOfThreads > 0)
-  {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ in.threads }, renderFrame);
-  }
-  else
-  {
-    renderFrame();
-  }
+  internals.RenderFrame(in, ranks, rank, progress, out);
   internals.Renderer.SetProgressFunction(nullptr); // it refers to this render's progress
   if (!out.ok)
   {

@@ -184,6 +184,9 @@ public:
   /** Bands of the last frame (one process: 4 per thread with several threads, taken dynamically;
    * MPI: one per thread of every rank) and their compositing seconds. */
   vtkGetMacro(LastNumberOfBands, int);
+  /** Threads of this process that composited the last frame's bands: at most NumberOfThreads
+   * when that is set. */
+  vtkGetMacro(LastNumberOfWorkers, int);
   double GetLastBandTime(int band) const;
   /** Scanlines of the last frame's intermediate image and the compositing seconds of each (this
    * rank's, the rest 0): what balances the next frame's bands (and models other core counts). */
@@ -225,6 +228,7 @@ protected:
   double LastWarpTime = 0;
   double LastImbalance = 1;
   int LastNumberOfBands = 0;
+  int LastNumberOfWorkers = 0;
   vtkTypeInt64 LastNumberOfVoxels = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;
   vtkTypeInt64 LastNumberOfSkippedPixels = 0;

@@ -173,6 +173,41 @@ bool CheckScene(const char* name, const char* phantom, int blend, bool shade, in
 }
 }
 
+// A set thread count holds on every frame: an intermediate image of several cache-sized bands
+// is composited by exactly one thread with NumberOfThreads 1, frame after frame (VTK 9.1's
+// vtkSMPTools::LocalScope let every core in from the second of consecutive frames), and by at
+// most two with 2.
+bool CheckThreadLimit()
+{
+  std::cout << "thread limit over consecutive frames:\n";
+  bool ok = true;
+  for (int threads : { 1, 2 })
+  {
+    ShearWarpScene scene("blobs", vtkVolumeMapper::COMPOSITE_BLEND, 200);
+    scene.Image = MakePhantom("blobs", 150, 150, 150, 1.0, 1.0, 1.0);
+    scene.Mapper->SetInputData(scene.Image);
+    scene.Renderer->ResetCamera();
+    scene.Renderer->GetActiveCamera()->SetParallelProjection(1);
+    scene.Mapper->SetNumberOfThreads(threads);
+    for (int frame = 0; frame < 4; ++frame)
+    {
+      scene.Renderer->GetActiveCamera()->Azimuth(3.0);
+      scene.Renderer->ResetCameraClippingRange();
+      scene.Window->Render();
+      const int bands = scene.Mapper->GetLastNumberOfBands();
+      const int workers = scene.Mapper->GetLastNumberOfWorkers();
+      std::cout << "  " << threads << " thread(s), frame " << frame << ": " << bands
+                << " bands on " << workers << " worker(s)\n";
+      if (bands < 2 || workers < 1 || workers > threads)
+      {
+        std::cout << "  FAILED (needs several bands and at most " << threads << " worker(s))\n";
+        ok = false;
+      }
+    }
+  }
+  return ok;
+}
+
 int TestAccelVolumeShearWarpExact(int, char*[])
 {
   constexpr int Table = vtkAccelVolumeShearWarpMapper::SHADING_LOOKUP_TABLE;
@@ -187,5 +222,6 @@ int TestAccelVolumeShearWarpExact(int, char*[])
     ok;
   ok = CheckScene("MIP", "blobs", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, false, Table) && ok;
   ok = CheckScene("MinIP", "vessels", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, false, Table) && ok;
+  ok = CheckThreadLimit() && ok;
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

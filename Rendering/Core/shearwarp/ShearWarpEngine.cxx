@@ -159,6 +159,12 @@ void ShearWarpRenderer::Internals::ClassifyExtremeRow(const float* values, float
 
 namespace
 {
+int DistinctWorkers(std::vector<std::thread::id> bandWorker)
+{
+  std::sort(bandWorker.begin(), bandWorker.end());
+  return static_cast<int>(std::unique(bandWorker.begin(), bandWorker.end()) - bandWorker.begin());
+}
+
 // The busiest worker's compositing time over the mean per worker (`workers` of them; one that
 // took no band counts as idle): the imbalance of the frame, whatever the band count.
 double WorkerImbalance(const std::vector<double>& bandSeconds,
@@ -620,6 +626,7 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   impl.displayReady = display;
   stats.bandBounds = bounds;
   stats.imbalance = WorkerImbalance(stats.bandSeconds, bandWorker, workers);
+  stats.workers = DistinctWorkers(bandWorker);
   this->SetScanlineCosts(this->Impl->scanlineSeconds);
   this->GetCounters(stats);
   if (progress)

@@ -90,6 +90,7 @@ struct ShearWarpStats
   std::vector<double> bandSeconds; // per band
   std::vector<int> bandBounds;     // bands + 1 scanline boundaries
   double imbalance = 1;            // busiest worker / mean worker compositing time
+  int workers = 0;                 // threads that composited bands (this process)
   std::uint64_t voxels = 0, samples = 0, terminatedPixelVisits = 0;
   std::size_t encodedBytes = 0;   // all encodings held
   std::uint64_t storedVoxels = 0; // voxels in the current axis's encoding
