@@ -195,8 +195,14 @@ double CaseResult::VolPackRatio(bool wholeFrame, int threads) const
 
 bool CaseResult::ChecksOk() const
 {
-  return std::all_of(
-    this->Checks.begin(), this->Checks.end(), [](const ImageCheck& c) { return c.Ok(); });
+  return std::all_of(this->Checks.begin(), this->Checks.end(),
+           [](const ImageCheck& c) { return c.Ok(); }) &&
+    std::all_of(this->Runs.begin(), this->Runs.end(),
+      [](const RunResult& r)
+      {
+        return std::all_of(r.Workers.begin(), r.Workers.end(),
+          [&](double workers) { return workers <= r.Threads; });
+      });
 }
 
 Json RunJson(const RunResult& r)
@@ -221,7 +227,8 @@ Json RunJson(const RunResult& r)
     { "wall_ms", RoundAll(r.WallMs, 3) }, { "composite_ms", RoundAll(r.CompositeMs, 3) },
     { "warp_ms", RoundAll(r.WarpMs, 3) }, { "table_ms", RoundAll(r.TableMs, 3) },
     { "gather_ms", RoundAll(r.GatherMs, 3) }, { "imbalance", RoundAll(r.Imbalance, 3) },
-    { "cores", RoundAll(r.Cores, 3) }, { "last_band_ms", RoundAll(r.BandMs, 3) } };
+    { "cores", RoundAll(r.Cores, 3) }, { "workers", r.Workers },
+    { "last_band_ms", RoundAll(r.BandMs, 3) } };
 }
 
 bool ReadRunJson(const Json& v, RunResult& r)
@@ -257,6 +264,7 @@ bool ReadRunJson(const Json& v, RunResult& r)
   r.GatherMs = Numbers(v, "gather_ms");
   r.Imbalance = Numbers(v, "imbalance");
   r.Cores = Numbers(v, "cores");
+  r.Workers = Numbers(v, "workers");
   r.BandMs = Numbers(v, "last_band_ms");
   return !r.RenderMs.empty();
 }

@@ -81,6 +81,7 @@ struct RunResult
   std::vector<double> GatherMs;       // MPI: bands sent to rank 0, costs shared
   std::vector<double> Imbalance;      // slowest band / mean band
   std::vector<double> Cores;          // process CPU time / wall time of the frame (this rank)
+  std::vector<double> Workers;        // threads that composited the frame's bands (this rank)
   std::vector<double> BandMs;         // the last frame's band times (all ranks' bands)
   std::vector<std::vector<double>> ScanlineMs; // per timed frame: compositing ms per scanline
   double Voxels = 0;                  // per-frame means: voxels composited (this rank),
@@ -163,7 +164,7 @@ struct CaseResult
   // ours as a user sees it (wall: the window's Render with our image shown and read back), or
   // the engine alone (encode + tables + composite + gather + CPU warp; no display).
   double VolPackRatio(bool wholeFrame, int threads = 1) const;
-  bool ChecksOk() const;
+  bool ChecksOk() const; // the image checks, and every run within its thread count
 };
 
 std::string CaseKey(const std::string& dataset, const std::string& tf, bool shade, int size);

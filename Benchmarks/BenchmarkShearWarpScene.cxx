@@ -199,6 +199,7 @@ void Record(
   vtkAccelVolumeShearWarpMapper* m, double wallMs, double cores, double perFrame, RunResult& r)
 {
   r.Cores.push_back(cores);
+  r.Workers.push_back(m->GetLastNumberOfWorkers());
   r.BandMs.clear();
   for (int band = 0; band < m->GetLastNumberOfBands(); ++band)
   {
