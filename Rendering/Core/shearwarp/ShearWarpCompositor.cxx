@@ -132,15 +132,16 @@ inline void ResetBandWorkspace(const BandContext<Policy>& c, double* work)
   const int rows = c.v1 - c.v0;
   ScanlineWorkspace& ws = c.ws;
   const std::size_t stride = static_cast<std::size_t>(width) + 1;
-  // Never shrunk: bands of a frame differ in size, and growing again would zero what the loop
-  // below writes anyway.
-  if (ws.next.size() < stride * rows)
+  // Left uninitialised when made: the loop below writes every link (a vector would zero them
+  // first, for every band of every frame).
+  if (ws.nextSize < stride * rows)
   {
-    ws.next.resize(stride * rows);
+    ws.next.reset(new std::int32_t[stride * rows]);
+    ws.nextSize = stride * rows;
   }
   for (int r = 0; r < rows; ++r)
   {
-    std::int32_t* links = ws.next.data() + stride * r;
+    std::int32_t* links = ws.next.get() + stride * r;
     for (int u = 0; u <= width; ++u)
     {
       links[u] = u;
@@ -315,7 +316,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
   const int shiftI = slice.shiftI;
   // A local copy: the pixel stores below cannot alias it, so it stays in registers.
   const float w[4] = { slice.w[0], slice.w[1], slice.w[2], slice.w[3] };
-  std::int32_t* links = ws.next.data() + stride * r;
+  std::int32_t* links = ws.next.get() + stride * r;
   RowCursor rows[2];
   for (int q = 0; q < 2; ++q)
   {
@@ -505,7 +506,7 @@ inline void CompositeScanlinePair(
   }
   if (skip)
   {
-    std::int32_t* links = ws.next.data() + stride * r;
+    std::int32_t* links = ws.next.get() + stride * r;
     const int first = std::max(reachBegin, 0);
     const int last = std::min(reachEnd, width);
     const int found = first < last ? FindOpen(links, first) : last;

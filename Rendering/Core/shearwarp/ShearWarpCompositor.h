@@ -15,6 +15,7 @@
 #include "shearwarp/ShearWarpFactorization.h"
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -94,7 +95,8 @@ struct ShadedCells
 // voxel scanlines of the current slice (voxel scanline j in buffer j & 1), shaded on first use.
 struct ScanlineWorkspace
 {
-  std::vector<std::int32_t> next;
+  std::unique_ptr<std::int32_t[]> next; // nextSize links
+  std::size_t nextSize = 0;
   std::vector<std::int32_t> open;
   std::vector<float> rows[2];
   int rowIndex[2] = { 0, 0 }; // voxel scanline each buffer holds (set by the band loop)
