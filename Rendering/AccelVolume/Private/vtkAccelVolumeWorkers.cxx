@@ -2,6 +2,9 @@
 #include "vtkAccelVolumeWorkers.h"
 
 #include "vtkAccelVolumeMapperSupport.h"
+#include "vtkSMPTools.h"
+
+#include <cstring>
 
 #if ACCELVOLUME_HAVE_TBB
 #include <tbb/blocked_range.h>
@@ -31,6 +34,13 @@ accelvolume::ParallelFor vtkAccelVolumeWorkers::For(int threads)
     return vtkAccelVolumeSMPParallelFor();
   }
 #if ACCELVOLUME_HAVE_TBB
+  // Only where vtkSMPTools runs on TBB itself: a process that chose another backend (the
+  // sanitizer builds choose STDThread, whose hand-offs ThreadSanitizer can follow) gets plain
+  // threads too.
+  if (std::strcmp(vtkSMPTools::GetBackend(), "TBB") != 0)
+  {
+    return accelvolume::FixedThreadsParallelFor(threads);
+  }
   if (!this->Kept || this->Kept->Threads != threads)
   {
     this->Kept = std::make_shared<Arena>(threads);

@@ -3,7 +3,8 @@
 // that: on consecutive scopes of the same thread count, Debian VTK 9.1's TBB backend leaves its
 // task arena terminated and runs on every core (VTK's Initialize compares with the stale arena's
 // concurrency and skips it). The workers are a TBB task arena kept between frames (no threads
-// started per frame); without TBB, std::threads per loop (FixedThreadsParallelFor).
+// started per frame) where vtkSMPTools runs on TBB; otherwise (another backend chosen, or no
+// TBB) std::threads per loop (FixedThreadsParallelFor).
 #ifndef vtkAccelVolumeWorkers_h
 #define vtkAccelVolumeWorkers_h
 
