@@ -35,6 +35,7 @@
 #include <new>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -422,9 +423,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RenderFrameOnRanks(const Shear
     composited = false;
   }
   out.stats.compositeSeconds = Now() - compositeStart;
-  std::sort(bandWorker.begin(), bandWorker.end());
-  out.stats.workers =
-    static_cast<int>(std::unique(bandWorker.begin(), bandWorker.end()) - bandWorker.begin());
+  out.stats.workers = accelvolume::DistinctWorkers(std::move(bandWorker));
   progress.Report(0.75);
   if (!this->GatherBands(rankBounds, bandSeconds, composited, ranks, threads, out))
   {

@@ -119,7 +119,10 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   {
     return false;
   }
-  if (!warp.converted)
+  const unsigned short* pixels = warp.converted;
+  const int* rowFirst = warp.rowFirst;
+  const int* rowLast = warp.rowLast;
+  if (!pixels)
   {
     const std::size_t rowValues = 4 * static_cast<std::size_t>(uploadWidth);
     this->Pixels.resize(rowValues * uploadHeight);
@@ -128,6 +131,9 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
     accelvolume::ConvertRowsPadded(intermediate, intermediateWidth, 0, intermediateHeight,
       this->Pixels.data(), this->RowFirst.data(), this->RowLast.data());
     std::fill(this->Pixels.end() - static_cast<std::ptrdiff_t>(rowValues), this->Pixels.end(), 0);
+    pixels = this->Pixels.data();
+    rowFirst = this->RowFirst.data();
+    rowLast = this->RowLast.data();
   }
   // The view turns the intermediate image's size a little every frame: the texture keeps room
   // to spare (in steps of 64) so that it is not made anew each frame.
@@ -148,9 +154,7 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   this->Intermediate->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
   Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
     uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    &warp, warp.converted ? warp.converted : this->Pixels.data(),
-    warp.converted ? warp.rowFirst : this->RowFirst.data(),
-    warp.converted ? warp.rowLast : this->RowLast.data() };
+    &warp, pixels, rowFirst, rowLast };
   return this->Show(window, this->Intermediate, placement);
 }
 

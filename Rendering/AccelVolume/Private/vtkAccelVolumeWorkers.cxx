@@ -34,10 +34,10 @@ accelvolume::ParallelFor vtkAccelVolumeWorkers::For(int threads)
     return vtkAccelVolumeSMPParallelFor();
   }
 #if ACCELVOLUME_HAVE_TBB
-  // Only where vtkSMPTools runs on TBB itself: a process that chose another backend (the
-  // sanitizer builds choose STDThread, whose hand-offs ThreadSanitizer can follow) gets plain
-  // threads too.
-  if (std::strcmp(vtkSMPTools::GetBackend(), "TBB") != 0)
+  // One thread is the caller alone (FixedThreadsParallelFor starts none). TBB only where
+  // vtkSMPTools runs on TBB itself: a process that chose another backend (the sanitizer builds
+  // choose STDThread, whose hand-offs ThreadSanitizer can follow) gets plain threads too.
+  if (threads == 1 || std::strcmp(vtkSMPTools::GetBackend(), "TBB") != 0)
   {
     return accelvolume::FixedThreadsParallelFor(threads);
   }
@@ -50,11 +50,6 @@ accelvolume::ParallelFor vtkAccelVolumeWorkers::For(int threads)
   {
     if (count == 0)
     {
-      return;
-    }
-    if (arena->Threads == 1)
-    {
-      body(0, count); // the caller alone: no arena to enter
       return;
     }
     // One item per range, as vtkAccelVolumeSMPParallelFor: the items are heavy (bands, tiles).

@@ -157,14 +157,14 @@ void ShearWarpRenderer::Internals::ClassifyExtremeRow(const float* values, float
   }
 }
 
-namespace
-{
 int DistinctWorkers(std::vector<std::thread::id> bandWorker)
 {
   std::sort(bandWorker.begin(), bandWorker.end());
   return static_cast<int>(std::unique(bandWorker.begin(), bandWorker.end()) - bandWorker.begin());
 }
 
+namespace
+{
 // The busiest worker's compositing time over the mean per worker (`workers` of them; one that
 // took no band counts as idle): the imbalance of the frame, whatever the band count.
 double WorkerImbalance(const std::vector<double>& bandSeconds,

@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace accelvolume
@@ -183,6 +184,10 @@ private:
 // The final pixels [x0, x1] x [y0, y1] the intermediate image (with its one-pixel bilinear
 // fringe) can reach in a width x height image (x1 < x0 or y1 < y0: none).
 void WarpedRectangle(const ShearWarpFactorization& f, int width, int height, int rectangle[4]);
+
+// The distinct threads among the workers that composited a frame's bands (ShearWarpStats::
+// workers; the mapper's MPI bands count theirs the same way).
+int DistinctWorkers(std::vector<std::thread::id> bandWorker);
 
 // Voxel index -> image map for a VTK-style parallel camera (tests, benchmarks and tools):
 // indexToWorld (row-major 3x4), the camera's world -> view matrix (row-major 4x4), its parallel
