@@ -25,6 +25,7 @@
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
 
 #include "shearwarp/ShearWarpEngine.h"
 #include "shearwarp/ShearWarpPartition.h"
@@ -177,6 +178,11 @@ public:
   bool GatherBands(const std::vector<int>& rankBounds, const std::vector<double>& bandSeconds,
     bool composited, int ranks, int threads, ShearWarpFrameResult& out);
   void RecordCounters(vtkAccelVolumeShearWarpMapper* self, const ShearWarpFrameResult& out);
+  // With one worker compositing a plain frame of one rank that the GPU warps, each band is
+  // drawn as soon as it is composited (the GL driver draws it while the next band composites);
+  // otherwise Show draws the whole image.
+  void DrawBandsWhileCompositing(vtkOpenGLRenderWindow* window, const ShearWarpFrameInputs& in,
+    bool enable, float colourScale, float colourBias);
   // Draws the frame: the intermediate image warped by the GPU, or (WarpOnGPU off, or past the
   // texture size limit) the image warped here.
   bool Show(vtkOpenGLRenderWindow* window, const int lowerLeft[2], const ShearWarpFrameInputs& in,
@@ -210,6 +216,7 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CommunicationTimeout: " << this->CommunicationTimeout << "\n";
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
   os << indent << "LastNumberOfWorkers: " << this->LastNumberOfWorkers << "\n";
+  os << indent << "LastNumberOfImageParts: " << this->LastNumberOfImageParts << "\n";
   os << indent << "EncodedBytes: " << this->EncodedBytes << "\n";
 }
 
@@ -471,6 +478,29 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
     peeling);
 }
 
+void vtkAccelVolumeShearWarpMapper::vtkInternals::DrawBandsWhileCompositing(
+  vtkOpenGLRenderWindow* window, const ShearWarpFrameInputs& in, bool enable, float colourScale,
+  float colourBias)
+{
+  this->Display.BeginWarpedFrame();
+  if (!enable)
+  {
+    this->Renderer.SetRowsReadyFunction(nullptr);
+    return;
+  }
+  this->Renderer.SetRowsReadyFunction(
+    [this, window, &in, colourScale, colourBias](
+      const accelvolume::ShearWarpDisplayPixels& pixels, int rowsReady)
+    {
+      const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
+      const vtkAccelVolumeImageDisplay::Warp intermediate{ this->Renderer.GetIntermediateImage(),
+        { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp, pixels.rgba,
+        pixels.rowFirst, pixels.rowLast };
+      this->Display.DrawWarpedRows(
+        window, in.lowerLeft, in.width, in.height, intermediate, rowsReady, colourScale, colourBias);
+    });
+}
+
 bool vtkAccelVolumeShearWarpMapper::vtkInternals::GatherBands(const std::vector<int>& rankBounds,
   const std::vector<double>& bandSeconds, bool composited, int ranks, int threads,
   ShearWarpFrameResult& out)
@@ -580,17 +610,6 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
     return;
   }
 
-  ShearWarpFrameResult out;
-  internals.RenderFrame(in, ranks, rank, progress, out);
-  internals.Renderer.SetProgressFunction(nullptr); // it refers to this render's progress
-  if (!out.ok)
-  {
-    if (!out.empty)
-    {
-      vtkErrorMacro("Shear-warp rendering failed: " << out.error);
-    }
-    return;
-  }
   float colourScale = 1.0f;
   float colourBias = 0.0f;
   this->GetFinalColorScaleAndBias(colourScale, colourBias);
@@ -600,12 +619,36 @@ void vtkAccelVolumeShearWarpMapper::Render(vtkRenderer* renderer, vtkVolume* vol
   // every stage, so the ranks' exchanges stay in step).
   const vtkAccelVolumePeelStage peel = vtkAccelVolumeGetPeelStage(window, volume, this);
   const bool peeling = peel == vtkAccelVolumePeelStage::OutsideRange;
-  const int origin[2] = { 0, 0 }; // the pass's targets are viewport-sized
-  if (rank == 0 && peel != vtkAccelVolumePeelStage::Later &&
-    !internals.Show(window, peeling ? origin : in.lowerLeft, in, out, colourScale, colourBias,
-      selectionMode, selectionColour, peeling))
+  internals.DrawBandsWhileCompositing(window, in,
+    ranks == 1 && in.settings.bands == 1 && !in.settings.warp && selectionMode == 0 &&
+      peel == vtkAccelVolumePeelStage::None,
+    colourScale, colourBias);
+
+  // The frame's GL commands so far (clears, opaque geometry) go to the driver now, to be
+  // executed while the CPU composites, not after.
+  glFlush();
+  ShearWarpFrameResult out;
+  internals.RenderFrame(in, ranks, rank, progress, out);
+  internals.Renderer.SetProgressFunction(nullptr); // it refers to this render's progress
+  internals.Renderer.SetRowsReadyFunction(nullptr); // and this one to its inputs
+  if (!out.ok)
   {
-    vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
+    if (!out.empty)
+    {
+      vtkErrorMacro("Shear-warp rendering failed: " << out.error);
+    }
+    return;
+  }
+  const int origin[2] = { 0, 0 }; // the pass's targets are viewport-sized
+  this->LastNumberOfImageParts = 0;
+  if (rank == 0 && peel != vtkAccelVolumePeelStage::Later)
+  {
+    if (!internals.Show(window, peeling ? origin : in.lowerLeft, in, out, colourScale, colourBias,
+          selectionMode, selectionColour, peeling))
+    {
+      vtkErrorMacro("Cannot show the shear-warp image (OpenGL texture or shader failed)");
+    }
+    this->LastNumberOfImageParts = internals.Display.GetLastNumberOfParts();
   }
   // After showing: a CPU warp the GPU could not take counts too.
   internals.RecordCounters(this, out);

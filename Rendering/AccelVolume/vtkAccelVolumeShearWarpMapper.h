@@ -168,7 +168,8 @@ public:
 
   ///@{
   /** Last frame, wall-clock seconds (GetLastRenderTime: the whole Render()): classification and encoding (0 when
-   * reused), the per-frame tables, compositing (all bands), gathering bands from other ranks,
+   * reused), the per-frame tables, compositing (all bands; not the image parts drawn meanwhile),
+   * gathering bands from other ranks,
    * the warp. */
   vtkGetMacro(LastEncodeTime, double);
   vtkGetMacro(LastTableTime, double);
@@ -187,6 +188,10 @@ public:
   /** Threads of this process that composited the last frame's bands: at most NumberOfThreads
    * when that is set. */
   vtkGetMacro(LastNumberOfWorkers, int);
+  /** Parts the last frame's image was drawn in: several when one thread composites a frame of
+   * one process that the GPU warps (each part drawn while the next rows composite, so the GL
+   * driver works meanwhile), else 1; 0 when nothing was drawn. */
+  vtkGetMacro(LastNumberOfImageParts, int);
   double GetLastBandTime(int band) const;
   /** Scanlines of the last frame's intermediate image and the compositing seconds of each (this
    * rank's, the rest 0): what balances the next frame's bands (and models other core counts). */
@@ -229,6 +234,7 @@ protected:
   double LastImbalance = 1;
   int LastNumberOfBands = 0;
   int LastNumberOfWorkers = 0;
+  int LastNumberOfImageParts = 0;
   vtkTypeInt64 LastNumberOfVoxels = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;
   vtkTypeInt64 LastNumberOfSkippedPixels = 0;

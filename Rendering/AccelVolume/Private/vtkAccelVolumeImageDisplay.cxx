@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 // Where and how a texture's pixels land: the image of imageWidth x imageHeight pixels stretched
 // over the viewport, drawn over `rectangle` only; the texture holds uploadWidth x uploadHeight
@@ -31,9 +32,14 @@ struct vtkAccelVolumeImageDisplay::Placement
   bool clearSecondTarget;
   const Warp* warp; // null: the texture holds the image itself
   const unsigned short* pixels; // uploadWidth x uploadHeight 16-bit RGBA
+  int uploadRowBegin, uploadRowEnd; // the rows of them uploaded now
   // With a warp: each intermediate row's first and last visible pixel (first > last: none).
   const int* rowFirst;
   const int* rowLast;
+  // The footprint bands drawn now, [bandBegin, bandEnd) (DrawFootprint): all of them unless the
+  // frame is drawn in parts.
+  int bandBegin = 0;
+  int bandEnd = std::numeric_limits<int>::max();
 };
 
 namespace
@@ -42,6 +48,30 @@ namespace
 // Intermediate rows per band of the drawn footprint: fewer rows cut the empty parts closer,
 // more bands add vertices.
 constexpr int FootprintBandRows = 16;
+
+// Parts a frame is drawn in while it composites (DrawWarpedRows, then the rest): each one costs
+// an upload and a draw call on the compositing thread, and the last one's fragments are left
+// to the end of the frame.
+constexpr int WarpedFrameParts = 3;
+
+// Band k of the footprint lies between intermediate lines FootprintLine(k) and
+// FootprintLine(k + 1) (pixel rows at integers, -1 and height the image's zero fringe).
+int FootprintLine(int k, int height)
+{
+  return std::min(-1 + k * FootprintBandRows, height);
+}
+
+int FootprintBands(int height)
+{
+  return (height + 1 + FootprintBandRows - 1) / FootprintBandRows;
+}
+
+// The first row a part from band k on uploads: one below the rows its bands read, so that
+// every lookup near its edges reads the image's rows, as in a frame drawn at once.
+int PartFirstRow(int k, int height)
+{
+  return std::max(FootprintLine(k, height) - 1, 0);
+}
 
 }
 
@@ -61,6 +91,7 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
 {
   const int x0 = std::max(rectangle[0], 0), x1 = std::min(rectangle[1], imageWidth - 1);
   const int y0 = std::max(rectangle[2], 0), y1 = std::min(rectangle[3], imageHeight - 1);
+  this->LastParts = 0;
   if (x1 < x0 || y1 < y0)
   {
     return true; // nothing visible
@@ -94,8 +125,10 @@ bool vtkAccelVolumeImageDisplay::Draw(vtkOpenGLRenderWindow* window, const int l
   this->Image->SetWrapT(vtkTextureObject::ClampToEdge);
   Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, rectangleWidth,
     rectangleHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    nullptr, this->Pixels.data(), nullptr, nullptr };
-  return this->Show(window, this->Image, placement);
+    nullptr, this->Pixels.data(), 0, rectangleHeight, nullptr, nullptr };
+  const bool shown = this->Show(window, this->Image, placement);
+  this->LastParts = shown ? 1 : 0;
+  return shown;
 }
 
 bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const int lowerLeft[2],
@@ -108,14 +141,20 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
   const float* intermediate = warp.image;
   if (rectangle[1] < rectangle[0] || rectangle[3] < rectangle[2])
   {
-    return true; // nothing visible
+    this->LastParts = this->DrawnParts; // nothing more visible
+    this->BeginWarpedFrame();
+    return true;
   }
   // One zero column and row past the image: a bilinear lookup between the last pixel and the
   // next reads zero there, as the CPU warp; lookups before the first read the zero border.
   const int uploadWidth = intermediateWidth + 1;
   const int uploadHeight = intermediateHeight + 1;
-  const int limit = vtkTextureObject::GetMaximumTextureSize(window);
-  if (uploadWidth > limit || uploadHeight > limit)
+  // A frame drawn in parts (DrawWarpedRows, converted pixels) needs only its rest, in a texture
+  // of its own.
+  const bool rest = this->DrawnParts > 0 && warp.converted;
+  const int firstRow = rest ? PartFirstRow(this->DrawnBands, intermediateHeight) : 0;
+  vtkTextureObject* texture = rest ? this->PartTexture(this->DrawnParts) : this->Intermediate.Get();
+  if (!this->PrepareWarpTexture(window, texture, uploadWidth, uploadHeight))
   {
     return false;
   }
@@ -135,27 +174,112 @@ bool vtkAccelVolumeImageDisplay::DrawWarped(vtkOpenGLRenderWindow* window, const
     rowFirst = this->RowFirst.data();
     rowLast = this->RowLast.data();
   }
-  // The view turns the intermediate image's size a little every frame: the texture keeps room
-  // to spare (in steps of 64) so that it is not made anew each frame.
-  this->Intermediate->SetContext(window);
-  const auto room = [limit](int size) { return std::min(limit, (size + 63) / 64 * 64); };
-  if (!this->Intermediate->GetHandle() ||
-    static_cast<int>(this->Intermediate->GetWidth()) < uploadWidth ||
-    static_cast<int>(this->Intermediate->GetHeight()) < uploadHeight)
+  Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
+    uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
+    &warp, pixels, firstRow, uploadHeight, rowFirst, rowLast };
+  placement.bandBegin = rest ? this->DrawnBands : 0;
+  const int parts = this->DrawnParts + 1;
+  this->BeginWarpedFrame();
+  const bool shown = this->Show(window, texture, placement);
+  this->LastParts = shown ? parts : 0;
+  return shown;
+}
+
+void vtkAccelVolumeImageDisplay::BeginWarpedFrame()
+{
+  this->DrawnParts = 0;
+  this->DrawnBands = 0;
+}
+
+vtkTextureObject* vtkAccelVolumeImageDisplay::PartTexture(int part)
+{
+  while (static_cast<int>(this->PartTextures.size()) <= part)
   {
-    if (!this->Intermediate->Create2D(static_cast<unsigned>(room(uploadWidth)),
-          static_cast<unsigned>(room(uploadHeight)), 4, VTK_UNSIGNED_SHORT, false))
+    this->PartTextures.push_back(vtkSmartPointer<vtkTextureObject>::New());
+  }
+  return this->PartTextures[part];
+}
+
+bool vtkAccelVolumeImageDisplay::DrawWarpedRows(vtkOpenGLRenderWindow* window,
+  const int lowerLeft[2], int width, int height, const Warp& warp, int rowsReady,
+  float colourScale, float colourBias)
+{
+  const int uploadWidth = warp.size[0] + 1;
+  const int uploadHeight = warp.size[1] + 1;
+  // Footprint band k reads intermediate rows FootprintLine(k) to FootprintLine(k + 1) + 1, and
+  // its edge on line k + 1 spans band k + 1's columns too (DrawFootprint): it is drawn once the
+  // rows of both are ready, with the very vertices of a frame drawn at once. The last band,
+  // which reads the zero row past the image, waits for DrawWarped.
+  const int intermediateHeight = warp.size[1];
+  const int bands = FootprintBands(intermediateHeight);
+  const int firstRow = PartFirstRow(this->DrawnBands, intermediateHeight);
+  int bandEnd = this->DrawnBands;
+  while (bandEnd + 1 < bands &&
+    std::min(FootprintLine(bandEnd + 2, intermediateHeight), intermediateHeight - 1) < rowsReady &&
+    FootprintLine(bandEnd + 1, intermediateHeight) + 1 < rowsReady)
+  {
+    ++bandEnd;
+  }
+  if (!warp.converted)
+  {
+    return false;
+  }
+  if (rowsReady - firstRow < intermediateHeight / WarpedFrameParts || bandEnd <= this->DrawnBands)
+  {
+    return true; // too few rows yet for a part of their own
+  }
+  // Each part has a texture of its own, of the whole image's size (the same texture
+  // coordinates, so the same samples, as a frame drawn at once): writing into one that an
+  // earlier draw of the frame reads would make the driver finish that draw first (llvmpipe
+  // waits for it).
+  vtkTextureObject* texture = this->PartTexture(this->DrawnParts);
+  if (!this->PrepareWarpTexture(window, texture, uploadWidth, uploadHeight))
+  {
+    return false;
+  }
+  const int noRectangle[4] = { 0, width - 1, 0, height - 1 };
+  Placement placement{ lowerLeft, width, height, width, height, noRectangle, uploadWidth,
+    uploadHeight, colourScale, colourBias, 0, nullptr, false, &warp, warp.converted, firstRow,
+    rowsReady, warp.rowFirst, warp.rowLast };
+  placement.bandBegin = this->DrawnBands;
+  placement.bandEnd = bandEnd;
+  if (!this->Show(window, texture, placement))
+  {
+    return false;
+  }
+  ++this->DrawnParts;
+  this->DrawnBands = bandEnd;
+  glFlush(); // the driver draws these bands while the caller composites the next rows
+  return true;
+}
+
+bool vtkAccelVolumeImageDisplay::PrepareWarpTexture(
+  vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int uploadWidth, int uploadHeight)
+{
+  const int limit = vtkTextureObject::GetMaximumTextureSize(window);
+  if (uploadWidth > limit || uploadHeight > limit)
+  {
+    return false;
+  }
+  // The view turns the intermediate image's size a little every frame: the texture is made in
+  // steps of 64 texels so that it is not made anew each frame, and exactly so, so that every
+  // warp texture of a frame has the same size (the same texture coordinates, the same samples).
+  texture->SetContext(window);
+  const auto room = [limit](int size) { return std::min(limit, (size + 63) / 64 * 64); };
+  const int textureWidth = room(uploadWidth), textureHeight = room(uploadHeight);
+  if (!texture->GetHandle() || static_cast<int>(texture->GetWidth()) != textureWidth ||
+    static_cast<int>(texture->GetHeight()) != textureHeight)
+  {
+    if (!texture->Create2D(static_cast<unsigned>(textureWidth),
+          static_cast<unsigned>(textureHeight), 4, VTK_UNSIGNED_SHORT, false))
     {
       return false;
     }
   }
-  this->Intermediate->SetWrapS(vtkTextureObject::ClampToBorder);
-  this->Intermediate->SetWrapT(vtkTextureObject::ClampToBorder);
-  this->Intermediate->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
-  Placement placement{ lowerLeft, width, height, imageWidth, imageHeight, rectangle, uploadWidth,
-    uploadHeight, colourScale, colourBias, selectionMode, selectionColour, clearSecondTarget,
-    &warp, pixels, rowFirst, rowLast };
-  return this->Show(window, this->Intermediate, placement);
+  texture->SetWrapS(vtkTextureObject::ClampToBorder);
+  texture->SetWrapT(vtkTextureObject::ClampToBorder);
+  texture->SetBorderColor(0.0f, 0.0f, 0.0f, 0.0f);
+  return true;
 }
 
 bool vtkAccelVolumeImageDisplay::Show(
@@ -167,8 +291,12 @@ bool vtkAccelVolumeImageDisplay::Show(
   state->Push();
   texture->Activate();
   state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 2);
-  glTexSubImage2D(
-    GL_TEXTURE_2D, 0, 0, 0, p.uploadWidth, p.uploadHeight, GL_RGBA, GL_UNSIGNED_SHORT, p.pixels);
+  if (p.uploadRowEnd > p.uploadRowBegin)
+  {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, p.uploadRowBegin, p.uploadWidth,
+      p.uploadRowEnd - p.uploadRowBegin, GL_RGBA, GL_UNSIGNED_SHORT,
+      p.pixels + 4 * static_cast<std::size_t>(p.uploadWidth) * p.uploadRowBegin);
+  }
   texture->SetMinificationFilter(vtkTextureObject::Linear);
   texture->SetMagnificationFilter(vtkTextureObject::Linear);
   texture->SendParameters();
@@ -266,11 +394,15 @@ void vtkAccelVolumeImageDisplay::DrawFootprint(
   // whose edge on a line spans the columns of both bands beside it: neighbours share that edge
   // exactly (no T-junction: no pixel drawn twice or missed), and every band covers its
   // columns. Bands with no visible pixel are not drawn.
+  // Drawn in parts (DrawWarpedRows), bands [bandBegin, bandEnd) are drawn now; their edges need
+  // the columns of the bands beside them.
   const int width = p.warp->size[0], height = p.warp->size[1];
-  const int bands = (height + 1 + FootprintBandRows - 1) / FootprintBandRows;
-  const auto line = [height](int k) { return std::min(-1 + k * FootprintBandRows, height); };
-  std::vector<int> bandFirst(bands), bandLast(bands); // column ranges, first > last: empty
-  for (int k = 0; k < bands; ++k)
+  const int bands = FootprintBands(height);
+  const int bandBegin = std::max(p.bandBegin, 0);
+  const int bandEnd = std::min(p.bandEnd, bands);
+  const auto line = [height](int k) { return FootprintLine(k, height); };
+  std::vector<int> bandFirst(bands, width), bandLast(bands, -1); // first > last: empty
+  for (int k = std::max(bandBegin - 1, 0); k < std::min(bandEnd + 1, bands); ++k)
   {
     int first = width, last = -1;
     for (int v = std::max(line(k), 0); v <= std::min(line(k + 1), height - 1); ++v)
@@ -313,7 +445,7 @@ void vtkAccelVolumeImageDisplay::DrawFootprint(
     vertices.push_back(static_cast<float>((u + 0.5) / extent[0]));
     vertices.push_back(static_cast<float>((v + 0.5) / extent[1]));
   };
-  for (int k = 0; k < bands; ++k)
+  for (int k = bandBegin; k < bandEnd; ++k)
   {
     if (bandFirst[k] > bandLast[k])
     {
@@ -355,6 +487,11 @@ bool vtkAccelVolumeImageDisplay::ReadDepth(
 void vtkAccelVolumeImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Image->ReleaseGraphicsResources(window);
+  this->Intermediate->ReleaseGraphicsResources(window);
+  for (vtkTextureObject* texture : this->PartTextures)
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
   this->Array->ReleaseGraphicsResources();
   this->FootprintArray->ReleaseGraphicsResources();
   this->FootprintBuffer->ReleaseGraphicsResources();

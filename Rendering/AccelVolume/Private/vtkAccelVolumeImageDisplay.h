@@ -5,6 +5,7 @@
 
 #include "vtkAccelVolumeDepthCopy.h" // For vtkAccelVolumeDepthReader
 #include "vtkNew.h"                  // For vtkNew
+#include "vtkSmartPointer.h"         // For vtkSmartPointer
 
 #include <vector> // For std::vector
 
@@ -62,6 +63,18 @@ public:
     int imageWidth, int imageHeight, const Warp& warp, const int rectangle[4], float colourScale,
     float colourBias, int selectionMode, const float selectionColour[3], bool clearSecondTarget);
 
+  // A frame's intermediate image shown while it composites (plain frames of the lean shader:
+  // no selection, no depth peeling). BeginWarpedFrame forgets an earlier frame's rows;
+  // DrawWarpedRows uploads the rows [0, rowsReady) not uploaded yet, draws the footprint bands
+  // they complete and flushes, so that the OpenGL driver draws them while the caller goes on;
+  // DrawWarped then draws the rest. The image is the one DrawWarped draws alone. False if GL
+  // fails or the image exceeds the texture size limit (nothing drawn: DrawWarped draws it all).
+  void BeginWarpedFrame();
+  // Draw calls that showed the last image (DrawWarpedRows' parts and DrawWarped's rest; Draw: 1).
+  int GetLastNumberOfParts() const { return this->LastParts; }
+  bool DrawWarpedRows(vtkOpenGLRenderWindow* window, const int lowerLeft[2], int width,
+    int height, const Warp& warp, int rowsReady, float colourScale, float colourBias);
+
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
@@ -69,6 +82,11 @@ private:
   void operator=(const vtkAccelVolumeImageDisplay&) = delete;
 
   struct Placement; // where and how the texture's pixels land (ImageDisplay.cxx)
+  // A warp texture with room for uploadWidth x uploadHeight texels (zero border); false past
+  // the texture size limit or if GL fails.
+  bool PrepareWarpTexture(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
+    int uploadWidth, int uploadHeight);
+  vtkTextureObject* PartTexture(int part); // made on first use
   bool Show(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& placement);
   // The general shader's warp uniforms.
   void SetWarpUniforms(
@@ -89,6 +107,12 @@ private:
   vtkNew<vtkOpenGLVertexArrayObject> FootprintArray;
   vtkNew<vtkOpenGLBufferObject> FootprintBuffer;
   vtkAccelVolumeDepthReader DepthReader;
+  // The frame drawn in parts (DrawWarpedRows): parts and footprint bands drawn, and each
+  // part's texture (its rows from the first line of its bands).
+  int DrawnParts = 0;
+  int LastParts = 0;
+  int DrawnBands = 0;
+  std::vector<vtkSmartPointer<vtkTextureObject>> PartTextures;
 };
 
 #endif

@@ -208,6 +208,11 @@ void ShearWarpRenderer::SetProgressFunction(ProgressFunction report)
   this->Impl->progress = std::move(report);
 }
 
+void ShearWarpRenderer::SetRowsReadyFunction(RowsReadyFunction ready)
+{
+  this->Impl->rowsReady = std::move(ready);
+}
+
 bool ShearWarpRenderer::BeginFrame(const VolumeView& volume, double rangeMin, double rangeMax,
   std::uint64_t volumeVersion, const RayCastTransfer& transfer, std::uint64_t transferVersion,
   const RayCastLighting& lighting, const ShearWarpView& view, const ShearWarpSettings& settings,
@@ -606,23 +611,39 @@ bool ShearWarpRenderer::Render(const VolumeView& volume, double rangeMin, double
   {
     impl.PrepareDisplayPixels();
   }
-  parallel(static_cast<std::size_t>(bands),
-    [&](std::size_t begin, std::size_t end)
+  const auto compositeBands = [&](std::size_t begin, std::size_t end)
+  {
+    for (std::size_t b = begin; b < end; ++b)
     {
-      for (std::size_t b = begin; b < end; ++b)
+      const Clock::time_point start = Clock::now();
+      this->CompositeRows(bounds[b], bounds[b + 1]);
+      if (display)
       {
-        const Clock::time_point start = Clock::now();
-        this->CompositeRows(bounds[b], bounds[b + 1]);
-        if (display)
-        {
-          impl.ConvertRowsForDisplay(
-            std::max(bounds[b], 0), std::min(bounds[b + 1], f.intermediateSize[1]));
-        }
-        stats.bandSeconds[b] = Seconds(start);
-        bandWorker[b] = std::this_thread::get_id();
+        impl.ConvertRowsForDisplay(
+          std::max(bounds[b], 0), std::min(bounds[b + 1], f.intermediateSize[1]));
       }
-    });
-  stats.compositeSeconds = Seconds(compositeStart);
+      stats.bandSeconds[b] = Seconds(start);
+      bandWorker[b] = std::this_thread::get_id();
+    }
+  };
+  if (display && workers == 1 && impl.rowsReady)
+  {
+    // One worker: the bands in order here, each shown by the caller while the next composites.
+    impl.displayReady = true;
+    const ShearWarpDisplayPixels pixels = this->GetDisplayPixels();
+    for (int b = 0; b < bands; ++b)
+    {
+      compositeBands(static_cast<std::size_t>(b), static_cast<std::size_t>(b) + 1);
+      const Clock::time_point shown = Clock::now();
+      impl.rowsReady(pixels, std::clamp(bounds[b + 1], 0, f.intermediateSize[1]));
+      stats.rowsShownSeconds += Seconds(shown);
+    }
+  }
+  else
+  {
+    parallel(static_cast<std::size_t>(bands), compositeBands);
+  }
+  stats.compositeSeconds = Seconds(compositeStart) - stats.rowsShownSeconds;
   impl.displayReady = display;
   stats.bandBounds = bounds;
   stats.imbalance = WorkerImbalance(stats.bandSeconds, bandWorker, workers);

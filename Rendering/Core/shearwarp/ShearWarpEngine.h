@@ -87,6 +87,7 @@ struct ShearWarpStats
   double encodeSeconds = 0;    // classification + run-length encoding done this frame
   double tableSeconds = 0;     // opacity correction and shading tables
   double compositeSeconds = 0; // all bands (wall clock; with their display pixels)
+  double rowsShownSeconds = 0; // in the rows-ready function, not in compositeSeconds
   double warpSeconds = 0;
   std::vector<double> bandSeconds; // per band
   std::vector<int> bandBounds;     // bands + 1 scanline boundaries
@@ -134,6 +135,14 @@ public:
   // warp 1. BeginFrame reports its encoding alone, 0 to 1, and nothing when it reuses an
   // encoding. The image does not depend on it. Empty (the default): none.
   void SetProgressFunction(ProgressFunction report);
+
+  // Rows shown while the frame composites: with one worker (settings.bands 1) and display
+  // pixels (displayPixels, no warp), Render composites its bands in order on the calling
+  // thread and calls this after each band with the intermediate rows [0, rowsReady) composited
+  // and converted (`pixels` as GetDisplayPixels, its rows from rowsReady on not yet written),
+  // so that a caller can draw them while the next band composites. Empty (the default): none.
+  using RowsReadyFunction = std::function<void(const ShearWarpDisplayPixels& pixels, int rowsReady)>;
+  void SetRowsReadyFunction(RowsReadyFunction ready);
 
   // The phases of Render, for distributed compositing:
   // BeginFrame factorizes, encodes when needed, builds the tables and clears the intermediate

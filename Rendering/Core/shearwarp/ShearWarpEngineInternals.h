@@ -103,6 +103,7 @@ struct ShearWarpRenderer::Internals
   int costAxis = -1;
 
   ProgressFunction progress;
+  ShearWarpRenderer::RowsReadyFunction rowsReady;
 
   std::vector<double> EstimateCosts();
   void ClassifyExtremeRow(const float* values, float* rgba) const;
