@@ -78,6 +78,7 @@ struct RunResult
   std::vector<double> CompositeMs; // all bands
   std::vector<double> WarpMs;
   std::vector<double> TableMs;
+  std::vector<double> ImagePartsMs; // drawing image parts while compositing (one thread)
   std::vector<double> GatherMs;       // MPI: bands sent to rank 0, costs shared
   std::vector<double> Imbalance;      // slowest band / mean band
   std::vector<double> Cores;          // process CPU time / wall time of the frame (this rank)

@@ -213,6 +213,7 @@ void Record(
   r.CompositeMs.push_back(1000.0 * m->GetLastCompositeTime());
   r.WarpMs.push_back(1000.0 * m->GetLastWarpTime());
   r.TableMs.push_back(1000.0 * m->GetLastTableTime());
+  r.ImagePartsMs.push_back(1000.0 * m->GetLastImagePartsTime());
   r.GatherMs.push_back(1000.0 * m->GetLastGatherTime());
   r.Imbalance.push_back(m->GetLastImbalance());
   r.Voxels += perFrame * static_cast<double>(m->GetLastNumberOfVoxels());

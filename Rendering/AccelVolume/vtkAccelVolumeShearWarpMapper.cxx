@@ -217,6 +217,7 @@ void vtkAccelVolumeShearWarpMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastImbalance: " << this->LastImbalance << "\n";
   os << indent << "LastNumberOfWorkers: " << this->LastNumberOfWorkers << "\n";
   os << indent << "LastNumberOfImageParts: " << this->LastNumberOfImageParts << "\n";
+  os << indent << "LastImagePartsTime: " << this->LastImagePartsTime << "\n";
   os << indent << "EncodedBytes: " << this->EncodedBytes << "\n";
 }
 
@@ -550,6 +551,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::RecordCounters(
   self->LastCompositeTime = stats.compositeSeconds;
   self->LastGatherTime = out.gatherSeconds;
   self->LastWarpTime = stats.warpSeconds;
+  self->LastImagePartsTime = stats.rowsShownSeconds;
   self->LastImbalance = stats.imbalance;
   self->LastNumberOfBands = static_cast<int>(stats.bandSeconds.size());
   self->LastNumberOfWorkers = stats.workers;

@@ -192,6 +192,9 @@ public:
    * one process that the GPU warps (each part drawn while the next rows composite, so the GL
    * driver works meanwhile), else 1; 0 when nothing was drawn. */
   vtkGetMacro(LastNumberOfImageParts, int);
+  /** Seconds of the last frame spent drawing image parts while compositing (in GetLastRenderTime,
+   * not in GetLastCompositeTime). */
+  vtkGetMacro(LastImagePartsTime, double);
   double GetLastBandTime(int band) const;
   /** Scanlines of the last frame's intermediate image and the compositing seconds of each (this
    * rank's, the rest 0): what balances the next frame's bands (and models other core counts). */
@@ -235,6 +238,7 @@ protected:
   int LastNumberOfBands = 0;
   int LastNumberOfWorkers = 0;
   int LastNumberOfImageParts = 0;
+  double LastImagePartsTime = 0;
   vtkTypeInt64 LastNumberOfVoxels = 0;
   vtkTypeInt64 LastNumberOfSamples = 0;
   vtkTypeInt64 LastNumberOfSkippedPixels = 0;
