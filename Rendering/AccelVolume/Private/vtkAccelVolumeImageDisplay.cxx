@@ -261,12 +261,14 @@ bool vtkAccelVolumeImageDisplay::PrepareWarpTexture(
   {
     return false;
   }
-  // The view turns the intermediate image's size a little every frame: the texture is made in
-  // steps of 64 texels so that it is not made anew each frame, and exactly so, so that every
-  // warp texture of a frame has the same size (the same texture coordinates, the same samples).
+  // The view turns the intermediate image's size a little every frame: every warp texture has
+  // the largest size needed so far (in steps of 64 texels), so that none is made anew each
+  // frame and all have the same size (the same texture coordinates, the same samples).
   texture->SetContext(window);
   const auto room = [limit](int size) { return std::min(limit, (size + 63) / 64 * 64); };
-  const int textureWidth = room(uploadWidth), textureHeight = room(uploadHeight);
+  this->WarpTextureSize[0] = std::max(this->WarpTextureSize[0], room(uploadWidth));
+  this->WarpTextureSize[1] = std::max(this->WarpTextureSize[1], room(uploadHeight));
+  const int textureWidth = this->WarpTextureSize[0], textureHeight = this->WarpTextureSize[1];
   if (!texture->GetHandle() || static_cast<int>(texture->GetWidth()) != textureWidth ||
     static_cast<int>(texture->GetHeight()) != textureHeight)
   {
@@ -304,7 +306,7 @@ bool vtkAccelVolumeImageDisplay::Show(
   // depth peeling the general one.
   const bool lean = p.warp && p.selectionMode == 0 && !p.clearSecondTarget;
   vtkShaderProgram* program = lean
-    ? window->GetShaderCache()->ReadyShaderProgram(AccelVolumeWarpVS, AccelVolumeWarpFS, "")
+    ? this->ReadyLeanProgram(window)
     : window->GetShaderCache()->ReadyShaderProgram(AccelVolumeResolveVS, AccelVolumeImageFS, "");
   if (program)
   {
@@ -364,6 +366,21 @@ bool vtkAccelVolumeImageDisplay::Show(
   texture->Deactivate();
   state->Pop();
   return program != nullptr;
+}
+
+vtkShaderProgram* vtkAccelVolumeImageDisplay::ReadyLeanProgram(vtkOpenGLRenderWindow* window)
+{
+  // Readying a program from its source substitutes and hashes the source on every call: several
+  // draws a frame keep the program instead (the cache owns it; the weak pointers drop it with
+  // the cache or the window).
+  vtkOpenGLShaderCache* cache = window->GetShaderCache();
+  if (this->LeanProgram && this->LeanProgramWindow == window)
+  {
+    return cache->ReadyShaderProgram(this->LeanProgram) ? this->LeanProgram.GetPointer() : nullptr;
+  }
+  this->LeanProgram = cache->ReadyShaderProgram(AccelVolumeWarpVS, AccelVolumeWarpFS, "");
+  this->LeanProgramWindow = window;
+  return this->LeanProgram;
 }
 
 void vtkAccelVolumeImageDisplay::SetWarpUniforms(
@@ -492,6 +509,9 @@ void vtkAccelVolumeImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
   {
     texture->ReleaseGraphicsResources(window);
   }
+  this->WarpTextureSize[0] = this->WarpTextureSize[1] = 0;
+  this->LeanProgram = nullptr;
+  this->LeanProgramWindow = nullptr;
   this->Array->ReleaseGraphicsResources();
   this->FootprintArray->ReleaseGraphicsResources();
   this->FootprintBuffer->ReleaseGraphicsResources();

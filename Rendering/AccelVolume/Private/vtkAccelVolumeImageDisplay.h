@@ -6,6 +6,7 @@
 #include "vtkAccelVolumeDepthCopy.h" // For vtkAccelVolumeDepthReader
 #include "vtkNew.h"                  // For vtkNew
 #include "vtkSmartPointer.h"         // For vtkSmartPointer
+#include "vtkWeakPointer.h"          // For vtkWeakPointer
 
 #include <vector> // For std::vector
 
@@ -87,6 +88,7 @@ private:
   bool PrepareWarpTexture(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
     int uploadWidth, int uploadHeight);
   vtkTextureObject* PartTexture(int part); // made on first use
+  vtkShaderProgram* ReadyLeanProgram(vtkOpenGLRenderWindow* window); // bound, or null
   bool Show(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, const Placement& placement);
   // The general shader's warp uniforms.
   void SetWarpUniforms(
@@ -113,6 +115,9 @@ private:
   int LastParts = 0;
   int DrawnBands = 0;
   std::vector<vtkSmartPointer<vtkTextureObject>> PartTextures;
+  int WarpTextureSize[2] = { 0, 0 }; // every warp texture's (PrepareWarpTexture)
+  vtkWeakPointer<vtkShaderProgram> LeanProgram;
+  vtkWeakPointer<vtkOpenGLRenderWindow> LeanProgramWindow;
 };
 
 #endif
