@@ -31,6 +31,7 @@
 #include "vtkDataArray.h"
 #include "vtkTimerLog.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -51,8 +52,8 @@ constexpr double HeapBoundKiB = 256.0;     // growth of heap in use allowed afte
 constexpr double RssBoundMiB = 1.0;        // growth of resident memory allowed after warm-up
 constexpr double MinimumDrawnShare = 0.25; // of the sampled frames of every cycle
 
-// The frame after which resident memory is taken as warm: the second cycle's end when there are
-// three or more cycles (see Result::RssWarm), else the first's.
+// The frame up to which resident memory is taken as warm (its high-water mark until then): the
+// second cycle's end when there are three or more cycles (see Result::RssWarm), else the first's.
 int RssWarmFrame(int frames)
 {
   return (frames / Cycle >= 3 ? 2 : 1) * Cycle;
@@ -174,10 +175,12 @@ struct Result
   int Frames = 0;
   Memory Warm;
   Memory End;
-  // Resident memory is judged from the second cycle on when there are three or more: a loaded
-  // machine can reach its high-water mark (a worker thread's first malloc arena, a llvmpipe
-  // shader JIT) only in the second cycle, a one-time step that is no leak (seen once in CI:
-  // +1.0 MiB between frames 200 and 400, flat after). Heap in use is judged from the first.
+  // Resident memory is judged from its high-water mark over the first two cycles when there are
+  // three or more: a loaded machine can reach it (a worker thread's first malloc arena, a
+  // llvmpipe shader JIT) only in the second cycle, a one-time step that is no leak (seen once in
+  // CI: +1.0 MiB between frames 200 and 400, flat after), or drop below the first cycle's in the
+  // second and climb back (seen once: 132.6, 131.7, ..., 132.7 MiB). Heap in use is judged from
+  // the first.
   Memory RssWarm;
   std::vector<Memory> Checkpoints; // after every cycle
   double MsPerFrame = 0;
@@ -254,7 +257,14 @@ public:
     result.MsPerFrame = 1000.0 * timer->GetElapsedTime() / frames;
     result.Warm = result.Checkpoints.front();
     result.End = result.Checkpoints.back();
-    result.RssWarm = result.Checkpoints[static_cast<std::size_t>(RssWarmFrame(frames) / Cycle - 1)];
+    // Resident memory's high-water mark over the warm cycles: a process whose RSS dropped in the
+    // second cycle (pages the kernel or llvmpipe's scenes handed back under load) and climbed
+    // back to the first cycle's level has not grown; a leak raises every checkpoint, so its
+    // mark is the last warm one, as before.
+    const std::size_t warmCheckpoints = static_cast<std::size_t>(RssWarmFrame(frames) / Cycle);
+    result.RssWarm = *std::max_element(result.Checkpoints.begin(),
+      result.Checkpoints.begin() + static_cast<std::ptrdiff_t>(warmCheckpoints),
+      [](const Memory& a, const Memory& b) { return a.Rss < b.Rss; });
     result.Errors = this->Errors->Count;
     result.Warnings = this->Warnings->Count;
     result.FirstError = this->Errors->First;
@@ -593,7 +603,7 @@ int TestAccelVolumeSoak(int argc, char* argv[])
     return 125;
   }
   std::cout << "soak: " << args.Frames << " frames per mapper, schedule period " << Cycle
-            << " frames; heap in use after frame " << Cycle << " (warm), resident memory after frame "
+            << " frames; heap in use after frame " << Cycle << " (warm), resident memory's high-water mark up to frame "
             << RssWarmFrame(args.Frames) << ", both after frame " << args.Frames
             << "; bounds: heap in use +" << HeapBoundKiB << " KiB, RSS +" << RssBoundMiB << " MiB"
             << (args.InjectLeak ? ", injected leak " + std::to_string(args.InjectLeak) +
