@@ -30,9 +30,10 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 attempt=1
 while :; do
-  # A display number of our own (from the process id) makes collisions unlikely to begin with.
+  # A display number of our own (from the process id) makes collisions unlikely to begin with;
+  # a retry takes another one (a cold CI run once failed all three tries on display :350).
   PYTHONPATH="$python_dir${PYTHONPATH:+:$PYTHONPATH}" \
-    timeout -k 5 60 "$xvfb_run" -a -n $((100 + $$ % 800)) -s "-screen 0 1024x768x24" \
+    timeout -k 5 60 "$xvfb_run" -a -n $((100 + ($$ + 277 * attempt) % 800)) -s "-screen 0 1024x768x24" \
     "$pvbatch" "$@" >"$log" 2>&1
   status=$?
   cat "$log"
@@ -43,9 +44,9 @@ while :; do
   fi
   if [ "$status" -ne 0 ] && [ "$attempt" -lt 3 ] &&
     grep -q -e "bad X server connection" -e "Xvfb failed to start" "$log"; then
-    echo "run-pvbatch.sh: the X server could not be reached; trying again"
+    echo "run-pvbatch.sh: the X server could not be reached; trying again on another display"
     attempt=$((attempt + 1))
-    sleep 2
+    sleep 5
     continue
   fi
   exit "$status"
