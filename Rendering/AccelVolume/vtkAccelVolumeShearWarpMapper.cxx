@@ -183,6 +183,9 @@ public:
   // otherwise Show draws the whole image.
   void DrawBandsWhileCompositing(vtkOpenGLRenderWindow* window, const ShearWarpFrameInputs& in,
     bool enable, float colourScale, float colourBias);
+  // The engine's intermediate image and warp with its display pixels, as the display takes them.
+  vtkAccelVolumeImageDisplay::Warp IntermediateWarp(
+    const accelvolume::ShearWarpDisplayPixels& pixels);
   // Draws the frame: the intermediate image warped by the GPU, or (WarpOnGPU off, or past the
   // texture size limit) the image warped here.
   bool Show(vtkOpenGLRenderWindow* window, const int lowerLeft[2], const ShearWarpFrameInputs& in,
@@ -459,11 +462,8 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
 {
   if (!in.settings.warp)
   {
-    const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
-    const accelvolume::ShearWarpDisplayPixels converted = this->Renderer.GetDisplayPixels();
-    const vtkAccelVolumeImageDisplay::Warp intermediate{ this->Renderer.GetIntermediateImage(),
-      { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp, converted.rgba,
-      converted.rowFirst, converted.rowLast };
+    const vtkAccelVolumeImageDisplay::Warp intermediate =
+      this->IntermediateWarp(this->Renderer.GetDisplayPixels());
     if (this->Display.DrawWarped(window, lowerLeft, in.width, in.height, in.width, in.height,
           intermediate, out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
           peeling))
@@ -477,6 +477,14 @@ bool vtkAccelVolumeShearWarpMapper::vtkInternals::Show(vtkOpenGLRenderWindow* wi
   return this->Display.Draw(window, lowerLeft, in.width, in.height, in.width, in.height,
     this->Image.data(), out.rectangle, colourScale, colourBias, selectionMode, selectionColour,
     peeling);
+}
+
+vtkAccelVolumeImageDisplay::Warp vtkAccelVolumeShearWarpMapper::vtkInternals::IntermediateWarp(
+  const accelvolume::ShearWarpDisplayPixels& pixels)
+{
+  const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
+  return { this->Renderer.GetIntermediateImage(), { f.intermediateSize[0], f.intermediateSize[1] },
+    f.warp, f.inverseWarp, pixels.rgba, pixels.rowFirst, pixels.rowLast };
 }
 
 void vtkAccelVolumeShearWarpMapper::vtkInternals::DrawBandsWhileCompositing(
@@ -493,10 +501,7 @@ void vtkAccelVolumeShearWarpMapper::vtkInternals::DrawBandsWhileCompositing(
     [this, window, &in, colourScale, colourBias](
       const accelvolume::ShearWarpDisplayPixels& pixels, int rowsReady)
     {
-      const accelvolume::ShearWarpFactorization& f = this->Renderer.GetFactorization();
-      const vtkAccelVolumeImageDisplay::Warp intermediate{ this->Renderer.GetIntermediateImage(),
-        { f.intermediateSize[0], f.intermediateSize[1] }, f.warp, f.inverseWarp, pixels.rgba,
-        pixels.rowFirst, pixels.rowLast };
+      const vtkAccelVolumeImageDisplay::Warp intermediate = this->IntermediateWarp(pixels);
       this->Display.DrawWarpedRows(
         window, in.lowerLeft, in.width, in.height, intermediate, rowsReady, colourScale, colourBias);
     });
