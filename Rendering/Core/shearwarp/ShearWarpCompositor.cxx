@@ -46,6 +46,32 @@ inline int FindOpen(std::int32_t* next, int u)
   return open;
 }
 
+// The first pixel of [u, end) that is not open (end if all are): open pixels link to
+// themselves, so four links at a time are compared with their own indices.
+inline int OpenStretchEnd(const std::int32_t* links, int u, int end)
+{
+#if defined(__SSE2__)
+  __m128i index = _mm_add_epi32(_mm_set1_epi32(u), _mm_setr_epi32(0, 1, 2, 3));
+  const __m128i four = _mm_set1_epi32(4);
+  for (; u + 4 <= end; u += 4)
+  {
+    const __m128i same = _mm_cmpeq_epi32(
+      _mm_loadu_si128(reinterpret_cast<const __m128i*>(links + u)), index);
+    const int open = _mm_movemask_ps(_mm_castsi128_ps(same));
+    if (open != 0xF)
+    {
+      return u + __builtin_ctz(~open & 0xF);
+    }
+    index = _mm_add_epi32(index, four);
+  }
+#endif
+  while (u < end && links[u] == u)
+  {
+    ++u;
+  }
+  return u;
+}
+
 }
 
 void BuildPaletteColours(
@@ -375,11 +401,7 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
     int stretchEnd = spanEnd;
     if (skip)
     {
-      stretchEnd = u + 1;
-      while (stretchEnd < spanEnd && links[stretchEnd] == stretchEnd)
-      {
-        ++stretchEnd;
-      }
+      stretchEnd = OpenStretchEnd(links, u + 1, spanEnd);
     }
     for (const RowCursor& cursor : rows)
     {
