@@ -392,14 +392,27 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
     }
     if (reached > u)
     {
+      // Every run the cursors point at begins at or after `reached`, so they stay the first
+      // runs that end after its voxels: when that pixel is open, its span follows from them
+      // without another pass over the skip links and runs.
       u = reached;
-      continue;
+      if (skip && links[u] != u)
+      {
+        continue;
+      }
+      for (const RowCursor& cursor : rows)
+      {
+        if (cursor.run != cursor.end && static_cast<int>(cursor.run->begin) + shiftI == u)
+        {
+          spanEnd = std::max(spanEnd, static_cast<int>(cursor.run->end) + shiftI + 1);
+        }
+      }
     }
     spanEnd = std::min(spanEnd, width);
     // The stretch of open pixels from u: its voxels are shaded first (tight loops over the two
     // rows), then its pixels composited.
     int stretchEnd = spanEnd;
-    if (skip)
+    if (skip && ws.open[r] != width) // else no pixel of the scanline is saturated yet
     {
       stretchEnd = OpenStretchEnd(links, u + 1, spanEnd);
     }
