@@ -372,18 +372,12 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
     // Pixel u reads voxels i0 and i0 + 1; runs ending at or before i0 reach only pixels
     // before u.
     int reached = std::numeric_limits<int>::max(); // first pixel >= u a run reaches
-    int spanEnd = 0;                               // where the runs reaching u stop reaching
     for (RowCursor& cursor : rows)
     {
       cursor.run = FirstRunEndingAfter(cursor.run, cursor.end, u - shiftI - 1);
       if (cursor.run != cursor.end)
       {
-        const int first = std::max(u, static_cast<int>(cursor.run->begin) + shiftI);
-        reached = std::min(reached, first);
-        if (first == u)
-        {
-          spanEnd = std::max(spanEnd, static_cast<int>(cursor.run->end) + shiftI + 1);
-        }
+        reached = std::min(reached, std::max(u, static_cast<int>(cursor.run->begin) + shiftI));
       }
     }
     if (reached >= width)
@@ -400,12 +394,14 @@ __attribute__((noinline)) void CompositeRuns(const BandContext<Policy>& c,
       {
         continue;
       }
-      for (const RowCursor& cursor : rows)
+    }
+    // Where the runs reaching u (those beginning at or before it) stop reaching.
+    int spanEnd = 0;
+    for (const RowCursor& cursor : rows)
+    {
+      if (cursor.run != cursor.end && static_cast<int>(cursor.run->begin) + shiftI <= u)
       {
-        if (cursor.run != cursor.end && static_cast<int>(cursor.run->begin) + shiftI == u)
-        {
-          spanEnd = std::max(spanEnd, static_cast<int>(cursor.run->end) + shiftI + 1);
-        }
+        spanEnd = std::max(spanEnd, static_cast<int>(cursor.run->end) + shiftI + 1);
       }
     }
     spanEnd = std::min(spanEnd, width);
